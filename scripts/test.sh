@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Set up, build everything, and run the whole test suite.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+build="${STEPNC_BUILD_DIR:-build/release}"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build"
+ctest --test-dir "$build" --output-on-failure --timeout 600 -j "$(nproc)"
