@@ -196,11 +196,21 @@ struct Constant {
   const ast::Expression* value = nullptr;
 };
 
+// A formal parameter of a FUNCTION or PROCEDURE.
+struct Parameter {
+  std::string name;
+  SourceLocation location;
+  TypeRef type;
+  bool var = false;  // PROCEDURE VAR parameter
+};
+
 struct Algorithm {  // FUNCTION, PROCEDURE or RULE: kept as checked syntax
   enum class Kind : uint8_t { Function, Procedure, Rule };
   Kind kind = Kind::Function;
   std::string name;
   SourceLocation location;
+  std::vector<Parameter> parameters;  // FUNCTION and PROCEDURE
+  TypeRef result;                     // FUNCTION only
   const ast::FunctionDecl* function = nullptr;
   const ast::ProcedureDecl* procedure = nullptr;
   const ast::RuleDecl* rule = nullptr;

@@ -1,0 +1,63 @@
+# stepnc_generate(): compile EXPRESS schemas into a C++ library of typed
+# bindings with stepnc::meta reflection, the way protobuf_generate() turns
+# .proto files into code.
+#
+#   stepnc_generate(TARGET my_schemas
+#                   SCHEMAS schemas/my_schema.exp ...
+#                   [OUT_DIR <dir>])      # default: <binary dir>/<TARGET>
+#   target_link_libraries(my_app PRIVATE my_schemas)
+#   // #include "my_schema.h"
+#
+# Each schema file must declare one schema named like the file
+# (`my_schema.exp` holds `SCHEMA my_schema;`): expressc writes
+# `<schema>.h` and `<schema>.cc`, so the outputs are known without reading
+# the schemas at configure time. All SCHEMAS are compiled together, as one
+# closed set (a subtype in one schema is listed in its supertype's table).
+
+# The emitter's sources belong to expressc_core. Until expressc's own
+# CMakeLists adds emit/cpp, add it from here (the folder sets the property).
+get_property(_stepnc_cpp_emitter_added GLOBAL PROPERTY STEPNC_CPP_EMITTER_ADDED)
+if(TARGET expressc_core AND NOT _stepnc_cpp_emitter_added)
+  add_subdirectory("${PROJECT_SOURCE_DIR}/expressc/emit/cpp" "${PROJECT_BINARY_DIR}/expressc/emit/cpp")
+endif()
+
+function(stepnc_generate)
+  cmake_parse_arguments(ARG "" "TARGET;OUT_DIR" "SCHEMAS" ${ARGN})
+  if(NOT ARG_TARGET OR NOT ARG_SCHEMAS)
+    message(FATAL_ERROR "stepnc_generate: TARGET and SCHEMAS are required")
+  endif()
+  if(ARG_UNPARSED_ARGUMENTS)
+    message(FATAL_ERROR "stepnc_generate: unknown arguments: ${ARG_UNPARSED_ARGUMENTS}")
+  endif()
+  if(NOT ARG_OUT_DIR)
+    set(ARG_OUT_DIR "${CMAKE_CURRENT_BINARY_DIR}/${ARG_TARGET}")
+  endif()
+
+  set(schemas "")
+  set(outputs "")
+  foreach(schema IN LISTS ARG_SCHEMAS)
+    get_filename_component(path "${schema}" ABSOLUTE)
+    get_filename_component(stem "${schema}" NAME_WE)
+    list(APPEND schemas "${path}")
+    list(APPEND outputs "${ARG_OUT_DIR}/${stem}.h" "${ARG_OUT_DIR}/${stem}.cc")
+  endforeach()
+
+  # expressc rewrites only the files whose text changed; the stamp records
+  # the run, and Ninja's restat skips recompiling unchanged outputs.
+  set(stamp "${ARG_OUT_DIR}/.${ARG_TARGET}.stamp")
+  add_custom_command(
+    OUTPUT "${stamp}"
+    BYPRODUCTS ${outputs}
+    COMMAND expressc --cpp-out "${ARG_OUT_DIR}" ${schemas}
+    COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
+    DEPENDS expressc ${schemas}
+    COMMENT "expressc: C++ bindings for ${ARG_TARGET}"
+    VERBATIM)
+
+  add_library(${ARG_TARGET} STATIC ${outputs} "${stamp}")
+  target_include_directories(${ARG_TARGET} PUBLIC "${ARG_OUT_DIR}")
+  target_link_libraries(${ARG_TARGET} PUBLIC stepnc::runtime)
+  if(COMMAND stepnc_warnings)
+    stepnc_warnings(${ARG_TARGET})
+  endif()
+endfunction()

@@ -1,0 +1,982 @@
+#include "emit/cpp/cpp_generator.h"
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+#include <system_error>
+
+#include "emit/cpp/analysis.h"
+#include "emit/cpp/printer.h"
+#include "emit/output.h"
+
+namespace expressc::emit::cpp {
+
+namespace {
+
+using model::Attribute;
+using model::DefinedType;
+using model::Entity;
+using model::Schema;
+using model::TypeRef;
+
+// ---------------------------------------------------------------- names
+
+// C++ keywords and alternative tokens that are valid EXPRESS identifiers.
+const std::set<std::string_view> kCppKeywords = {
+    "alignas", "alignof", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+    "char", "char8_t", "char16_t", "char32_t", "class", "co_await", "co_return", "co_yield",
+    "compl", "concept", "const", "const_cast", "consteval", "constexpr", "constinit", "continue",
+    "decltype", "default", "delete", "do", "double", "dynamic_cast", "explicit", "export",
+    "extern", "float", "friend", "goto", "inline", "int", "long", "mutable", "namespace", "new",
+    "noexcept", "not_eq", "nullptr", "operator", "or_eq", "private", "protected", "public",
+    "register", "reinterpret_cast", "requires", "short", "signed", "sizeof", "static",
+    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
+    "throw", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual",
+    "void", "volatile", "wchar_t", "while", "xor_eq", "and_eq", "int8_t", "int16_t", "int32_t",
+    "int64_t", "uint8_t", "uint16_t", "uint32_t", "uint64_t", "size_t", "std", "stepnc"};
+
+// Names every generated entity class already has (from meta::Instance or
+// the generator); an attribute with one of these names gets a trailing _.
+const std::set<std::string_view> kReservedMembers = {"id", "object", "entity_info", "meta_entity",
+                                                     "meta_entity_is_abstract"};
+
+std::string identifier(std::string_view name) {
+  std::string id(name);
+  if (kCppKeywords.count(id) != 0) id += '_';
+  return id;
+}
+
+std::string member_identifier(std::string_view name) {
+  std::string id = identifier(name);
+  if (kReservedMembers.count(id) != 0) id += '_';
+  return id;
+}
+
+// Concatenation without `"literal" + std::string` temporaries, which make
+// GCC 12 report a false -Wrestrict.
+std::string concat(std::initializer_list<std::string_view> parts) {
+  std::string out;
+  for (std::string_view part : parts) out += part;
+  return out;
+}
+
+// Appends `item` to a `separator`-separated list.
+void append_item(std::string& list, std::string_view separator, std::string_view item) {
+  if (!list.empty()) list += separator;
+  list += item;
+}
+
+std::string ns(const Schema* schema) { return identifier(schema->name); }
+std::string qualified(const Schema* schema, std::string_view name) { return concat({ns(schema), "::", identifier(name)}); }
+std::string type_info_name(const Schema* schema, std::string_view name) {
+  return concat({ns(schema), "::type_info::", identifier(name)});
+}
+std::string qualified(const Entity* e) { return qualified(e->schema, e->name); }
+std::string qualified(const DefinedType* t) { return qualified(t->schema, t->name); }
+
+std::string file_name(const model::SourceLocation& location) {
+  if (location.file == nullptr) return "<input>";
+  return std::filesystem::path(*location.file).filename().string();
+}
+
+model::Diagnostic error_at(const model::SourceLocation& location, std::string message) {
+  model::Diagnostic d;
+  d.severity = model::Diagnostic::Severity::Error;
+  d.file = location.file != nullptr ? *location.file : std::string();
+  d.line = location.line;
+  d.column = location.column;
+  d.message = std::move(message);
+  return d;
+}
+
+// ---------------------------------------------------------------- types
+
+enum class Storage { Integer, Real, Boolean, Logical, String, Binary, Entity, Enumeration, Select, Aggregate, Unsupported };
+
+const TypeRef& resolve_alias(const TypeRef& type) {
+  const TypeRef* t = &type;
+  while (t->kind == TypeRef::Kind::Defined && t->defined->kind == DefinedType::Kind::Alias) t = &t->defined->underlying;
+  return *t;
+}
+
+Storage storage_of(const TypeRef& type) {
+  const TypeRef& t = resolve_alias(type);
+  switch (t.kind) {
+    case TypeRef::Kind::Simple:
+      switch (t.simple) {
+        case model::SimpleKind::Integer: return Storage::Integer;
+        case model::SimpleKind::Real:
+        case model::SimpleKind::Number: return Storage::Real;
+        case model::SimpleKind::Boolean: return Storage::Boolean;
+        case model::SimpleKind::Logical: return Storage::Logical;
+        case model::SimpleKind::String: return Storage::String;
+        case model::SimpleKind::Binary: return Storage::Binary;
+      }
+      break;
+    case TypeRef::Kind::Defined:
+      return t.defined->kind == DefinedType::Kind::Enumeration ? Storage::Enumeration : Storage::Select;
+    case TypeRef::Kind::Entity: return Storage::Entity;
+    case TypeRef::Kind::Aggregate: return t.element ? Storage::Aggregate : Storage::Unsupported;
+    default: break;
+  }
+  return Storage::Unsupported;
+}
+
+bool storable(const TypeRef& type) {
+  const TypeRef& t = resolve_alias(type);
+  if (storage_of(t) == Storage::Unsupported) return false;
+  return t.kind != TypeRef::Kind::Aggregate || storable(*t.element);
+}
+
+// Storages with an empty state of their own: no std::optional around them.
+bool nullable(const TypeRef& type) {
+  const Storage s = storage_of(type);
+  return s == Storage::Entity || s == Storage::Select;
+}
+
+// Values InlineVector can hold.
+bool plain(const TypeRef& type) {
+  switch (storage_of(type)) {
+    case Storage::Integer:
+    case Storage::Real:
+    case Storage::Boolean:
+    case Storage::Logical:
+    case Storage::Enumeration:
+    case Storage::Entity: return true;
+    default: return false;
+  }
+}
+
+constexpr int64_t kLargestInlineAggregate = 4;
+
+std::optional<int64_t> inline_capacity(const TypeRef& aggregate) {
+  if (aggregate.upper.value && *aggregate.upper.value > 0 && *aggregate.upper.value <= kLargestInlineAggregate &&
+      plain(*aggregate.element))
+    return aggregate.upper.value;
+  return std::nullopt;
+}
+
+std::string_view simple_cpp(model::SimpleKind kind) {
+  switch (kind) {
+    case model::SimpleKind::Integer: return "std::int64_t";
+    case model::SimpleKind::Real:
+    case model::SimpleKind::Number: return "double";
+    case model::SimpleKind::Boolean: return "bool";
+    case model::SimpleKind::Logical: return "stepnc::meta::Logical";
+    case model::SimpleKind::String: return "stepnc::meta::String";
+    case model::SimpleKind::Binary: return "stepnc::meta::Binary";
+  }
+  return "";
+}
+
+std::string_view simple_express(model::SimpleKind kind) {
+  switch (kind) {
+    case model::SimpleKind::Integer: return "INTEGER";
+    case model::SimpleKind::Real: return "REAL";
+    case model::SimpleKind::Number: return "NUMBER";
+    case model::SimpleKind::Boolean: return "BOOLEAN";
+    case model::SimpleKind::Logical: return "LOGICAL";
+    case model::SimpleKind::String: return "STRING";
+    case model::SimpleKind::Binary: return "BINARY";
+  }
+  return "";
+}
+
+std::string_view aggregate_express(model::AggregateKind kind) {
+  switch (kind) {
+    case model::AggregateKind::Array: return "ARRAY";
+    case model::AggregateKind::List: return "LIST";
+    case model::AggregateKind::Bag: return "BAG";
+    case model::AggregateKind::Set: return "SET";
+  }
+  return "";
+}
+
+std::string_view aggregate_kind_cpp(model::AggregateKind kind) {
+  switch (kind) {
+    case model::AggregateKind::Array: return "TypeKind::Array";
+    case model::AggregateKind::List: return "TypeKind::List";
+    case model::AggregateKind::Bag: return "TypeKind::Bag";
+    case model::AggregateKind::Set: return "TypeKind::Set";
+  }
+  return "";
+}
+
+std::string bound_text(const model::Bound& b) { return b.value ? std::to_string(*b.value) : "?"; }
+
+// The C++ storage type (see runtime/include/stepnc/meta/info.h).
+std::string cpp_type(const TypeRef& t) {
+  switch (t.kind) {
+    case TypeRef::Kind::Simple: return std::string(simple_cpp(t.simple));
+    case TypeRef::Kind::Defined: return qualified(t.defined);
+    case TypeRef::Kind::Entity: return qualified(t.entity) + "*";
+    case TypeRef::Kind::Aggregate:
+      if (auto n = inline_capacity(t))
+        return concat({"stepnc::meta::InlineVector<", cpp_type(*t.element), ", ", std::to_string(*n), ">"});
+      return concat({"std::vector<", cpp_type(*t.element), ">"});
+    default: return "";
+  }
+}
+
+std::string member_type(const TypeRef& t, bool optional) {
+  if (optional && !nullable(t)) return concat({"std::optional<", cpp_type(t), ">"});
+  return cpp_type(t);
+}
+
+// The type as written in EXPRESS, for comments.
+std::string express_text(const TypeRef& t) {
+  switch (t.kind) {
+    case TypeRef::Kind::Simple: {
+      std::string s(simple_express(t.simple));
+      if (t.width) s += concat({"(", std::to_string(*t.width), ")", t.fixed ? " FIXED" : ""});
+      return s;
+    }
+    case TypeRef::Kind::Defined: return t.defined->name;
+    case TypeRef::Kind::Entity: return t.entity->name;
+    case TypeRef::Kind::Aggregate:
+      return concat({aggregate_express(t.aggregate), " [", bound_text(t.lower), ":", bound_text(t.upper), "] OF ",
+                     t.optional_elements ? "OPTIONAL " : "", t.unique ? "UNIQUE " : "", express_text(*t.element)});
+    default: return "GENERIC";
+  }
+}
+
+// A name describing an anonymous aggregate type by its structure.
+std::string aggregate_name(const TypeRef& t) {
+  std::string name(aggregate_express(t.aggregate));
+  std::transform(name.begin(), name.end(), name.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
+  if (t.unique) name += "_unique";
+  name += '_';
+  name += t.lower.value ? std::to_string(*t.lower.value) : std::string("0");
+  name += '_';
+  name += t.upper.value ? std::to_string(*t.upper.value) : std::string("n");
+  name += "_of_";
+  const TypeRef& e = *t.element;
+  switch (e.kind) {
+    case TypeRef::Kind::Simple: {
+      std::string s(simple_express(e.simple));
+      std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
+      return name + s;
+    }
+    case TypeRef::Kind::Defined: return name + e.defined->name;
+    case TypeRef::Kind::Entity: return name + e.entity->name;
+    default: return name + aggregate_name(e);
+  }
+}
+
+// Schemas in model order, each once.
+class SchemaList {
+ public:
+  explicit SchemaList(const model::Model& model) : model_(model) {}
+  void add(const Schema* s) {
+    if (s != nullptr) members_.insert(s);
+  }
+  std::vector<const Schema*> ordered(const Schema* except) const {
+    std::vector<const Schema*> out;
+    for (const auto& s : model_.schemas)
+      if (s.get() != except && members_.count(s.get()) != 0) out.push_back(s.get());
+    return out;
+  }
+
+ private:
+  const model::Model& model_;
+  std::set<const Schema*> members_;
+};
+
+void add_type_schemas(const TypeRef& t, SchemaList& list) {
+  switch (t.kind) {
+    case TypeRef::Kind::Defined: list.add(t.defined->schema); break;
+    case TypeRef::Kind::Entity: list.add(t.entity->schema); break;
+    case TypeRef::Kind::Aggregate:
+      if (t.element) add_type_schemas(*t.element, list);
+      break;
+    default: break;
+  }
+}
+
+// ---------------------------------------------------------------- emitter
+
+class SchemaEmitter {
+ public:
+  SchemaEmitter(const model::Model& model, const Analysis& analysis, const Schema& schema,
+                std::vector<model::Diagnostic>& diagnostics)
+      : model_(model), analysis_(analysis), schema_(schema), diagnostics_(diagnostics) {}
+
+  bool check();
+  std::string header();
+  std::string source();
+
+ private:
+  // Header parts.
+  void print_type(Printer& p, const DefinedType& type);
+  void print_select(Printer& p, const DefinedType& type);
+  void print_entity_class(Printer& p, const Entity& entity);
+  void print_combination_class(Printer& p, const Combination& combination);
+  std::string base_clause(const std::vector<const Entity*>& supertypes) const;
+  void print_class_preamble(Printer& p, bool abstract);
+
+  // Source parts.
+  std::string type_info_ref(const TypeRef& t);
+  std::string register_aggregate(const TypeRef& t);
+  void print_type_tables(Printer& p, const DefinedType& type);
+  void print_entity_tables(Printer& p, const std::string& cpp_name, const std::string& table_name,
+                           const Entity* entity, const Combination* combination);
+  void print_attribute_row(Printer& p, const model::Part21Slot& slot);
+
+  std::vector<const Entity*> entities_in_order() const;
+  std::vector<const DefinedType*> types_in_order() const;
+  std::vector<const Schema*> header_dependencies() const;
+  std::vector<const Schema*> source_dependencies() const;
+
+  const model::Model& model_;
+  const Analysis& analysis_;
+  const Schema& schema_;
+  std::vector<model::Diagnostic>& diagnostics_;
+
+  std::string aggregates_;  // anonymous aggregate TypeInfo definitions, in dependency order
+  std::map<std::string, std::string> aggregate_names_;  // structural name -> storage type
+};
+
+// Reports what the emitter cannot express in C++ yet, instead of emitting
+// something that would not compile or would be wrong.
+bool SchemaEmitter::check() {
+  bool ok = true;
+  auto fail = [&](const model::SourceLocation& at, std::string message) {
+    diagnostics_.push_back(error_at(at, std::move(message)));
+    ok = false;
+  };
+  for (const auto& type : schema_.types) {
+    if (type->kind == DefinedType::Kind::Enumeration && type->enumeration_items.size() > 255)
+      fail(type->location, "C++ emitter: enumeration " + type->name + " has more than 255 items");
+    if (type->kind == DefinedType::Kind::Alias && !storable(type->underlying))
+      fail(type->location, "C++ emitter: type " + type->name + " has no C++ storage (generic type)");
+  }
+  for (const auto& entity : schema_.entities)
+    for (const auto& a : entity->attributes)
+      if (a->kind == Attribute::Kind::Explicit && !storable(a->type))
+        fail(a->location, "C++ emitter: attribute " + entity->name + "." + a->name + " has no C++ storage");
+  return ok;
+}
+
+std::vector<const Entity*> SchemaEmitter::entities_in_order() const {
+  // Supertypes of this schema come before their subtypes; otherwise source order.
+  std::vector<const Entity*> order;
+  std::set<const Entity*> done;
+  std::function<void(const Entity*)> visit = [&](const Entity* e) {
+    if (e->schema != &schema_ || done.count(e) != 0) return;
+    done.insert(e);
+    for (const Entity* super : e->supertypes) visit(super);
+    order.push_back(e);
+  };
+  for (const auto& e : schema_.entities) visit(e.get());
+  return order;
+}
+
+std::vector<const DefinedType*> SchemaEmitter::types_in_order() const {
+  // Enumerations first (they depend on nothing); then aliases and selects
+  // after the defined types of this schema that their storage or accessors use.
+  std::vector<const DefinedType*> order;
+  std::set<const DefinedType*> done;
+  for (const auto& t : schema_.types)
+    if (t->kind == DefinedType::Kind::Enumeration) {
+      order.push_back(t.get());
+      done.insert(t.get());
+    }
+  std::function<void(const DefinedType*)> visit;
+  std::function<void(const TypeRef&)> visit_ref = [&](const TypeRef& r) {
+    if (r.kind == TypeRef::Kind::Defined) visit(r.defined);
+    if (r.kind == TypeRef::Kind::Aggregate && r.element) visit_ref(*r.element);
+  };
+  visit = [&](const DefinedType* t) {
+    if (t->schema != &schema_ || done.count(t) != 0) return;
+    done.insert(t);
+    if (t->kind == DefinedType::Kind::Alias) visit_ref(t->underlying);
+    if (t->kind == DefinedType::Kind::Select)
+      for (const auto& m : t->select_closure)
+        if (m.defined != nullptr && m.defined->kind == DefinedType::Kind::Alias &&
+            storage_of(m.defined->underlying) != Storage::Aggregate)
+          visit(m.defined);
+    order.push_back(t);
+  };
+  for (const auto& t : schema_.types) visit(t.get());
+  return order;
+}
+
+std::vector<const Schema*> SchemaEmitter::header_dependencies() const {
+  SchemaList list(model_);
+  for (const auto& i : schema_.interfaces) list.add(i.schema);
+  for (const auto& e : schema_.entities) {
+    for (const Entity* super : e->supertypes) list.add(super->schema);
+    for (const auto& a : e->attributes) add_type_schemas(a->type, list);
+  }
+  for (const auto& t : schema_.types) {
+    if (t->kind == DefinedType::Kind::Alias) add_type_schemas(t->underlying, list);
+    for (const auto& m : t->select_closure) list.add(m.entity ? m.entity->schema : m.defined->schema);
+  }
+  return list.ordered(&schema_);
+}
+
+std::vector<const Schema*> SchemaEmitter::source_dependencies() const {
+  SchemaList list(model_);
+  for (const auto& e : schema_.entities) {
+    for (const Entity* sub : e->subtypes) list.add(sub->schema);
+    for (const auto& a : e->attributes)
+      if (a->inverse_entity != nullptr) list.add(a->inverse_entity->schema);
+  }
+  const auto header = header_dependencies();
+  std::vector<const Schema*> out;
+  for (const Schema* s : list.ordered(&schema_))
+    if (std::find(header.begin(), header.end(), s) == header.end()) out.push_back(s);
+  return out;
+}
+
+// ---------------------------------------------------------------- header
+
+std::string SchemaEmitter::header() {
+  std::string out;
+  Printer p(out);
+  p.print(
+      "// $schema$.h: C++ bindings for the EXPRESS schema $schema$.\n"
+      "// Generated by expressc from $file$; do not edit.\n"
+      "#pragma once\n"
+      "\n"
+      "#include <cstdint>\n"
+      "#include <optional>\n"
+      "#include <utility>\n"
+      "#include <vector>\n"
+      "\n"
+      "#include \"stepnc/meta/enumeration.h\"\n"
+      "#include \"stepnc/meta/info.h\"\n"
+      "#include \"stepnc/meta/inline_vector.h\"\n"
+      "#include \"stepnc/meta/select.h\"\n"
+      "#include \"stepnc/meta/string.h\"\n",
+      {{"schema", schema_.name}, {"file", file_name(schema_.location)}});
+  const auto dependencies = header_dependencies();
+  if (!dependencies.empty()) p.print("\n");
+  for (const Schema* s : dependencies) p.print("#include \"$name$.h\"\n", {{"name", s->name}});
+
+  const std::string ns_name = ns(&schema_);
+  p.print("\nnamespace $ns$ {\n\nextern const stepnc::meta::SchemaInfo meta_schema;\n", {{"ns", ns_name}});
+
+  const auto entities = entities_in_order();
+  const auto& combinations = analysis_.combinations(&schema_);
+  if (!entities.empty()) {
+    p.print("\n// Entities, declared first so that types and attributes can refer to them.\n");
+    for (const Entity* e : entities) p.print("class $name$;\n", {{"name", identifier(e->name)}});
+    for (const Combination& c : combinations) p.print("class $name$;\n", {{"name", identifier(c.name)}});
+  }
+
+  p.print("\n// Reflection tables of the named types and of entity references.\nnamespace type_info {\n");
+  for (const auto& t : schema_.types)
+    p.print("extern const stepnc::meta::TypeInfo $name$;\n", {{"name", identifier(t->name)}});
+  for (const Entity* e : entities)
+    p.print("extern const stepnc::meta::TypeInfo $name$;\n", {{"name", identifier(e->name)}});
+  p.print("}  // namespace type_info\n");
+
+  for (const DefinedType* t : types_in_order()) print_type(p, *t);
+  for (const Entity* e : entities) print_entity_class(p, *e);
+  for (const Combination& c : combinations) print_combination_class(p, c);
+
+  p.print("\n}  // namespace $ns$\n", {{"ns", ns_name}});
+  return out;
+}
+
+void SchemaEmitter::print_type(Printer& p, const DefinedType& type) {
+  const std::string name = identifier(type.name);
+  switch (type.kind) {
+    case DefinedType::Kind::Alias:
+      p.print("\n// TYPE $express$ = $underlying$;\nusing $name$ = $cpp$;\n",
+              {{"express", type.name}, {"underlying", express_text(type.underlying)}, {"name", name},
+               {"cpp", cpp_type(type.underlying)}});
+      return;
+    case DefinedType::Kind::Enumeration: {
+      std::string items;
+      for (const std::string& item : type.enumeration_items) append_item(items, ", ", identifier(item));
+      p.print(
+          "\n// TYPE $express$ = ENUMERATION; to_string() and from_string<>() in stepnc/meta/enumeration.h.\n"
+          "enum class $name$ : std::uint8_t { $items$ };\n"
+          "inline const stepnc::meta::TypeInfo& meta_type($name$) noexcept { return type_info::$name$; }\n",
+          {{"express", type.name}, {"name", name}, {"items", items}});
+      return;
+    }
+    case DefinedType::Kind::Select: print_select(p, type); return;
+  }
+}
+
+void SchemaEmitter::print_select(Printer& p, const DefinedType& type) {
+  std::string members;
+  for (const auto& m : type.select_members) append_item(members, ", ", m.entity ? m.entity->name : m.defined->name);
+  const std::string name = identifier(type.name);
+  p.print(
+      "\n// TYPE $express$ = SELECT ($members$);\n"
+      "class $name$ : public stepnc::meta::Select {\n"
+      " public:\n",
+      {{"express", type.name}, {"members", members}, {"name", name}});
+  p.indent();
+  p.print("$name$() = default;\n", {{"name", name}});
+  for (const auto& m : type.select_closure)
+    if (m.entity != nullptr)
+      p.print("$name$($entity$* value);  // implicit: a select holds any of its members\n",
+              {{"name", name}, {"entity", qualified(m.entity)}});
+  for (const auto& m : type.select_closure) {
+    if (m.entity != nullptr) {
+      p.print("\nbool is_$member$() const;\n$entity$* as_$member$() const;\n",
+              {{"member", m.entity->name}, {"entity", qualified(m.entity)}});
+      continue;
+    }
+    const DefinedType* d = m.defined;
+    const std::string value_type = qualified(d);
+    const std::string info = type_info_name(d->schema, d->name);
+    if (d->kind == DefinedType::Kind::Alias && storage_of(d->underlying) == Storage::Aggregate) {
+      p.print("\n// $member$: aggregate members have no typed accessors yet.\n", {{"member", d->name}});
+      continue;
+    }
+    p.print(
+        "\nbool is_$member$() const { return member() == &$info$; }\n"
+        "std::optional<$type$> as_$member$() const { return get_value<$type$>($info$); }\n"
+        "void set_$member$($type$ value) { put_value($info$, std::move(value)); }\n",
+        {{"member", d->name}, {"type", value_type}, {"info", info}});
+  }
+  p.outdent();
+  p.print("};\n");
+}
+
+std::string SchemaEmitter::base_clause(const std::vector<const Entity*>& supertypes) const {
+  if (supertypes.empty())
+    return analysis_.instance_shared() ? "public virtual stepnc::meta::Instance" : "public stepnc::meta::Instance";
+  std::string clause;
+  for (const Entity* super : supertypes) {
+    if (!clause.empty()) clause += ", ";
+    clause += analysis_.shared(super) ? "public virtual " : "public ";
+    clause += qualified(super);
+  }
+  return clause;
+}
+
+void SchemaEmitter::print_class_preamble(Printer& p, bool abstract) {
+  p.print(
+      "static const stepnc::meta::EntityInfo meta_entity;\n"
+      "static constexpr bool meta_entity_is_abstract = $abstract$;\n"
+      "const stepnc::meta::EntityInfo& entity_info() const noexcept override;\n",
+      {{"abstract", abstract ? "true" : "false"}});
+}
+
+void SchemaEmitter::print_entity_class(Printer& p, const Entity& entity) {
+  std::string supers;
+  for (const Entity* s : entity.supertypes) append_item(supers, ", ", s->name);
+  const std::string header = concat({entity.abstract ? "ABSTRACT " : "", "ENTITY ", entity.name,
+                                     supers.empty() ? "" : " SUBTYPE OF (", supers, supers.empty() ? "" : ")"});
+  p.print("\n// $header$\nclass $name$ : $bases$ {\n public:\n",
+          {{"header", header}, {"name", identifier(entity.name)}, {"bases", base_clause(entity.supertypes)}});
+  p.indent();
+  print_class_preamble(p, entity.abstract);
+  bool first = true;
+  for (const auto& a : entity.attributes) {
+    if (a->kind != Attribute::Kind::Explicit || a->redeclares != nullptr) continue;
+    if (first) p.print("\n");
+    first = false;
+    p.print("$type$ $name${};  // $optional$$express$\n",
+            {{"type", member_type(a->type, a->optional)}, {"name", member_identifier(a->name)},
+             {"optional", a->optional ? "OPTIONAL " : ""}, {"express", express_text(a->type)}});
+  }
+  // Attributes without a member of their own, listed so a reader of the
+  // class sees the whole entity.
+  bool first_note = true;
+  for (const auto& a : entity.attributes) {
+    const bool stored = a->kind == Attribute::Kind::Explicit && a->redeclares == nullptr;
+    if (!stored && first_note) p.print("\n");
+    if (!stored) first_note = false;
+    if (a->redeclares != nullptr) {
+      p.print("// $name$: redeclares $owner$.$name$ as $kind$$express$ (stored in $owner$).\n",
+              {{"name", a->name}, {"owner", a->redeclares->owner->name},
+               {"kind", a->kind == Attribute::Kind::Derived ? "DERIVE " : ""}, {"express", express_text(a->type)}});
+    } else if (a->kind == Attribute::Kind::Derived) {
+      p.print("// DERIVE $name$ : $express$ -- not yet derivable (listed in meta_entity.derived).\n",
+              {{"name", a->name}, {"express", express_text(a->type)}});
+    } else if (a->kind == Attribute::Kind::Inverse) {
+      p.print("// INVERSE $name$ : $express$ FOR $attribute$ -- found through the model's references, not stored.\n",
+              {{"name", a->name}, {"express", express_text(a->type)},
+               {"attribute", a->inverse_attribute != nullptr ? a->inverse_attribute->name : "?"}});
+    }
+  }
+  p.outdent();
+  p.print("};\n");
+}
+
+void SchemaEmitter::print_combination_class(Printer& p, const Combination& combination) {
+  std::string parts;
+  for (const Entity* e : combination.parts) append_item(parts, " + ", e->name);
+  p.print("\n// Complex instances of $parts$ (ANDOR): `#id=(...)` in Part 21.\nclass $name$ : $bases$ {\n public:\n",
+          {{"parts", parts}, {"name", identifier(combination.name)}, {"bases", base_clause(combination.parts)}});
+  p.indent();
+  print_class_preamble(p, combination.abstract);
+  p.outdent();
+  p.print("};\n");
+}
+
+// ---------------------------------------------------------------- source
+
+std::string SchemaEmitter::type_info_ref(const TypeRef& t) {
+  switch (t.kind) {
+    case TypeRef::Kind::Simple: {
+      std::string s(simple_express(t.simple));
+      std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
+      return concat({"&stepnc::meta::", s, "_type"});
+    }
+    case TypeRef::Kind::Defined: return concat({"&", type_info_name(t.defined->schema, t.defined->name)});
+    case TypeRef::Kind::Entity: return concat({"&", type_info_name(t.entity->schema, t.entity->name)});
+    case TypeRef::Kind::Aggregate: return concat({"&meta_tables::", register_aggregate(t)});
+    default: return "nullptr";
+  }
+}
+
+std::string SchemaEmitter::register_aggregate(const TypeRef& t) {
+  const std::string element = type_info_ref(*t.element);
+  const std::string storage = cpp_type(t);
+  std::string name = aggregate_name(t);
+  // Two different types with one structural name (same-named types of two
+  // schemas) get numbered.
+  for (int n = 2;; ++n) {
+    auto it = aggregate_names_.find(name);
+    if (it == aggregate_names_.end()) break;
+    if (it->second == storage) return name;
+    name = aggregate_name(t) + "_" + std::to_string(n);
+  }
+  aggregate_names_.emplace(name, storage);
+  Printer p(aggregates_);
+  p.print(
+      "// $express$\n"
+      "constexpr TypeInfo $name${\n"
+      "    .kind = $kind$,\n"
+      "    .underlying = $element$,\n"
+      "    .lower = $lower$,\n"
+      "    .upper = $upper$,\n",
+      {{"express", express_text(t)}, {"name", name}, {"kind", aggregate_kind_cpp(t.aggregate)}, {"element", element},
+       {"lower", t.lower.value ? std::to_string(*t.lower.value) : "0"},
+       {"upper", t.upper.value ? std::to_string(*t.upper.value) : "-1"}});
+  if (t.unique) p.print("    .unique = true,\n");
+  p.print("    .aggregate = &stepnc::meta::aggregate_ops<$storage$>};\n", {{"storage", storage}});
+  return name;
+}
+
+void SchemaEmitter::print_type_tables(Printer& p, const DefinedType& type) {
+  const std::string name = identifier(type.name);
+  switch (type.kind) {
+    case DefinedType::Kind::Alias:
+      p.print(
+          "constinit const TypeInfo $name${.kind = TypeKind::Alias, .name = \"$express$\", .schema = &meta_schema,\n"
+          "                               .underlying = $underlying$};\n",
+          {{"name", name}, {"express", type.name}, {"underlying", type_info_ref(type.underlying)}});
+      return;
+    case DefinedType::Kind::Enumeration:
+      p.print(
+          "constinit const TypeInfo $name${.kind = TypeKind::Enumeration, .name = \"$express$\", .schema = &meta_schema,\n"
+          "                               .items = meta_tables::$name$_items};\n",
+          {{"name", name}, {"express", type.name}});
+      return;
+    case DefinedType::Kind::Select:
+      p.print(
+          "constinit const TypeInfo $name${.kind = TypeKind::Select, .name = \"$express$\", .schema = &meta_schema,\n"
+          "                               .members = meta_tables::$name$_members};\n",
+          {{"name", name}, {"express", type.name}});
+      return;
+  }
+}
+
+void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slot) {
+  const Attribute& declared = *slot.declared;
+  const std::string owner = qualified(declared.owner);
+  std::string row = "{.name = \"" + declared.name + "\", .owner = &" + owner + "::meta_entity, .type = " +
+                    type_info_ref(declared.type);
+  if (slot.effective->optional) row += ", .optional = true";
+  if (slot.derived()) {
+    row += ", .kind = AttributeKind::Derived";
+  } else {
+    row += concat({",\n .locate = &stepnc::meta::field<", owner, ", &", owner, "::", member_identifier(declared.name), ">"});
+    if (declared.optional && !nullable(declared.type))
+      row += concat({",\n .optional_storage = &stepnc::meta::optional_ops<", member_type(declared.type, true), ">"});
+  }
+  row += "},\n";
+  p.print("$row$", {{"row", row}});
+}
+
+void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name, const std::string& table_name,
+                                        const Entity* entity, const Combination* combination) {
+  const std::vector<const Entity*>& supertypes = entity ? entity->supertypes : combination->parts;
+  const bool abstract = entity ? entity->abstract : combination->abstract;
+  p.print("\n// $name$\n", {{"name", entity ? entity->name : combination->name}});
+
+  auto print_entity_array = [&](std::string_view suffix, const std::vector<const Entity*>& list) {
+    if (list.empty()) return;
+    p.print("constexpr const EntityInfo* $table$_$suffix$[] = {\n", {{"table", table_name}, {"suffix", suffix}});
+    for (const Entity* e : list) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
+    p.print("};\n");
+  };
+  print_entity_array("supertypes", supertypes);
+  if (entity) print_entity_array("subtypes", entity->subtypes);
+  if (combination) print_entity_array("parts", combination->parts);
+
+  // The Part 21 slots; a combination takes each entity's slots once.
+  std::vector<model::Part21Slot> slots;
+  if (entity) {
+    slots = entity->part21;
+  } else {
+    for (const Entity* part : combination->parts)
+      for (const model::Part21Slot& s : part->part21) {
+        auto known = std::find_if(slots.begin(), slots.end(),
+                                  [&](const model::Part21Slot& k) { return k.declared == s.declared; });
+        if (known == slots.end()) {
+          slots.push_back(s);
+        } else if (s.derived()) {
+          *known = s;  // a redeclaration as DERIVE in any part wins
+        }
+      }
+  }
+  if (!slots.empty()) {
+    p.print("constexpr AttributeInfo $table$_attributes[] = {\n", {{"table", table_name}});
+    p.indent();
+    p.indent();
+    for (const model::Part21Slot& s : slots) print_attribute_row(p, s);
+    p.outdent();
+    p.outdent();
+    p.print("};\n");
+  }
+
+  if (entity) {
+    std::string derived, inverses;
+    for (const auto& a : entity->attributes) {
+      if (a->kind == Attribute::Kind::Derived) {
+        derived += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
+                   type_info_ref(a->type) + ", .kind = AttributeKind::Derived, .derivable = false},\n";
+      } else if (a->kind == Attribute::Kind::Inverse) {
+        inverses += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
+                    type_info_ref(a->type) + ", .kind = AttributeKind::Inverse,\n     .inverse_entity = &" +
+                    qualified(a->inverse_entity) + "::meta_entity, .inverse_attribute = \"" +
+                    (a->inverse_attribute ? a->inverse_attribute->name : std::string()) + "\"},\n";
+      }
+    }
+    if (!derived.empty())
+      p.print("constexpr AttributeInfo $table$_derived[] = {\n$rows$};\n", {{"table", table_name}, {"rows", derived}});
+    if (!inverses.empty())
+      p.print("constexpr AttributeInfo $table$_inverses[] = {\n$rows$};\n", {{"table", table_name}, {"rows", inverses}});
+  }
+
+  if (!abstract) {
+    p.print("constexpr Upcast $table$_upcasts[] = {\n", {{"table", table_name}});
+    if (combination)
+      p.print("    {&$c$::meta_entity, &stepnc::meta::upcast_to<$c$, $c$>},\n", {{"c", cpp_name}});
+    const auto ancestors = entity ? Analysis::self_and_ancestors(entity) : Analysis::self_and_ancestors(combination->parts);
+    for (const Entity* a : ancestors)
+      p.print("    {&$a$::meta_entity, &stepnc::meta::upcast_to<$c$, $a$>},\n", {{"a", qualified(a)}, {"c", cpp_name}});
+    p.print("};\n");
+  }
+}
+
+std::string SchemaEmitter::source() {
+  const std::string ns_name = ns(&schema_);
+  const auto entities = entities_in_order();
+  const auto& combinations = analysis_.combinations(&schema_);
+
+  // Tables first into their own buffer: they register the anonymous
+  // aggregate types, which must be defined before them.
+  std::string tables;
+  Printer t(tables);
+  for (const auto& type : schema_.types) {
+    const std::string name = identifier(type->name);
+    if (type->kind == DefinedType::Kind::Enumeration) {
+      std::string items;
+      for (const std::string& item : type->enumeration_items) append_item(items, ", ", "\"" + item + "\"");
+      t.print("constexpr std::string_view $name$_items[] = {$items$};\n", {{"name", name}, {"items", items}});
+    } else if (type->kind == DefinedType::Kind::Select) {
+      t.print("constexpr const TypeInfo* $name$_members[] = {\n", {{"name", name}});
+      for (const auto& m : type->select_closure) {
+        const std::string ref = m.entity ? type_info_name(m.entity->schema, m.entity->name)
+                                         : type_info_name(m.defined->schema, m.defined->name);
+        t.print("    &$ref$,\n", {{"ref", ref}});
+      }
+      t.print("};\n");
+    }
+  }
+  for (const Entity* e : entities) print_entity_tables(t, qualified(e), identifier(e->name), e, nullptr);
+  for (const Combination& c : combinations)
+    print_entity_tables(t, qualified(&schema_, c.name), identifier(c.name), nullptr, &c);
+
+  // The named types' tables, which may also register aggregates.
+  std::string type_tables;
+  Printer tt(type_tables);
+  for (const auto& type : schema_.types) print_type_tables(tt, *type);
+  for (const Entity* e : entities)
+    tt.print(
+        "constinit const TypeInfo $name${.kind = TypeKind::Entity, .name = \"$express$\", .schema = &meta_schema,\n"
+        "                               .entity = &$cpp$::meta_entity, .reference = &stepnc::meta::reference_ops<$cpp$>};\n",
+        {{"name", identifier(e->name)}, {"express", e->name}, {"cpp", qualified(e)}});
+
+  std::string out;
+  Printer p(out);
+  p.print(
+      "// $schema$.cc: reflection tables and out-of-line members of $schema$.h.\n"
+      "// Generated by expressc from $file$; do not edit.\n"
+      "#include \"$schema$.h\"\n"
+      "\n"
+      "#include <string_view>\n"
+      "#include <utility>\n"
+      "\n"
+      "#include \"stepnc/meta/model.h\"\n",
+      {{"schema", schema_.name}, {"file", file_name(schema_.location)}});
+  const auto dependencies = source_dependencies();
+  if (!dependencies.empty()) p.print("\n// Schemas declaring subtypes or inverse owners of entities here.\n");
+  for (const Schema* s : dependencies) p.print("#include \"$name$.h\"\n", {{"name", s->name}});
+  p.print(
+      "\nnamespace $ns$ {\n"
+      "\n"
+      "// Tables behind the TypeInfo, EntityInfo and SchemaInfo definitions below.\n"
+      "namespace meta_tables {\n"
+      "namespace {\n"
+      "\n"
+      "using stepnc::meta::AttributeInfo;\n"
+      "using stepnc::meta::AttributeKind;\n"
+      "using stepnc::meta::EntityInfo;\n"
+      "using stepnc::meta::TypeInfo;\n"
+      "using stepnc::meta::TypeKind;\n"
+      "using stepnc::meta::Upcast;\n",
+      {{"ns", ns_name}});
+  if (!aggregates_.empty()) p.print("\n$text$", {{"text", aggregates_}});
+  if (!tables.empty()) p.print("\n$text$", {{"text", tables}});
+  p.print("\nconstexpr const EntityInfo* schema_entities[] = {\n");
+  for (const Entity* e : entities) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
+  for (const Combination& c : combinations) p.print("    &$e$::meta_entity,\n", {{"e", qualified(&schema_, c.name)}});
+  p.print("};\n");
+  if (!schema_.types.empty()) {
+    p.print("constexpr const TypeInfo* schema_types[] = {\n");
+    for (const auto& type : schema_.types)
+      p.print("    &$ns$::type_info::$name$,\n", {{"ns", ns_name}, {"name", identifier(type->name)}});
+    p.print("};\n");
+  }
+  p.print(
+      "\n}  // namespace\n"
+      "}  // namespace meta_tables\n"
+      "\n"
+      "using stepnc::meta::TypeInfo;\n"
+      "using stepnc::meta::TypeKind;\n"
+      "\n"
+      "constinit const stepnc::meta::SchemaInfo meta_schema{\n"
+      "    .name = \"$schema$\",\n"
+      "    .entities = meta_tables::schema_entities,\n",
+      {{"schema", schema_.name}});
+  if (!schema_.types.empty()) p.print("    .types = meta_tables::schema_types,\n");
+  p.print("};\n\nnamespace type_info {\n\n$text$\n}  // namespace type_info\n", {{"text", type_tables}});
+
+  // Entity definitions.
+  auto print_entity_info = [&](const std::string& cpp_name, const std::string& table, std::string_view express_name,
+                               bool abstract, bool has_supertypes, bool has_subtypes, bool is_combination,
+                               bool has_attributes, bool has_derived, bool has_inverses) {
+    p.print(
+        "\nconst stepnc::meta::EntityInfo& $cpp$::entity_info() const noexcept { return meta_entity; }\n"
+        "\nconstinit const stepnc::meta::EntityInfo $cpp$::meta_entity{\n",
+        {{"cpp", cpp_name}});
+    p.indent();
+    p.indent();
+    p.print(".name = \"$name$\",\n.schema = &meta_schema,\n", {{"name", express_name}});
+    if (abstract) p.print(".abstract = true,\n");
+    const Printer::Variables v{{"table", table}, {"cpp", cpp_name}};
+    if (has_supertypes) p.print(".supertypes = meta_tables::$table$_supertypes,\n", v);
+    if (has_subtypes) p.print(".subtypes = meta_tables::$table$_subtypes,\n", v);
+    if (is_combination) p.print(".parts = meta_tables::$table$_parts,\n", v);
+    if (has_attributes) p.print(".attributes = meta_tables::$table$_attributes,\n", v);
+    if (has_derived) p.print(".derived = meta_tables::$table$_derived,\n", v);
+    if (has_inverses) p.print(".inverses = meta_tables::$table$_inverses,\n", v);
+    if (!abstract)
+      p.print(".create = &stepnc::meta::create_in<$cpp$>,\n.upcasts = meta_tables::$table$_upcasts,\n", v);
+    p.outdent();
+    p.outdent();
+    p.print("};\n");
+  };
+  for (const Entity* e : entities) {
+    const bool has_derived = std::any_of(e->attributes.begin(), e->attributes.end(),
+                                         [](const auto& a) { return a->kind == Attribute::Kind::Derived; });
+    const bool has_inverses = std::any_of(e->attributes.begin(), e->attributes.end(),
+                                          [](const auto& a) { return a->kind == Attribute::Kind::Inverse; });
+    print_entity_info(qualified(e), identifier(e->name), e->name, e->abstract, !e->supertypes.empty(),
+                      !e->subtypes.empty(), false, !e->part21.empty(), has_derived, has_inverses);
+  }
+  for (const Combination& c : combinations) {
+    const bool has_attributes = std::any_of(c.parts.begin(), c.parts.end(), [](const Entity* e) { return !e->part21.empty(); });
+    print_entity_info(qualified(&schema_, c.name), identifier(c.name), "", c.abstract, true, false, true,
+                      has_attributes, false, false);
+  }
+
+  // Select members that need complete entity classes.
+  for (const auto& type : schema_.types) {
+    if (type->kind != DefinedType::Kind::Select) continue;
+    const std::string select = identifier(type->name);
+    bool first = true;
+    for (const auto& m : type->select_closure) {
+      if (m.entity == nullptr) continue;
+      if (first) p.print("\n");
+      first = false;
+      p.print(
+          "$select$::$select$($entity$* value) { set_instance(value); }\n"
+          "bool $select$::is_$member$() const { return as_$member$() != nullptr; }\n"
+          "$entity$* $select$::as_$member$() const { return get_entity<$entity$>(); }\n",
+          {{"select", select}, {"entity", qualified(m.entity)}, {"member", m.entity->name}});
+    }
+  }
+
+  p.print("\n}  // namespace $ns$\n", {{"ns", ns_name}});
+  return out;
+}
+
+// True when `path` already holds exactly `text`.
+bool unchanged(const std::filesystem::path& path, const std::string& text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream current;
+  current << in.rdbuf();
+  return current.str() == text;
+}
+
+}  // namespace
+
+std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::vector<model::Diagnostic>& diagnostics) {
+  const Analysis analysis(model);
+  std::vector<GeneratedFile> files;
+  bool ok = true;
+  for (const auto& schema : model.schemas) {
+    SchemaEmitter emitter(model, analysis, *schema, diagnostics);
+    if (!emitter.check()) {
+      ok = false;
+      continue;
+    }
+    files.push_back({schema->name + ".h", emitter.header()});
+    files.push_back({schema->name + ".cc", emitter.source()});
+  }
+  if (!ok) files.clear();
+  return files;
+}
+
+bool CppGenerator::generate(const model::Model& model, const std::filesystem::path& out_dir,
+                            std::vector<model::Diagnostic>& diagnostics) const {
+  const std::size_t before = diagnostics.size();
+  const auto files = render(model, diagnostics);
+  if (diagnostics.size() != before) return false;
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) {
+    diagnostics.push_back({model::Diagnostic::Severity::Error, out_dir.string(), 0, 0,
+                           "cannot create the output directory: " + ec.message()});
+    return false;
+  }
+  for (const GeneratedFile& f : files) {
+    std::string error;
+    if (unchanged(out_dir / f.name, f.text)) continue;
+    if (!write_file_atomically(out_dir / f.name, f.text, error)) {
+      diagnostics.push_back({model::Diagnostic::Severity::Error, (out_dir / f.name).string(), 0, 0, error});
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace expressc::emit::cpp

@@ -1,0 +1,42 @@
+// Printer: writes generated code from templates with `$name$` variables
+// and automatic indentation (the shape of protobuf's io/printer.h).
+//
+//   Printer p(out);
+//   p.print("class $name$ {\n", {{"name", "point"}});
+//   p.indent();
+//   p.print("double x{};\n");
+//   p.outdent();
+//   p.print("};\n");
+//
+// `$$` prints a dollar sign. Using a variable that was not passed is a
+// bug in the generator, reported by throwing std::logic_error.
+#pragma once
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace expressc::emit::cpp {
+
+class Printer {
+ public:
+  using Variables = std::vector<std::pair<std::string_view, std::string_view>>;
+
+  explicit Printer(std::string& out, int indent_width = 2) : out_(out), indent_width_(indent_width) {}
+
+  void print(std::string_view text, const Variables& variables = {});
+  void indent() { ++level_; }
+  void outdent();
+
+ private:
+  void put(std::string_view s);
+
+  std::string& out_;
+  int indent_width_;
+  int level_ = 0;
+  bool at_line_start_ = true;
+};
+
+}  // namespace expressc::emit::cpp

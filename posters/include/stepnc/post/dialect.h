@@ -1,0 +1,38 @@
+// Dialect printers over the program IR, and the traceability sidecar.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepnc/post/program.h"
+
+namespace stepnc::post {
+
+enum class Dialect { rs274ngc, fanuc, siemens840d, canonical };
+
+std::optional<Dialect> dialect_from_name(std::string_view name);
+std::string_view to_string(Dialect dialect);
+
+// One NC line that came from a block with provenance.
+struct TraceEntry {
+  std::size_t line = 0;         // 1-based line in the printed program
+  std::uint32_t provenance = 0;  // index into Program::provenance
+};
+
+struct PrintedProgram {
+  std::string text;
+  std::vector<TraceEntry> trace;
+};
+
+PrintedProgram print(const Program& program, Dialect dialect);
+
+// The sidecar map as JSON: every traced line with its workingstep,
+// operation and feature (#id and name).
+std::string trace_json(const Program& program, const PrintedProgram& printed);
+
+// The LinuxCNC tool table for a program (T, P, D, Z) in mm.
+std::string linuxcnc_tool_table(const Program& program);
+
+}  // namespace stepnc::post

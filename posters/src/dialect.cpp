@@ -1,0 +1,108 @@
+#include "stepnc/post/dialect.h"
+
+#include <fmt/format.h>
+
+#include <iterator>
+
+#include "dialects.h"
+
+namespace stepnc::post {
+
+std::optional<Dialect> dialect_from_name(std::string_view name) {
+  if (name == "rs274ngc") return Dialect::rs274ngc;
+  if (name == "fanuc") return Dialect::fanuc;
+  if (name == "siemens840d") return Dialect::siemens840d;
+  if (name == "canonical") return Dialect::canonical;
+  return std::nullopt;
+}
+
+std::string_view to_string(Dialect dialect) {
+  switch (dialect) {
+    case Dialect::rs274ngc: return "rs274ngc";
+    case Dialect::fanuc: return "fanuc";
+    case Dialect::siemens840d: return "siemens840d";
+    case Dialect::canonical: return "canonical";
+  }
+  return "unknown";
+}
+
+PrintedProgram print(const Program& program, Dialect dialect) {
+  switch (dialect) {
+    case Dialect::rs274ngc: return detail::print_rs274ngc(program);
+    case Dialect::fanuc: return detail::print_fanuc(program);
+    case Dialect::siemens840d: return detail::print_siemens840d(program);
+    case Dialect::canonical: return detail::print_canonical(program);
+  }
+  return {};
+}
+
+namespace {
+
+void append_json_string(std::string& out, std::string_view s) {
+  out.push_back('"');
+  for (const char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+          fmt::format_to(std::back_inserter(out), "\\u{:04x}", static_cast<unsigned>(c));
+        else
+          out.push_back(c);
+    }
+  }
+  out.push_back('"');
+}
+
+void append_source(std::string& out, std::string_view key, const Source& source) {
+  fmt::format_to(std::back_inserter(out), "\"{}\": {{\"id\": {}, \"name\": ", key, source.id);
+  append_json_string(out, source.name);
+  out.push_back('}');
+}
+
+}  // namespace
+
+// Consecutive lines from the same provenance form one range, so a million
+// motion lines of one workingstep take one entry.
+std::string trace_json(const Program& program, const PrintedProgram& printed) {
+  std::string out = "{\"program\": ";
+  append_json_string(out, program.name);
+  out += ", \"blocks\": [";
+  bool first = true;
+  for (std::size_t i = 0; i < printed.trace.size();) {
+    std::size_t j = i;
+    while (j + 1 < printed.trace.size() && printed.trace[j + 1].provenance == printed.trace[i].provenance &&
+           printed.trace[j + 1].line == printed.trace[j].line + 1)
+      ++j;
+    const Provenance& p = program.provenance[printed.trace[i].provenance];
+    out += first ? "\n  {" : ",\n  {";
+    first = false;
+    fmt::format_to(std::back_inserter(out), "\"first_line\": {}, \"last_line\": {}, ", printed.trace[i].line,
+                   printed.trace[j].line);
+    append_source(out, "workingstep", p.workingstep);
+    out += ", ";
+    append_source(out, "operation", p.operation);
+    out += ", ";
+    append_source(out, "feature", p.feature);
+    out.push_back('}');
+    i = j + 1;
+  }
+  out += "\n]}\n";
+  return out;
+}
+
+std::string linuxcnc_tool_table(const Program& program) {
+  std::string out;
+  for (const auto& entry : program.tools) {
+    const double diameter = entry.tool.kind == ToolKind::turning_insert || entry.tool.kind == ToolKind::grooving_insert
+                                ? 2 * entry.tool.nose_radius
+                                : entry.tool.diameter;
+    fmt::format_to(std::back_inserter(out), "T{} P{} D{:.4f} Z{:.4f} ;{}\n", entry.number, entry.number, diameter,
+                   entry.tool.length, entry.tool.source.name);
+  }
+  return out;
+}
+
+}  // namespace stepnc::post

@@ -1,0 +1,194 @@
+#include "gcode_printer.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+
+namespace stepnc::post::detail {
+
+void append_number(std::string& out, double v, int decimals, bool keep_point) {
+  static constexpr std::int64_t scale[] = {1, 10, 100, 1000, 10000, 100000, 1000000};
+  const std::int64_t unit = scale[decimals];
+  std::int64_t scaled = std::llround(v * static_cast<double>(unit));
+  if (scaled < 0) {
+    out.push_back('-');
+    scaled = -scaled;
+  }
+  char digits[24];
+  const auto end = std::to_chars(digits, digits + sizeof digits, scaled / unit).ptr;
+  out.append(digits, end);
+  std::int64_t fraction = scaled % unit;
+  if (fraction == 0) {
+    if (keep_point) out.push_back('.');
+    return;
+  }
+  char frac[8];
+  int used = decimals;
+  for (int i = decimals - 1; i >= 0; --i) {
+    frac[i] = static_cast<char>('0' + fraction % 10);
+    fraction /= 10;
+  }
+  while (used > 0 && frac[used - 1] == '0') --used;
+  out.push_back('.');
+  out.append(frac, static_cast<std::size_t>(used));
+}
+
+PrintedProgram GcodePrinter::print() {
+  out_.text.reserve(program_.blocks.size() * 24 + 1024);
+  prologue();
+  for (std::size_t i = 0; i < program_.blocks.size(); ++i) {
+    if (skip_ > 0) {
+      --skip_;
+      continue;
+    }
+    provenance_ = program_.blocks[i].provenance;
+    statement(program_.blocks[i].statement, i);
+  }
+  provenance_ = 0;
+  epilogue();
+  return std::move(out_);
+}
+
+void GcodePrinter::statement(const Statement& s, std::size_t) {
+  std::visit(
+      [&](const auto& st) {
+        using S = std::decay_t<decltype(st)>;
+        if constexpr (std::is_same_v<S, ToolChange>) {
+          forget_motion_mode();
+          tool_change(st);
+        } else if constexpr (std::is_same_v<S, SpindleOn>) {
+          spindle_on(st);
+        } else if constexpr (std::is_same_v<S, SpindleOff>) {
+          spindle_off();
+        } else if constexpr (std::is_same_v<S, FeedRate>) {
+          feed_rate(st);
+        } else if constexpr (std::is_same_v<S, Coolant>) {
+          coolant(st);
+        } else if constexpr (std::is_same_v<S, Rapid>) {
+          motion("G0", st.to, false);
+        } else if constexpr (std::is_same_v<S, Linear>) {
+          motion("G1", st.to, false);
+        } else if constexpr (std::is_same_v<S, Arc>) {
+          const bool xy = st.plane == ArcPlane::xy;
+          start_line();
+          word(st.clockwise ? "G2" : "G3");
+          motion_mode_ = st.clockwise ? "G2" : "G3";
+          if (xy) {
+            word('X', st.to.x);
+            word('Y', st.to.y);
+            if (std::abs(st.to.z - last_.z) > 1e-9) word('Z', st.to.z);
+            word('I', st.centre.x - last_.x);
+            word('J', st.centre.y - last_.y);
+          } else {
+            x_word(st.to.x);
+            word('Z', st.to.z);
+            word('I', st.centre.x - last_.x);
+            word('K', st.centre.z - last_.z);
+          }
+          if (st.extra_turns > 0) turns(st.extra_turns);
+          finish_line();
+          last_ = st.to;
+          known_ = true;
+        } else if constexpr (std::is_same_v<S, Dwell>) {
+          dwell(st);
+        } else if constexpr (std::is_same_v<S, DrillCycle>) {
+          drill_cycle(st);
+          forget_motion_mode();
+          last_ = {st.x, st.y, st.r};
+        } else if constexpr (std::is_same_v<S, FeatureCycle>) {
+          if (feature_cycle(st)) {
+            skip_ = st.replaces;
+            forget_motion_mode();
+            forget_position();
+          }
+        } else if constexpr (std::is_same_v<S, Comment>) {
+          comment(st.text);
+        } else if constexpr (std::is_same_v<S, Tolerance>) {
+          tolerance(st);
+        } else if constexpr (std::is_same_v<S, ProgramStop>) {
+          program_stop(st);
+        }
+      },
+      s);
+}
+
+void GcodePrinter::coolant(const Coolant& c) {
+  if (c.flood)
+    line("M8");
+  else if (c.mist)
+    line("M7");
+  else
+    line("M9");
+}
+
+void GcodePrinter::start_line() {
+  current_.clear();
+  if (style_.block_number_step > 0) {
+    block_number_ += style_.block_number_step;
+    current_.push_back('N');
+    append_number(current_, block_number_, 0, false);
+  }
+}
+
+void GcodePrinter::word(std::string_view text) {
+  if (!current_.empty()) current_.push_back(' ');
+  current_.append(text);
+}
+
+void GcodePrinter::word(char letter, double value) {
+  if (!current_.empty()) current_.push_back(' ');
+  current_.push_back(letter);
+  append_number(current_, value, style_.decimals, style_.keep_point);
+}
+
+void GcodePrinter::finish_line() {
+  ++line_count_;
+  if (provenance_ != 0) out_.trace.push_back({line_count_, provenance_});
+  out_.text.append(current_);
+  out_.text.push_back('\n');
+}
+
+void GcodePrinter::line(std::string_view text) {
+  start_line();
+  word(text);
+  finish_line();
+}
+
+void GcodePrinter::comment(std::string_view text) {
+  current_.clear();
+  if (style_.comment_open == ';') {
+    current_.append("; ");
+    current_.append(text);
+  } else {
+    // Parentheses end an ISO 6983 comment: keep them out of the text.
+    current_.push_back('(');
+    for (const char c : text) current_.push_back(c == '(' ? '[' : c == ')' ? ']' : c);
+    current_.push_back(')');
+  }
+  finish_line();
+}
+
+void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
+  const double resolution = 0.5 * std::pow(10.0, -style_.decimals);
+  auto changed = [&](double a, double b) { return !known_ || force_all || std::abs(a - b) >= resolution; };
+  const bool lathe = program_.machine == MachineKind::turning;
+  start_line();
+  if (motion_mode_ != g) {
+    word(g);
+    motion_mode_ = std::string(g);
+  }
+  const bool dx = changed(to.x, last_.x), dy = !lathe && changed(to.y, last_.y), dz = changed(to.z, last_.z);
+  if (dx) x_word(to.x);
+  if (dy) word('Y', to.y);
+  if (dz) word('Z', to.z);
+  if (!dx && !dy && !dz) {
+    // A move to where we are: skip it rather than print an empty block.
+    if (style_.block_number_step > 0) block_number_ -= style_.block_number_step;
+    return;
+  }
+  finish_line();
+  last_ = to;
+  known_ = true;
+}
+
+}  // namespace stepnc::post::detail

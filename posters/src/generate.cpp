@@ -1,0 +1,1075 @@
+#include "stepnc/post/generate.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry.h"
+#include "regions.h"
+#include "siemens_cycles.h"
+
+namespace stepnc::post {
+
+std::string Diagnostic::to_string() const {
+  return fmt::format("#{} '{}': {}: {}", where.id, where.name,
+                     severity == Severity::error ? "error" : "warning", message);
+}
+
+bool GenerateResult::ok() const {
+  return std::none_of(diagnostics.begin(), diagnostics.end(),
+                      [](const Diagnostic& d) { return d.severity == Diagnostic::Severity::error; });
+}
+
+std::string_view to_string(ToolKind kind) {
+  switch (kind) {
+    case ToolKind::flat_end_mill: return "endmill";
+    case ToolKind::bull_nose_end_mill: return "bullnose_endmill";
+    case ToolKind::ball_end_mill: return "ball_endmill";
+    case ToolKind::facemill: return "facemill";
+    case ToolKind::twist_drill: return "twist_drill";
+    case ToolKind::center_drill: return "center_drill";
+    case ToolKind::tap: return "tap";
+    case ToolKind::reamer: return "reamer";
+    case ToolKind::boring_tool: return "boring_tool";
+    case ToolKind::turning_insert: return "turning_tool";
+    case ToolKind::grooving_insert: return "grooving_tool";
+  }
+  return "tool";
+}
+
+std::string_view to_string(OperationKind kind) {
+  switch (kind) {
+    case OperationKind::plane_rough_milling: return "plane_rough_milling";
+    case OperationKind::plane_finish_milling: return "plane_finish_milling";
+    case OperationKind::bottom_and_side_rough_milling: return "bottom_and_side_rough_milling";
+    case OperationKind::bottom_and_side_finish_milling: return "bottom_and_side_finish_milling";
+    case OperationKind::drilling: return "drilling";
+    case OperationKind::center_drilling: return "center_drilling";
+    case OperationKind::multistep_drilling: return "multistep_drilling";
+    case OperationKind::reaming: return "reaming";
+    case OperationKind::boring: return "boring";
+    case OperationKind::tapping: return "tapping";
+    case OperationKind::facing_rough: return "facing_rough";
+    case OperationKind::facing_finish: return "facing_finish";
+    case OperationKind::contouring_rough: return "contouring_rough";
+    case OperationKind::contouring_finish: return "contouring_finish";
+    case OperationKind::grooving: return "grooving";
+    case OperationKind::lathe_drilling: return "drilling_on_lathe_axis";
+    case OperationKind::freeform: return "freeform_operation";
+  }
+  return "operation";
+}
+
+const ToolEntry* Program::tool(int number) const {
+  for (const auto& entry : tools)
+    if (entry.number == number) return &entry;
+  return nullptr;
+}
+
+namespace {
+
+using geom::Path;
+using geom::Region;
+
+constexpr double eps = 1e-9;
+
+bool is_rough(OperationKind kind) {
+  return kind == OperationKind::plane_rough_milling ||
+         kind == OperationKind::bottom_and_side_rough_milling ||
+         kind == OperationKind::facing_rough || kind == OperationKind::contouring_rough;
+}
+
+bool is_hole_making(OperationKind kind) {
+  switch (kind) {
+    case OperationKind::drilling:
+    case OperationKind::center_drilling:
+    case OperationKind::multistep_drilling:
+    case OperationKind::reaming:
+    case OperationKind::boring:
+    case OperationKind::tapping:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Depth levels from `from` down to `to` (from > to), each at most `step`
+// apart and equal (seed 004: 29.5 mm in 5 layers of 5.9 mm).
+std::vector<double> depth_levels(double from, double to, std::optional<double> step) {
+  const double total = from - to;
+  if (total <= eps) return {to};
+  const int n = step && *step > eps ? std::max(1, static_cast<int>(std::ceil(total / *step - 1e-9))) : 1;
+  std::vector<double> levels;
+  for (int i = 1; i <= n; ++i) levels.push_back(from - total * i / n);
+  return levels;
+}
+
+// Cumulative depths of a cutting-depth list (ISO 14649-12, seed 001 5.2):
+// each entry is the thickness of one pass, the last repeats until `total`
+// is reached, and the final pass takes what is left.
+std::vector<double> depth_list_passes(const std::vector<double>& depths, double total) {
+  std::vector<double> cumulative;
+  double done = 0;
+  for (std::size_t i = 0; done < total - eps; ++i) {
+    const double d = depths[std::min(i, depths.size() - 1)];
+    done = std::min(total, done + d);
+    cumulative.push_back(done);
+  }
+  return cumulative;
+}
+
+struct ResolvedTechnology {
+  SpindleOn spindle;
+  FeedRate feed;
+};
+
+class Generator {
+ public:
+  Generator(const MachiningProject& project, const GenerateOptions& options)
+      : project_(project), options_(options) {}
+
+  GenerateResult run();
+
+ private:
+  struct Job {
+    const Feature* feature = nullptr;
+    const Operation* op = nullptr;
+    const Tool* tool = nullptr;
+    int tool_number = 0;
+    ResolvedTechnology tech;
+    double clear = 0;    // security plane (absolute z)
+    double top = 0;      // feature top (absolute z)
+    double retract = 0;  // retract plane (absolute z), between passes over material
+  };
+
+  void visit(const Executable& executable);
+  void workingstep(const Executable& executable);
+  bool prepare(const Executable& executable, Job& step);
+  void start_operation(const Job& step);
+
+  // Milling
+  void planar_face(const Job& step, const PlanarFace& face);
+  void area_clearing(const Job& step, const Region& region, Vec2 offset);
+  void slot(const Job& step, const Slot& slot);
+  void hole(const Job& step, const RoundHole& hole);
+  void explicit_toolpaths(const Job& step);
+  std::optional<std::size_t> begin_feature_cycle(const Job& step);
+  void end_feature_cycle(std::optional<std::size_t> index);
+
+  // Turning
+  void turning_step(const Job& step);
+  void facing(const Job& step);
+  void rough_profile(const Job& step, const TurningProfile& profile);
+  void finish_profile(const Job& step, const TurningProfile& profile, double allowance);
+  void grooving(const Job& step, const Groove& groove);
+  void axial_drilling(const Job& step, double depth);
+
+  // Emission
+  void emit(Statement statement);
+  void rapid(Vec3 to);
+  void feed(Vec3 to);
+  void path_at(const Job& step, const Path& path, double z);
+  void move_to_start(const Job& step, Vec2 local, double approach_z, double cut_z, Vec2 offset);
+  Vec3 global(const Job& step, Vec2 local, double z, Vec2 offset = {}) const;
+  void go_clear(Vec2 xy);
+  void spindle(const SpindleOn& on);
+  void coolant(const MachineFunctions& functions);
+  void feedrate(const FeedRate& rate);
+  void error(const Source& where, std::string message);
+  void warning(const Source& where, std::string message);
+
+  std::optional<ResolvedTechnology> resolve_technology(const Operation& op, const Tool& tool);
+  double tool_radius(const Job& step) const { return step.tool->diameter / 2; }
+  double stepover(const Job& step) const;
+  bool turning() const { return project_.machine == MachineKind::turning; }
+  Vec3 turning_safe() const {
+    return {project_.workpiece.stock_radius + 2 * options_.safety_distance, 0,
+            std::max(project_.workpiece.stock_front, 0.0) + 2 * options_.safety_distance};
+  }
+
+  const MachiningProject& project_;
+  const GenerateOptions& options_;
+  GenerateResult result_;
+  Program& program_ = result_.program;
+  std::uint32_t provenance_ = 0;
+  Vec3 pos_{};
+  int current_tool_ = 0;
+  std::optional<SpindleOn> spindle_;
+  std::optional<FeedRate> feed_;
+  Coolant coolant_{};
+  std::vector<int> tool_numbers_;
+  int workingstep_count_ = 0;
+};
+
+void Generator::error(const Source& where, std::string message) {
+  result_.diagnostics.push_back({Diagnostic::Severity::error, where, std::move(message)});
+}
+
+void Generator::warning(const Source& where, std::string message) {
+  result_.diagnostics.push_back({Diagnostic::Severity::warning, where, std::move(message)});
+}
+
+void Generator::emit(Statement statement) {
+  if (auto* r = std::get_if<Rapid>(&statement)) pos_ = r->to;
+  if (auto* l = std::get_if<Linear>(&statement)) pos_ = l->to;
+  if (auto* a = std::get_if<Arc>(&statement)) pos_ = a->to;
+  if (auto* c = std::get_if<DrillCycle>(&statement)) pos_ = {c->x, c->y, c->r};
+  program_.blocks.push_back({std::move(statement), provenance_});
+}
+
+void Generator::rapid(Vec3 to) { emit(Rapid{to}); }
+void Generator::feed(Vec3 to) { emit(Linear{to}); }
+
+void Generator::spindle(const SpindleOn& on) {
+  if (spindle_ && spindle_->rpm == on.rpm && spindle_->clockwise == on.clockwise &&
+      spindle_->css == on.css && spindle_->surface_speed == on.surface_speed)
+    return;
+  spindle_ = on;
+  emit(on);
+}
+
+void Generator::feedrate(const FeedRate& rate) {
+  if (feed_ && feed_->value == rate.value && feed_->per_revolution == rate.per_revolution) return;
+  feed_ = rate;
+  emit(rate);
+}
+
+void Generator::coolant(const MachineFunctions& functions) {
+  const Coolant wanted{functions.flood_coolant, functions.mist_coolant};
+  if (wanted.flood == coolant_.flood && wanted.mist == coolant_.mist) return;
+  coolant_ = wanted;
+  emit(wanted);
+}
+
+Vec3 Generator::global(const Job& step, Vec2 local, double z, Vec2 offset) const {
+  Vec3 p = step.feature->placement.to_global(local + offset);
+  p.z = z;
+  return p;
+}
+
+// Up to the security plane, then across: the only way between features.
+void Generator::go_clear(Vec2 xy) {
+  const double clear = program_.clear_z;
+  if (pos_.z < clear - eps) rapid({pos_.x, pos_.y, clear});
+  rapid({xy.x, xy.y, std::max(pos_.z, clear)});
+}
+
+void Generator::path_at(const Job& step, const Path& path, double z) {
+  for (const auto& segment : path.segments) {
+    const Vec3 to = global(step, segment.to, z);
+    if (segment.arc) {
+      const Vec3 centre = global(step, segment.centre, z);
+      emit(Arc{ArcPlane::xy, to, centre, segment.clockwise, 0});
+    } else {
+      feed(to);
+    }
+  }
+}
+
+// From anywhere above the feature to a cut start: up to the retract plane
+// unless already straight above it, across, rapid down to `approach_z`,
+// feed down to `cut_z`.
+void Generator::move_to_start(const Job& step, Vec2 local, double approach_z, double cut_z, Vec2 offset) {
+  const Vec3 target = global(step, local, cut_z, offset);
+  const bool above = std::abs(pos_.x - target.x) < eps && std::abs(pos_.y - target.y) < eps;
+  if (!above) {
+    if (pos_.z < step.retract - eps) rapid({pos_.x, pos_.y, step.retract});
+    rapid({target.x, target.y, std::max(pos_.z, step.retract)});
+  }
+  if (pos_.z > approach_z + eps) rapid({target.x, target.y, approach_z});
+  feed(target);
+}
+
+double Generator::stepover(const Job& step) const {
+  const double r = tool_radius(step);
+  std::optional<double> given;
+  std::visit(
+      [&](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, BidirectionalMilling> || std::is_same_v<S, UnidirectionalMilling> ||
+                      std::is_same_v<S, ContourBidirectional> || std::is_same_v<S, ContourParallel>)
+          given = s.stepover;
+      },
+      step.op->strategy);
+  if (!given) given = step.op->radial_cutting_depth;
+  // Default half the diameter; never more than r*sqrt(2), beyond which laps
+  // with sharp corners leave islands between them.
+  const double s = given.value_or(r);
+  return std::min(s, r * 1.41);
+}
+
+std::optional<ResolvedTechnology> Generator::resolve_technology(const Operation& op, const Tool& tool) {
+  if (!op.technology) {
+    error(op.source, "missing technology: the operation has no feed or spindle speed");
+    return std::nullopt;
+  }
+  const Technology& t = *op.technology;
+  ResolvedTechnology out;
+  double rpm = 0;
+  if (t.spindle_rpm && *t.spindle_rpm != 0) {
+    rpm = std::abs(*t.spindle_rpm);
+    out.spindle.clockwise = *t.spindle_rpm < 0;  // ISO 14649 sign convention
+  } else if (t.cutting_speed && tool.diameter > 0 && !t.constant_surface_speed) {
+    rpm = 1000 * *t.cutting_speed / (geom::pi * tool.diameter);
+    out.spindle.clockwise = !t.counter_clockwise;
+  } else if (!(t.constant_surface_speed && t.cutting_speed)) {
+    error(op.source, "missing technology: no spindle speed and no usable cutting speed");
+    return std::nullopt;
+  }
+  out.spindle.rpm = rpm;
+  if (t.constant_surface_speed) {
+    if (!t.cutting_speed) {
+      error(op.source, "constant surface speed without a cutting speed");
+      return std::nullopt;
+    }
+    out.spindle.css = true;
+    out.spindle.surface_speed = *t.cutting_speed;
+    out.spindle.max_rpm = t.max_spindle_rpm.value_or(0);
+    if (!t.spindle_rpm) out.spindle.clockwise = !t.counter_clockwise;
+  }
+  if (t.feedrate) {
+    out.feed = {*t.feedrate, false};
+  } else if (t.feed_per_tooth && tool.flutes > 0 && rpm > 0) {
+    out.feed = {*t.feed_per_tooth * tool.flutes * rpm, false};
+  } else if (t.feed_per_revolution) {
+    out.feed = turning() ? FeedRate{*t.feed_per_revolution, true} : FeedRate{*t.feed_per_revolution * rpm, false};
+    if (!turning() && rpm <= 0) {
+      error(op.source, "missing technology: feed per revolution without a spindle speed");
+      return std::nullopt;
+    }
+  } else {
+    error(op.source, t.feed_per_tooth ? "missing technology: feed per tooth needs the tool's flute count"
+                                      : "missing technology: no feedrate");
+    return std::nullopt;
+  }
+  if (out.feed.value <= 0) {
+    error(op.source, fmt::format("feedrate {} is not positive", out.feed.value));
+    return std::nullopt;
+  }
+  return out;
+}
+
+GenerateResult Generator::run() {
+  program_.name = project_.source.name;
+  program_.machine = project_.machine;
+  program_.tolerance = project_.workpiece.global_tolerance;
+  program_.clear_z = turning() ? turning_safe().z : project_.security_plane;
+  tool_numbers_.assign(project_.tools.size(), 0);
+  // Fixed numbers first, then order of first use.
+  for (std::size_t i = 0; i < project_.tools.size(); ++i)
+    if (project_.tools[i].number) tool_numbers_[i] = *project_.tools[i].number;
+  emit(Comment{fmt::format("{} (#{})", project_.source.name, project_.source.id)});
+  if (turning())
+    rapid(turning_safe());
+  else
+    rapid({0, 0, program_.clear_z});
+  visit(project_.main_workplan);
+  provenance_ = 0;
+  if (spindle_) emit(SpindleOff{});
+  if (coolant_.flood || coolant_.mist) emit(Coolant{});
+  if (turning())
+    rapid(turning_safe());
+  else if (pos_.z < program_.clear_z - eps)
+    rapid({pos_.x, pos_.y, program_.clear_z});
+  return std::move(result_);
+}
+
+void Generator::visit(const Executable& executable) {
+  switch (executable.kind) {
+    case ExecutableKind::workingstep:
+      workingstep(executable);
+      return;
+    case ExecutableKind::workplan:
+    case ExecutableKind::non_sequential:
+    case ExecutableKind::parallel:
+      for (const auto& child : executable.children) visit(child);
+      return;
+    case ExecutableKind::selective:
+      if (!executable.children.empty()) {
+        if (executable.children.size() > 1) {
+          provenance_ = 0;
+          emit(Comment{fmt::format("selective #{}: first of {} alternatives", executable.source.id,
+                                   executable.children.size())});
+        }
+        visit(executable.children.front());
+      }
+      return;
+    case ExecutableKind::program_stop:
+    case ExecutableKind::optional_stop:
+      provenance_ = 0;
+      emit(ProgramStop{executable.kind == ExecutableKind::optional_stop});
+      return;
+    case ExecutableKind::unsupported:
+      error(executable.source, fmt::format("{} is not supported by the posters", executable.entity_name));
+      return;
+  }
+}
+
+bool Generator::prepare(const Executable& executable, Job& step) {
+  const Workingstep& ws = executable.step;
+  if (ws.feature < 0 || ws.feature >= static_cast<int>(project_.features.size()) || ws.operation < 0 ||
+      ws.operation >= static_cast<int>(project_.operations.size())) {
+    error(executable.source, "workingstep without a feature or an operation");
+    return false;
+  }
+  step.feature = &project_.features[static_cast<std::size_t>(ws.feature)];
+  step.op = &project_.operations[static_cast<std::size_t>(ws.operation)];
+  const Operation& op = *step.op;
+  if (op.tool < 0 || op.tool >= static_cast<int>(project_.tools.size())) {
+    error(op.source, "operation without a tool");
+    return false;
+  }
+  step.tool = &project_.tools[static_cast<std::size_t>(op.tool)];
+  if (auto* unknown = std::get_if<UnknownStrategy>(&op.strategy)) {
+    error(op.source, fmt::format("unknown machining strategy '{}'", unknown->entity_name));
+    return false;
+  }
+  auto tech = resolve_technology(op, *step.tool);
+  if (!tech) return false;
+  step.tech = *tech;
+  int& number = tool_numbers_[static_cast<std::size_t>(op.tool)];
+  if (number == 0) number = *std::max_element(tool_numbers_.begin(), tool_numbers_.end()) + 1;
+  step.tool_number = number;
+  step.clear = ws.security_plane.value_or(program_.clear_z);
+  step.top = step.feature->placement.location.z;
+  step.retract = step.top + op.retract_plane.value_or(options_.safety_distance);
+  if (!turning() && step.retract > step.clear + eps) {
+    error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", step.retract, step.clear));
+    return false;
+  }
+  return true;
+}
+
+void Generator::start_operation(const Job& step) {
+  if (current_tool_ != step.tool_number) {
+    if (spindle_) {
+      emit(SpindleOff{});
+      spindle_.reset();
+    }
+    if (coolant_.flood || coolant_.mist) coolant(MachineFunctions{});
+    if (turning())
+      rapid(turning_safe());
+    else if (pos_.z < program_.clear_z - eps)
+      rapid({pos_.x, pos_.y, program_.clear_z});
+    if (!program_.tool(step.tool_number)) program_.tools.push_back({step.tool_number, *step.tool});
+    emit(ToolChange{step.tool_number});
+    current_tool_ = step.tool_number;
+  }
+  emit(Tolerance{program_.tolerance, is_rough(step.op->kind)});
+  spindle(step.tech.spindle);
+  coolant(step.op->machine_functions);
+  feedrate(step.tech.feed);
+}
+
+void Generator::workingstep(const Executable& executable) {
+  Job step;
+  if (!prepare(executable, step)) return;
+  ++workingstep_count_;
+  program_.provenance.push_back({executable.source, step.op->source, step.feature->source});
+  provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
+  emit(Comment{fmt::format("WS({}) {} #{}: {} #{} on {} #{}", workingstep_count_, executable.source.name,
+                           executable.source.id, to_string(step.op->kind), step.op->source.id,
+                           step.feature->source.name, step.feature->source.id)});
+  start_operation(step);
+  const std::size_t blocks_before = program_.blocks.size();
+
+  if (step.op->kind == OperationKind::freeform) {
+    explicit_toolpaths(step);
+  } else if (turning()) {
+    turning_step(step);
+  } else {
+    const OperationKind kind = step.op->kind;
+    const bool plane = kind == OperationKind::plane_rough_milling || kind == OperationKind::plane_finish_milling;
+    const bool bottom_side = kind == OperationKind::bottom_and_side_rough_milling ||
+                             kind == OperationKind::bottom_and_side_finish_milling;
+    const auto& shape = step.feature->shape;
+    if (auto* face = std::get_if<PlanarFace>(&shape); face && plane) {
+      planar_face(step, *face);
+    } else if (auto* hole_shape = std::get_if<RoundHole>(&shape); hole_shape && is_hole_making(kind)) {
+      hole(step, *hole_shape);
+    } else if (auto* slot_shape = std::get_if<Slot>(&shape); slot_shape && bottom_side) {
+      slot(step, *slot_shape);
+    } else if (bottom_side && (std::holds_alternative<ClosedPocket>(shape) || std::holds_alternative<OpenPocket>(shape) ||
+                               std::holds_alternative<Step>(shape))) {
+      std::string problem;
+      const auto region = milling_region(*step.feature, tool_radius(step) + options_.approach_clearance, problem);
+      if (!region) {
+        error(step.feature->source, problem);
+      } else {
+        area_clearing(step, region->region, region->offset);
+      }
+    } else {
+      error(step.op->source, fmt::format("{} cannot machine feature '{}' (#{})", to_string(kind),
+                                         step.feature->source.name, step.feature->source.id));
+    }
+  }
+  if (program_.blocks.size() == blocks_before) return;
+  if (!turning()) go_clear({pos_.x, pos_.y});
+}
+
+// ------------------------------------------------------------- milling --
+
+void Generator::planar_face(const Job& step, const PlanarFace& face) {
+  const Operation& op = *step.op;
+  const double r = tool_radius(step);
+  const bool rough = is_rough(op.kind);
+  const double bottom = step.top - step.feature->depth + (rough ? op.allowance_bottom : 0);
+  const bool unidirectional = std::holds_alternative<UnidirectionalMilling>(op.strategy);
+  if (!std::holds_alternative<std::monostate>(op.strategy) && !unidirectional &&
+      !std::holds_alternative<BidirectionalMilling>(op.strategy)) {
+    error(op.source, "plane milling supports bidirectional_milling and unidirectional_milling strategies");
+    return;
+  }
+  // Tool centre lines keep the tool inside the face across its width and
+  // run off both ends of the course of travel.
+  const double y0 = std::min(r, face.width / 2), y1 = std::max(face.width - r, face.width / 2);
+  const int lines = std::max(1, static_cast<int>(std::ceil((y1 - y0) / stepover(step) - 1e-9))) + (y1 - y0 > eps ? 1 : 0);
+  const double run_in = r + options_.approach_clearance;
+  const double x_start = -run_in, x_end = face.length + run_in;
+  const auto levels = depth_levels(step.top, bottom, op.axial_cutting_depth);
+  const auto cycle = begin_feature_cycle(step);
+  double last_level = step.top;
+  for (const double z : levels) {
+    for (int i = 0; i < lines; ++i) {
+      const double y = lines == 1 ? (y0 + y1) / 2 : y0 + (y1 - y0) * i / (lines - 1);
+      const bool forward = unidirectional || i % 2 == 0;
+      const Vec2 from{forward ? x_start : x_end, y}, to{forward ? x_end : x_start, y};
+      if (i == 0 || unidirectional) {
+        // Start outside the face: safe to come down beside it.
+        move_to_start(step, from, last_level + options_.safety_distance, z, {});
+      } else {
+        feed(global(step, from, z));  // step over outside the face
+      }
+      feed(global(step, to, z));
+    }
+    last_level = z;
+    rapid({pos_.x, pos_.y, step.retract});
+  }
+  end_feature_cycle(cycle);
+}
+
+void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset) {
+  const Operation& op = *step.op;
+  const double r = tool_radius(step);
+  const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
+  const double side = rough ? op.allowance_side : 0;
+  const double d_final = r + side;
+  const double m = geom::inradius(region);
+  if (m < d_final - eps) {
+    error(step.feature->source, fmt::format("tool '{}' (diameter {}) plus side allowance {} does not fit the "
+                                            "feature (largest inscribed radius {})",
+                                            step.tool->source.name, step.tool->diameter, side, m));
+    return;
+  }
+  if (const auto* rect = std::get_if<geom::RoundedRect>(&region)) {
+    for (const double corner : rect->radius) {
+      if (corner > eps && r > corner + side + eps) {
+        error(step.feature->source, fmt::format("tool radius {} is larger than the pocket corner radius {}; "
+                                                "the tool cannot reach the corners",
+                                                r, corner));
+        return;
+      }
+    }
+  }
+  // Zig-zag strategies end with a lap along the outline, so the walls are
+  // reached (contour_bidirectional says so; bidirectional_milling needs it
+  // too inside a closed outline).
+  const bool contour = std::holds_alternative<ContourParallel>(op.strategy);
+  if (!contour && !std::holds_alternative<BidirectionalMilling>(op.strategy) &&
+      !std::holds_alternative<ContourBidirectional>(op.strategy) &&
+      !std::holds_alternative<std::monostate>(op.strategy)) {
+    error(op.source, "bottom and side milling supports contour_parallel, contour_bidirectional and "
+                     "bidirectional_milling strategies");
+    return;
+  }
+  if (auto* pocket = std::get_if<ClosedPocket>(&step.feature->shape);
+      pocket && step.tool->corner_radius > pocket->planar_radius + eps)
+    warning(step.feature->source, fmt::format("pocket floor fillet (planar_radius {}) is smaller than the "
+                                              "tool's corner radius {}",
+                                              pocket->planar_radius, step.tool->corner_radius));
+  if (auto* polygon = std::get_if<geom::Polygon>(&region); polygon && contour && !geom::is_convex(*polygon)) {
+    error(op.source, "contour_parallel on a non-convex general profile is not supported; use bidirectional_milling");
+    return;
+  }
+  const auto final_lap = geom::offset_lap(region, d_final);
+  if (!final_lap) {
+    error(step.feature->source, "the profile is too narrow for the tool: the tool centre path collapses");
+    return;
+  }
+  // Lap direction: the strategy's rotation, else from cut mode (climb
+  // inside a pocket with an M3 spindle runs counter-clockwise); STEP-NC's
+  // default cut mode is conventional.
+  bool clockwise = true;
+  if (auto* cp = std::get_if<ContourParallel>(&op.strategy)) {
+    if (cp->rotation != Rotation::unspecified)
+      clockwise = cp->rotation == Rotation::clockwise;
+    else
+      clockwise = (cp->cutmode == CutMode::climb) != step.tech.spindle.clockwise;
+  }
+  // Paths in the feature frame: oriented, and moved by the region's offset.
+  auto placed = [&](Path p) {
+    if (clockwise) p = p.reversed();
+    p.start = p.start + offset;
+    for (auto& seg : p.segments) {
+      seg.to = seg.to + offset;
+      seg.centre = seg.centre + offset;
+    }
+    return p;
+  };
+
+  const double s = stepover(step);
+  std::vector<Path> laps;  // from the inside out, sharing one start ray
+  const int n = std::max(0, static_cast<int>(std::ceil((m - d_final) / s - 1e-9)));
+  // The innermost lap sits at the inradius (a line or point for rectangles
+  // and circles; just inside it for polygons, whose offset vanishes there).
+  const double inner = std::holds_alternative<geom::Polygon>(region) ? m - 0.01 : m;
+  for (int i = n; i >= 0; --i) {
+    const double d = n == 0 ? d_final : d_final + (inner - d_final) * i / n;
+    if (auto lap = geom::offset_lap(region, std::max(d, d_final))) laps.push_back(placed(*lap));
+  }
+  const Path boundary_lap = placed(*final_lap);
+
+  // Zig-zag lines across the tool-centre region, clipped to it.
+  auto zigzag = [&](double z, double approach_z) {
+    const auto [ylo, yhi] = geom::y_range(region);
+    const double a = ylo + d_final, b = yhi - d_final;
+    const int lines = std::max(1, static_cast<int>(std::ceil((b - a) / s - 1e-9)) + 1);
+    bool forward = true;
+    bool first = true;
+    for (int i = 0; i < lines; ++i) {
+      const double y = lines == 1 ? (a + b) / 2 : a + (b - a) * i / (lines - 1);
+      auto intervals = geom::offset_intervals(region, d_final, y);
+      if (!forward) std::reverse(intervals.begin(), intervals.end());
+      for (auto [x0, x1] : intervals) {
+        if (!forward) std::swap(x0, x1);
+        const Vec2 from{x0, y}, to{x1, y};
+        // Link with a straight feed when it stays inside the tool-centre
+        // region; otherwise lift over the material.
+        bool linked = false;
+        if (!first) {
+          const Vec2 prev = step.feature->placement.to_local({pos_.x, pos_.y}) - offset;
+          linked = true;
+          for (int k = 0; k <= 20 && linked; ++k) {
+            const Vec2 p = prev + (from - prev) * (k / 20.0);
+            linked = geom::signed_distance(region, p) <= -d_final + 1e-6;
+          }
+        }
+        if (linked)
+          feed(global(step, from, z, offset));
+        else
+          move_to_start(step, from + offset, approach_z, z, {});
+        first = false;
+        feed(global(step, to, z, offset));
+      }
+      forward = !forward;
+    }
+  };
+
+  const auto levels = depth_levels(step.top, step.top - step.feature->depth + (rough ? op.allowance_bottom : 0),
+                                   op.axial_cutting_depth);
+  const auto cycle = begin_feature_cycle(step);
+  double last_level = step.top;
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    const double z = levels[k];
+    const double approach_z = last_level + options_.safety_distance;
+    const bool floor = k + 1 == levels.size();
+    if (!rough && !floor) {
+      // Finishing: the walls layer by layer with the boundary lap only.
+      move_to_start(step, boundary_lap.start, approach_z, z, {});
+      path_at(step, boundary_lap, z);
+    } else if (contour) {
+      // Plunge at the inner lap, then outwards lap by lap along the start ray.
+      move_to_start(step, laps.front().start, approach_z, z, {});
+      for (const Path& lap : laps) {
+        feed(global(step, lap.start, z));
+        path_at(step, lap, z);
+      }
+    } else {
+      zigzag(z, approach_z);
+      move_to_start(step, boundary_lap.start, approach_z, z, {});
+      path_at(step, boundary_lap, z);
+    }
+    last_level = z;
+  }
+  rapid({pos_.x, pos_.y, step.retract});
+  end_feature_cycle(cycle);
+}
+
+std::optional<std::size_t> Generator::begin_feature_cycle(const Job& step) {
+  CycleInput input{*step.feature, *step.op, *step.tool, step.tech.spindle, step.tech.feed,
+                   step.top, step.retract, options_.safety_distance};
+  auto cycle = siemens_feature_cycle(input);
+  if (!cycle) return std::nullopt;
+  emit(std::move(*cycle));
+  return program_.blocks.size() - 1;
+}
+
+void Generator::end_feature_cycle(std::optional<std::size_t> index) {
+  if (!index) return;
+  std::get<FeatureCycle>(program_.blocks[*index].statement).replaces = program_.blocks.size() - *index - 1;
+}
+
+void Generator::slot(const Job& step, const Slot& slot_shape) {
+  const Operation& op = *step.op;
+  const double r = tool_radius(step);
+  const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
+  const double side = rough ? op.allowance_side : 0;
+  if (2 * (r + side) > slot_shape.width + eps) {
+    error(step.feature->source, fmt::format("tool diameter {} plus allowances does not fit the slot width {}",
+                                            step.tool->diameter, slot_shape.width));
+    return;
+  }
+  if (std::abs(2 * (r + side) - slot_shape.width) > 1e-6) {
+    std::string problem;
+    const auto region = milling_region(*step.feature, r + options_.approach_clearance, problem);
+    area_clearing(step, region->region, region->offset);
+    return;
+  }
+  // Tool as wide as the slot: centre-line passes, alternating direction.
+  const double extra = slot_shape.rounded_ends ? 0 : r + options_.approach_clearance;
+  const Vec2 a{-extra, 0}, b{slot_shape.length + extra, 0};
+  const auto levels = depth_levels(step.top, step.top - step.feature->depth + (rough ? op.allowance_bottom : 0),
+                                   op.axial_cutting_depth);
+  const auto cycle = begin_feature_cycle(step);
+  move_to_start(step, a, step.top + options_.safety_distance, levels.front(), {});
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if (k > 0) feed(global(step, k % 2 ? b : a, levels[k]));
+    feed(global(step, k % 2 ? a : b, levels[k]));
+  }
+  rapid({pos_.x, pos_.y, step.retract});
+  end_feature_cycle(cycle);
+}
+
+void Generator::hole(const Job& step, const RoundHole& hole_shape) {
+  const Operation& op = *step.op;
+  const Tool& tool = *step.tool;
+  // A tap is as wide as the thread, wider than the hole drilled for it.
+  if (op.kind != OperationKind::tapping && tool.diameter > hole_shape.diameter + eps) {
+    error(op.source, fmt::format("tool '{}' (diameter {}) is larger than hole '{}' (diameter {})", tool.source.name,
+                                 tool.diameter, step.feature->source.name, hole_shape.diameter));
+    return;
+  }
+  if (op.kind == OperationKind::reaming && std::abs(tool.diameter - hole_shape.diameter) > 1e-3)
+    warning(op.source, fmt::format("reamer diameter {} differs from hole diameter {}", tool.diameter,
+                                   hole_shape.diameter));
+  double depth = op.cutting_depth.value_or(step.feature->depth);
+  if (hole_shape.bottom == HoleBottom::through && !op.cutting_depth && op.kind != OperationKind::center_drilling) {
+    // Break through: the drill's point plus 1 mm.
+    const bool pointed = tool.kind == ToolKind::twist_drill;
+    const double half_angle = tool.tip_angle_deg / 2 * geom::pi / 180;
+    depth += 1 + (pointed ? tool.diameter / 2 / std::tan(half_angle) : 0);
+  }
+  DrillCycle cycle;
+  const Vec3 centre = step.feature->placement.location;
+  cycle.x = centre.x;
+  cycle.y = centre.y;
+  cycle.top = step.top;
+  cycle.r = step.top + options_.safety_distance;
+  cycle.clear = step.retract;
+  cycle.bottom = step.top - depth;
+  cycle.dwell = op.dwell_time_bottom;
+  cycle.feed = step.tech.feed.value;
+  switch (op.kind) {
+    case OperationKind::multistep_drilling:
+      if (!op.depth_of_step || *op.depth_of_step <= eps) {
+        error(op.source, "multistep_drilling without a positive depth_of_step");
+        return;
+      }
+      cycle.kind = DrillKind::peck;
+      cycle.peck = *op.depth_of_step;
+      if (op.first_depth && std::abs(*op.first_depth - *op.depth_of_step) > eps)
+        warning(op.source, "first_depth differs from depth_of_step; G83 pecks use depth_of_step throughout");
+      break;
+    case OperationKind::reaming:
+    case OperationKind::boring:
+      cycle.kind = op.spindle_stop_at_bottom ? DrillKind::bore_spindle_stop : DrillKind::bore_feed_out;
+      cycle.retract_feed = cycle.feed;
+      break;
+    case OperationKind::tapping:
+      if (tool.thread_pitch <= eps || step.tech.spindle.rpm <= eps) {
+        error(op.source, "tapping needs the tap's thread pitch and a spindle speed");
+        return;
+      }
+      cycle.kind = DrillKind::tap;
+      cycle.pitch = tool.thread_pitch;
+      cycle.feed = tool.thread_pitch * step.tech.spindle.rpm;
+      break;
+    default:
+      cycle.kind = DrillKind::drill;
+      break;
+  }
+  if (cycle.r >= cycle.clear - eps) cycle.clear = cycle.r;
+  go_clear({cycle.x, cycle.y});
+  rapid({cycle.x, cycle.y, cycle.clear});
+  feedrate({cycle.feed, false});
+  emit(cycle);
+  rapid({cycle.x, cycle.y, cycle.clear});
+}
+
+void Generator::explicit_toolpaths(const Job& step) {
+  const Operation& op = *step.op;
+  if (op.toolpaths.empty()) {
+    error(op.source, "freeform operation without toolpaths");
+    return;
+  }
+  bool first = true;
+  for (const Toolpath& path : op.toolpaths) {
+    for (const ToolpathElement& element : path.elements) {
+      if (auto* line = std::get_if<Polyline>(&element)) {
+        for (const Vec3& p : line->points) {
+          if (first) {
+            // Approach: straight above the first point, then down to it.
+            if (turning()) {
+              rapid({turning_safe().x, 0, p.z});
+            } else {
+              go_clear({p.x, p.y});
+            }
+            first = false;
+          }
+          if (path.rapid)
+            rapid(p);
+          else
+            feed(p);
+        }
+      } else {
+        const auto& arc = std::get<CircularArc>(element);
+        if (first) {
+          error(path.source, "a toolpath must start with a point, not an arc");
+          return;
+        }
+        emit(Arc{ArcPlane::xy, arc.end, arc.centre, arc.clockwise, arc.extra_turns});
+      }
+    }
+  }
+  if (turning()) rapid({turning_safe().x, 0, pos_.z});
+}
+
+// ------------------------------------------------------------- turning --
+
+void Generator::turning_step(const Job& step) {
+  const auto& shape = step.feature->shape;
+  const OperationKind kind = step.op->kind;
+  if ((kind == OperationKind::facing_rough || kind == OperationKind::facing_finish) &&
+      std::holds_alternative<TurningFace>(shape)) {
+    facing(step);
+  } else if (auto* profile = std::get_if<TurningProfile>(&shape);
+             profile && (kind == OperationKind::contouring_rough || kind == OperationKind::contouring_finish)) {
+    if (profile->points.size() < 2) {
+      error(step.feature->source, "turning profile needs at least two points");
+      return;
+    }
+    if (kind == OperationKind::contouring_rough)
+      rough_profile(step, *profile);
+    else
+      finish_profile(step, *profile, 0);
+  } else if (auto* groove = std::get_if<Groove>(&shape); groove && kind == OperationKind::grooving) {
+    grooving(step, *groove);
+  } else if (auto* hole_shape = std::get_if<CentreHole>(&shape);
+             hole_shape && (kind == OperationKind::lathe_drilling || is_hole_making(kind))) {
+    axial_drilling(step, step.op->cutting_depth.value_or(hole_shape->depth));
+  } else {
+    error(step.op->source, fmt::format("{} cannot machine turning feature '{}' (#{})", to_string(kind),
+                                       step.feature->source.name, step.feature->source.id));
+    return;
+  }
+  rapid(turning_safe());
+}
+
+void Generator::facing(const Job& step) {
+  const Operation& op = *step.op;
+  const double front = project_.workpiece.stock_front;
+  const bool rough = op.kind == OperationKind::facing_rough;
+  const double target = rough ? op.allowance : 0;
+  if (front <= target + eps) return;
+  std::vector<double> cumulative;
+  if (auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy); uni && !uni->cutting_depths.empty())
+    cumulative = depth_list_passes(uni->cutting_depths, front - target);
+  else
+    for (const double z : depth_levels(front, target, rough ? op.axial_cutting_depth : std::nullopt))
+      cumulative.push_back(front - z);
+  const double outside = turning_safe().x;
+  for (const double done : cumulative) {
+    const double z = front - done;
+    rapid({outside, 0, z});
+    feed({0, 0, z});
+    rapid({0, 0, z + options_.safety_distance});
+    rapid({outside, 0, z + options_.safety_distance});
+  }
+}
+
+void Generator::rough_profile(const Job& step, const TurningProfile& profile) {
+  const Operation& op = *step.op;
+  const double stock = project_.workpiece.stock_radius;
+  const double allowance = op.allowance;
+  const auto& pts = profile.points;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+    if (pts[i + 1].x > pts[i].x + eps) {
+      error(step.feature->source, "turning profile points must run from the front (largest z) backwards");
+      return;
+    }
+  }
+  double min_radius = stock;
+  for (const Vec2 p : pts) min_radius = std::min(min_radius, p.y + allowance);
+  if (min_radius >= stock - eps) {
+    finish_profile(step, profile, allowance);
+    return;
+  }
+  const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
+  std::vector<double> depths;
+  bool contour_strategy = false;
+  if (auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy)) {
+    depths = uni->cutting_depths;
+  } else if (auto* ct = std::get_if<ContourTurning>(&op.strategy)) {
+    depths = ct->cutting_depths;
+    contour_strategy = true;
+  } else if (!std::holds_alternative<std::monostate>(op.strategy)) {
+    error(op.source, "contouring supports unidirectional_turning and contour_turning strategies");
+    return;
+  }
+  if (depths.empty()) depths.push_back(op.axial_cutting_depth.value_or(stock - min_radius));
+  if (std::any_of(depths.begin(), depths.end(), [](double d) { return d <= eps; })) {
+    error(op.source, "cutting depths must be positive");
+    return;
+  }
+  const auto cumulative = depth_list_passes(depths, stock - min_radius);
+  const double lift = std::get_if<UnidirectionalTurning>(&op.strategy)
+                          ? std::get<UnidirectionalTurning>(op.strategy).lift_height
+                          : options_.safety_distance;
+
+  std::optional<std::size_t> cycle;
+  if (!contour_strategy) {
+    // Unidirectional: passes parallel to z, each ending where the profile
+    // (plus allowance) rises to the pass radius; needs a profile whose
+    // radius never falls going back (no undercuts).
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      if (pts[i + 1].y < pts[i].y - eps) {
+        error(step.feature->source, "unidirectional_turning needs a profile without undercuts "
+                                    "(radius must not decrease towards the chuck)");
+        return;
+      }
+    }
+    // A constant depth keeps the intent of a lathe stock-removal cycle
+    // (Fanuc G71): offer it, with the passes below as its expansion.
+    if (std::all_of(depths.begin(), depths.end(), [&](double d) { return std::abs(d - depths.front()) < eps; })) {
+      FeatureCycle g71;
+      g71.name = "G71";
+      g71.parameters = {
+          {"depth", depths.front(), "its_machining_strategy/cutting_depth"},
+          {"retract", lift, "its_machining_strategy/lift_height"},
+          {"allowance", allowance, "\"TurningOp\"/allowance"},
+          {"feed", step.tech.feed.value, "\"TurningOp\"/its_technology/feedrate"},
+      };
+      g71.start = {turning_safe().x, 0, z_start};
+      for (const Vec2 p : pts) g71.profile.push_back({p.y, 0, p.x});
+      emit(std::move(g71));
+      cycle = program_.blocks.size() - 1;
+    }
+    for (const double done : cumulative) {
+      const double x = stock - done;
+      double z_end = pts.back().x;
+      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+        const double ra = pts[i].y + allowance, rb = pts[i + 1].y + allowance;
+        if (rb >= x - eps) {
+          z_end = ra >= x - eps ? pts[i].x
+                                : pts[i].x + (pts[i + 1].x - pts[i].x) * (x - ra) / (rb - ra);
+          break;
+        }
+      }
+      if (z_end >= z_start) continue;
+      rapid({turning_safe().x, 0, z_start});
+      rapid({x, 0, z_start});
+      feed({x, 0, z_end});
+      rapid({x + lift, 0, z_end + lift});
+      rapid({x + lift, 0, z_start});
+    }
+  } else {
+    // Contour turning: the profile shifted out by what is left, clipped to
+    // just above the stock.
+    for (const double done : cumulative) {
+      const double shift = (stock - min_radius) - done;
+      if (shift <= eps) break;
+      std::vector<Vec3> path;
+      const double ceiling = stock + options_.approach_clearance;
+      path.push_back({std::min(pts.front().y + allowance + shift, ceiling), 0, z_start});
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Vec3 p{std::min(pts[i].y + allowance + shift, ceiling), 0, pts[i].x};
+        if (i > 0) {
+          const double ra = pts[i - 1].y + allowance + shift, rb = pts[i].y + allowance + shift;
+          if ((ra - ceiling) * (rb - ceiling) < 0) {
+            const double t = (ceiling - ra) / (rb - ra);
+            path.push_back({ceiling, 0, pts[i - 1].x + (pts[i].x - pts[i - 1].x) * t});
+          }
+        }
+        path.push_back(p);
+      }
+      rapid({turning_safe().x, 0, z_start});
+      rapid(path.front());
+      for (std::size_t i = 1; i < path.size(); ++i) feed(path[i]);
+      rapid({turning_safe().x, 0, pos_.z});
+    }
+  }
+  // Seed 001 5.2: a final contour pass leaves exactly the allowance.
+  finish_profile(step, profile, allowance);
+  end_feature_cycle(cycle);
+}
+
+void Generator::finish_profile(const Job& step, const TurningProfile& profile, double allowance) {
+  const auto& pts = profile.points;
+  const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
+  rapid({turning_safe().x, 0, z_start});
+  rapid({pts.front().y + allowance, 0, z_start});
+  for (const Vec2 p : pts) feed({p.y + allowance, 0, p.x});
+  rapid({turning_safe().x, 0, pos_.z});
+  (void)step;
+}
+
+void Generator::grooving(const Job& step, const Groove& groove) {
+  const double w = step.tool->cutting_width;
+  if (w <= eps) {
+    error(step.tool->source, "grooving insert without a cutting width");
+    return;
+  }
+  if (w > groove.width + eps) {
+    error(step.op->source, fmt::format("grooving insert width {} is wider than the groove ({})", w, groove.width));
+    return;
+  }
+  // The insert's reference corner is on its front (+z) side; plunges step
+  // back by at most 80% of the insert width.
+  const double travel = groove.width - w;
+  const int plunges = 1 + static_cast<int>(std::ceil(travel / (0.8 * w) - 1e-9));
+  const double outside = groove.outer_radius + options_.approach_clearance;
+  for (int i = 0; i < plunges; ++i) {
+    const double z = groove.z - (plunges == 1 ? 0 : travel * i / (plunges - 1));
+    rapid({outside, 0, z});
+    feed({groove.bottom_radius, 0, z});
+    if (step.op->dwell_time_bottom > 0) emit(Dwell{step.op->dwell_time_bottom});
+    rapid({outside, 0, z});
+  }
+}
+
+void Generator::axial_drilling(const Job& step, double depth) {
+  const Operation& op = *step.op;
+  const double start = std::max(project_.workpiece.stock_front, 0.0) + options_.safety_distance;
+  const double bottom = -depth;
+  rapid({0, 0, start});
+  if (op.depth_of_step && *op.depth_of_step > eps) {
+    // Pecks with full retract, explicit: lathe dialects drill on the spindle axis.
+    for (double z = start - options_.safety_distance - *op.depth_of_step; z > bottom; z -= *op.depth_of_step) {
+      feed({0, 0, z});
+      rapid({0, 0, start});
+      rapid({0, 0, z + 0.5});
+    }
+  }
+  feed({0, 0, bottom});
+  if (op.dwell_time_bottom > 0) emit(Dwell{op.dwell_time_bottom});
+  rapid({0, 0, start});
+}
+
+}  // namespace
+
+GenerateResult generate(const MachiningProject& project, const GenerateOptions& options) {
+  return Generator(project, options).run();
+}
+
+}  // namespace stepnc::post

@@ -1,0 +1,86 @@
+// 2D shapes the toolpath generator offsets and clips, in a feature's local
+// frame. Internal to the posters.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "stepnc/post/machining.h"
+
+namespace stepnc::post {
+
+inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
+
+}  // namespace stepnc::post
+
+namespace stepnc::post::geom {
+
+constexpr double pi = 3.14159265358979323846;
+
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+double length(Vec2 a);
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+
+// One piece of a planar path: a line, or an arc about `centre`.
+struct Segment {
+  Vec2 to;
+  bool arc = false;
+  Vec2 centre;
+  bool clockwise = false;
+
+  static Segment line(Vec2 to) { return {to, false, {}, false}; }
+};
+
+struct Path {
+  Vec2 start;
+  std::vector<Segment> segments;
+
+  Path reversed() const;
+};
+
+// Rectangle centred on the origin, half sizes hx, hy, one radius per
+// corner in the order (+x,+y), (-x,+y), (-x,-y), (+x,-y).
+struct RoundedRect {
+  double hx = 0, hy = 0;
+  std::array<double, 4> radius{};
+};
+
+struct Circle {
+  double radius = 0;
+};
+
+struct Polygon {  // simple, counter-clockwise
+  std::vector<Vec2> vertices;
+};
+
+using Region = std::variant<RoundedRect, Circle, Polygon>;
+
+Polygon counter_clockwise(std::vector<Vec2> vertices);
+bool is_convex(const Polygon& polygon);
+
+// Signed distance from p to the region's boundary: negative inside.
+double signed_distance(const Region& region, Vec2 p);
+
+// The largest inward offset that leaves a non-empty region.
+double inradius(const Region& region);
+
+// The closed path at inward distance d (tool centre of a lap), counter-
+// clockwise, starting on the local -y side at x = 0 for rectangles and
+// circles. Empty when the offset vanishes or, for non-convex polygons,
+// when it no longer follows every edge.
+std::optional<Path> offset_lap(const Region& region, double d);
+
+// Where the horizontal line at y lies inside the region offset inward by d:
+// sorted disjoint x intervals.
+std::vector<std::pair<double, double>> offset_intervals(const Region& region, double d, double y);
+
+// Tight bounds of the region in y.
+std::pair<double, double> y_range(const Region& region);
+
+}  // namespace stepnc::post::geom

@@ -1,0 +1,152 @@
+#include "regions.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "stepnc/post/feature_geometry.h"
+
+namespace stepnc::post {
+
+namespace {
+
+// A rectangle with sides open to the air: open sides move out, and the
+// corners they touch lose their radius (nothing is left to round there).
+MillingRegion open_rectangle(double length, double width, double radius, unsigned open, double extension,
+                             Vec2 centre) {
+  const double grow_min_x = (open & open_min_x) ? extension : 0, grow_max_x = (open & open_max_x) ? extension : 0;
+  const double grow_min_y = (open & open_min_y) ? extension : 0, grow_max_y = (open & open_max_y) ? extension : 0;
+  geom::RoundedRect rect;
+  rect.hx = (length + grow_min_x + grow_max_x) / 2;
+  rect.hy = (width + grow_min_y + grow_max_y) / 2;
+  // Corner order (+x,+y), (-x,+y), (-x,-y), (+x,-y).
+  const bool px = open & open_max_x, nx = open & open_min_x, py = open & open_max_y, ny = open & open_min_y;
+  rect.radius = {(px || py) ? 0 : radius, (nx || py) ? 0 : radius, (nx || ny) ? 0 : radius,
+                 (px || ny) ? 0 : radius};
+  return {rect, {centre.x + (grow_max_x - grow_min_x) / 2, centre.y + (grow_max_y - grow_min_y) / 2}};
+}
+
+}  // namespace
+
+std::optional<RectangularProfile> as_rectangle(const PolygonProfile& polygon, Vec2& centre) {
+  auto v = polygon.vertices;
+  if (v.size() == 5 && geom::length(v.front() - v.back()) < 1e-9) v.pop_back();  // closed polyline
+  if (v.size() != 4) return std::nullopt;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Vec2 e = v[(i + 1) % 4] - v[i];
+    if (std::abs(e.x) > 1e-9 && std::abs(e.y) > 1e-9) return std::nullopt;  // not along an axis
+    const Vec2 f = v[(i + 2) % 4] - v[(i + 1) % 4];
+    if (std::abs(geom::dot(e, f)) > 1e-9) return std::nullopt;
+  }
+  double lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
+  for (const Vec2 p : v) {
+    lo_x = std::min(lo_x, p.x);
+    hi_x = std::max(hi_x, p.x);
+    lo_y = std::min(lo_y, p.y);
+    hi_y = std::max(hi_y, p.y);
+  }
+  centre = {(lo_x + hi_x) / 2, (lo_y + hi_y) / 2};
+  return RectangularProfile{hi_x - lo_x, hi_y - lo_y, polygon.corner_radius};
+}
+
+std::optional<MillingRegion> milling_region(const Feature& feature, double open_extension, std::string& problem) {
+  const auto& shape = feature.shape;
+  if (auto* pocket = std::get_if<ClosedPocket>(&shape)) {
+    if (auto* rect = std::get_if<RectangularProfile>(&pocket->profile)) {
+      if (rect->length <= 0 || rect->width <= 0 || 2 * rect->corner_radius > std::min(rect->length, rect->width)) {
+        problem = fmt::format("rectangular profile {} x {} with corner radius {} is not a valid pocket outline",
+                              rect->length, rect->width, rect->corner_radius);
+        return std::nullopt;
+      }
+      return open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, {});
+    }
+    if (auto* circle = std::get_if<CircularProfile>(&pocket->profile)) {
+      if (circle->diameter <= 0) {
+        problem = "circular profile without a positive diameter";
+        return std::nullopt;
+      }
+      return MillingRegion{geom::Circle{circle->diameter / 2}, {}};
+    }
+    const auto& polygon = std::get<PolygonProfile>(pocket->profile);
+    Vec2 centre;
+    if (auto rect = as_rectangle(polygon, centre)) {
+      auto region = open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, centre);
+      return region;
+    }
+    if (polygon.vertices.size() < 3) {
+      problem = "general profile needs at least three vertices";
+      return std::nullopt;
+    }
+    return MillingRegion{geom::counter_clockwise(polygon.vertices), {}};
+  }
+  if (auto* open = std::get_if<OpenPocket>(&shape)) {
+    const auto& p = open->profile;
+    return open_rectangle(p.length, p.width, p.corner_radius, open->open_sides, open_extension, {});
+  }
+  if (auto* step = std::get_if<Step>(&shape)) {
+    return open_rectangle(step->length, step->width, 0, open_min_x | open_max_x | open_max_y, open_extension,
+                          {step->length / 2, step->width / 2});
+  }
+  if (auto* slot = std::get_if<Slot>(&shape)) {
+    if (slot->rounded_ends) {
+      geom::RoundedRect rect{(slot->length + slot->width) / 2, slot->width / 2, {}};
+      rect.radius.fill(slot->width / 2);
+      return MillingRegion{rect, {slot->length / 2, 0}};
+    }
+    return open_rectangle(slot->length, slot->width, 0, open_min_x | open_max_x, open_extension,
+                          {slot->length / 2, 0});
+  }
+  if (auto* face = std::get_if<PlanarFace>(&shape)) {
+    return open_rectangle(face->length, face->width, 0, open_none, 0, {face->length / 2, face->width / 2});
+  }
+  if (auto* hole = std::get_if<RoundHole>(&shape)) {
+    return MillingRegion{geom::Circle{hole->diameter / 2}, {}};
+  }
+  problem = "not a milling feature";
+  return std::nullopt;
+}
+
+double feature_signed_distance(const Feature& feature, Vec2 global) {
+  std::string problem;
+  const auto region = milling_region(feature, 0, problem);
+  if (!region) return 1e300;
+  return geom::signed_distance(region->region, feature.placement.to_local(global) - region->offset);
+}
+
+std::vector<Vec2> feature_outline(const Feature& feature) {
+  std::string problem;
+  const auto region = milling_region(feature, 0, problem);
+  std::vector<Vec2> out;
+  if (!region) return out;
+  const auto lap = geom::offset_lap(region->region, 0);
+  if (!lap) return out;
+  auto add = [&](Vec2 local) {
+    const Vec3 p = feature.placement.to_global(local + region->offset);
+    out.push_back({p.x, p.y});
+  };
+  add(lap->start);
+  Vec2 from = lap->start;
+  for (const auto& seg : lap->segments) {
+    if (seg.arc) {
+      // Sample the arc every 5 degrees.
+      const Vec2 a = from - seg.centre, b = seg.to - seg.centre;
+      double sweep = std::atan2(geom::cross(a, b), geom::dot(a, b));
+      if (seg.clockwise && sweep > 0) sweep -= 2 * geom::pi;
+      if (!seg.clockwise && sweep < 0) sweep += 2 * geom::pi;
+      if (std::abs(sweep) < 1e-12) sweep = seg.clockwise ? -2 * geom::pi : 2 * geom::pi;
+      const int steps = std::max(2, static_cast<int>(std::abs(sweep) / (5 * geom::pi / 180)));
+      const double r = geom::length(a), start = std::atan2(a.y, a.x);
+      for (int i = 1; i <= steps; ++i) {
+        const double t = start + sweep * i / steps;
+        add(seg.centre + Vec2{r * std::cos(t), r * std::sin(t)});
+      }
+    } else {
+      add(seg.to);
+    }
+    from = seg.to;
+  }
+  return out;
+}
+
+}  // namespace stepnc::post

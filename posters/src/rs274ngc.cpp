@@ -1,0 +1,99 @@
+// LinuxCNC (RS274NGC) for mills and lathes. Canned cycles run in G99 mode
+// (retract to R); the generator follows each with a rapid to the retract
+// plane, so G98/G99 never changes the motion.
+#include "dialects.h"
+
+namespace stepnc::post::detail {
+
+namespace {
+
+class Rs274ngcPrinter final : public GcodePrinter {
+ public:
+  explicit Rs274ngcPrinter(const Program& program)
+      : GcodePrinter(program, Style{4, false, '(', 0, program.machine == MachineKind::turning}) {}
+
+ private:
+  bool lathe() const { return program_.machine == MachineKind::turning; }
+
+  void prologue() override {
+    line("%");
+    comment(program_.name);
+    // Lathe: XZ plane, diameter mode.
+    line(lathe() ? "G18 G7 G21 G90 G40 G80" : "G17 G21 G90 G40 G49 G80 G94");
+  }
+  void epilogue() override {
+    line("M2");
+    line("%");
+  }
+  void tool_change(const ToolChange& t) override {
+    start_line();
+    word('T', t.number);
+    word("M6");
+    finish_line();
+    if (!lathe()) {
+      start_line();
+      word("G43");
+      word('H', t.number);
+      finish_line();
+    }
+  }
+  void spindle_on(const SpindleOn& s) override {
+    start_line();
+    if (s.css) {
+      word("G96");
+      if (s.max_rpm > 0) word('D', s.max_rpm);
+      word('S', s.surface_speed);
+    } else {
+      if (lathe()) word("G97");
+      word('S', s.rpm);
+    }
+    word(s.clockwise ? "M3" : "M4");
+    finish_line();
+  }
+  void feed_rate(const FeedRate& f) override {
+    start_line();
+    if (lathe()) word(f.per_revolution ? "G95" : "G94");
+    word('F', f.value);
+    finish_line();
+  }
+  void tolerance(const Tolerance& t) override {
+    // Path blending within the model tolerance keeps the contour intent.
+    start_line();
+    word("G64");
+    word('P', t.value);
+    finish_line();
+  }
+  void dwell(const Dwell& d) override {
+    start_line();
+    word("G4");
+    word('P', d.seconds);
+    finish_line();
+  }
+  void drill_cycle(const DrillCycle& c) override {
+    start_line();
+    word("G99");
+    switch (c.kind) {
+      case DrillKind::drill: word(c.dwell > 0 ? "G82" : "G81"); break;
+      case DrillKind::peck: word("G83"); break;
+      case DrillKind::tap: word("G84"); break;
+      case DrillKind::bore_feed_out: word(c.dwell > 0 ? "G89" : "G85"); break;
+      case DrillKind::bore_spindle_stop: word("G86"); break;
+    }
+    word('X', c.x);
+    word('Y', c.y);
+    word('Z', c.bottom);
+    word('R', c.r);
+    if (c.kind == DrillKind::peck) word('Q', c.peck);
+    // G82/G89 dwell; LinuxCNC requires P on G86 too.
+    if (c.dwell > 0 || c.kind == DrillKind::bore_spindle_stop) word('P', c.dwell);
+    word('F', c.feed);
+    finish_line();
+    line("G80");
+  }
+};
+
+}  // namespace
+
+PrintedProgram print_rs274ngc(const Program& program) { return Rs274ngcPrinter(program).print(); }
+
+}  // namespace stepnc::post::detail

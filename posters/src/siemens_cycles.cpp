@@ -1,0 +1,187 @@
+#include "siemens_cycles.h"
+
+#include <cmath>
+
+#include "geometry.h"
+#include "regions.h"
+
+namespace stepnc::post {
+
+namespace {
+
+class Parameters {
+ public:
+  void add(std::string name, std::optional<double> value, std::string source) {
+    list_.push_back({std::move(name), value, std::move(source)});
+  }
+  std::vector<CycleParameter> take() { return std::move(list_); }
+
+ private:
+  std::vector<CycleParameter> list_;
+};
+
+bool is_finish(OperationKind kind) {
+  return kind == OperationKind::bottom_and_side_finish_milling || kind == OperationKind::plane_finish_milling;
+}
+
+// STA1/_STA: angle between the feature's longitudinal axis and the abscissa,
+// from ref_direction, in [0, 180).
+double rotation_angle(const Placement& placement) {
+  double a = std::fmod(placement.angle_deg, 180.0);
+  if (a < 0) a += 180;
+  if (std::abs(a - 180) < 1e-9) a = 0;
+  return a;
+}
+
+// CDIR: 0 climb, 1 conventional, 2 G2, 3 G3. Table 1: from the
+// contour_parallel strategy's cut mode; the STEP-NC default is conventional.
+double milling_direction(const Strategy& strategy) {
+  if (auto* cp = std::get_if<ContourParallel>(&strategy)) {
+    if (cp->rotation == Rotation::clockwise) return 2;
+    if (cp->rotation == Rotation::counter_clockwise) return 3;
+    if (cp->cutmode == CutMode::climb) return 0;
+  }
+  return 1;
+}
+
+double absolute_depth(const CycleInput& in) {
+  // POCKET1/2 have no bottom allowance: a roughing cycle stops the bottom
+  // allowance above the floor instead (Table 1 "Finish Allowance Bottom").
+  const bool rough = !is_finish(in.op.kind);
+  return in.top - in.feature.depth + (rough ? in.op.allowance_bottom : 0);
+}
+
+// The parameters POCKET1 and POCKET2 share after the geometry, in order.
+void pocket_technology(const CycleInput& in, Parameters& p, bool with_rotation) {
+  const bool finish = is_finish(in.op.kind);
+  const double feed = in.feed.value;
+  const double mid = in.op.axial_cutting_depth.value_or(in.feature.depth);
+  if (with_rotation)
+    p.add("STA1", rotation_angle(in.feature.placement), "its_feature/feature_placement/ref_direction/direction_ratios");
+  p.add("FFD", feed, "\"MillingOp\"/its_technology/feedrate (depth infeed feed is not in approach_retract_strategy)");
+  p.add("FFP1", feed, "\"MillingOp\"/its_technology/feedrate");
+  p.add("MID", mid, "\"MillingOp\"/axial_cutting_depth");
+  p.add("CDIR", milling_direction(in.op.strategy), "\"MillingOp\"/its_machining_strategy/cutmode");
+  p.add("FAL", finish ? 0 : in.op.allowance_side, "\"MillingOp\"/allowance_side");
+  p.add("VARI", finish ? 2 : 1, "classname of its_operations[i]: 1 roughing, 2 finishing");
+  p.add("MIDF", finish ? std::optional<double>(mid) : std::nullopt, "\"MillingOp\"/axial_cutting_depth (finishing)");
+  p.add("FFP2", finish ? std::optional<double>(feed) : std::nullopt, "\"MillingOp\"/its_technology/feedrate (finishing)");
+  p.add("SSF", finish ? std::optional<double>(in.spindle.rpm) : std::nullopt,
+        "\"MillingOp\"/its_technology/spindle (finishing)");
+}
+
+// Planes common to every cycle: RTP, RFP, SDIS, DP(, DPR).
+void planes(const CycleInput& in, Parameters& p, bool with_relative_depth, double depth) {
+  p.add("RTP", in.retract, "\"MillingOp\"/retract_plane above its_feature/feature_placement");
+  p.add("RFP", in.top, "its_feature/feature_placement/location/coordinates[z]");
+  p.add("SDIS", in.safety, "hard coded 2 mm (Table 1)");
+  p.add("DP", depth, "its_feature/depth/position/location/coordinates[z]");
+  if (with_relative_depth) p.add("DPR", std::nullopt, "relative depth available, not used (Table 1)");
+}
+
+bool contour_like(const Strategy& strategy) {
+  return std::holds_alternative<std::monostate>(strategy) || std::holds_alternative<ContourParallel>(strategy);
+}
+
+}  // namespace
+
+std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in) {
+  const Placement& placement = in.feature.placement;
+  Parameters p;
+  FeatureCycle cycle;
+  if (auto* pocket = std::get_if<ClosedPocket>(&in.feature.shape)) {
+    if (!contour_like(in.op.strategy)) return std::nullopt;  // POCKET1/2 mill contour-parallel
+    // A rectangle given as a polygon: its centre is not the placement.
+    Vec2 local_centre;
+    std::optional<RectangularProfile> polygon_rect;
+    if (auto* polygon = std::get_if<PolygonProfile>(&pocket->profile))
+      polygon_rect = as_rectangle(*polygon, local_centre);
+    const RectangularProfile* rect = polygon_rect ? &*polygon_rect : std::get_if<RectangularProfile>(&pocket->profile);
+    const Vec3 centre = placement.to_global(local_centre);
+    if (rect) {
+      // POCKET1(RTP, RFP, SDIS, DP, DPR, LENG, WID, CRAD, CPA, CPO, STA1,
+      //         FFD, FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF)
+      cycle.name = "POCKET1";
+      planes(in, p, true, absolute_depth(in));
+      p.add("LENG", rect->length, "its_feature/feature_boundary/profile_length/theoretical_size");
+      p.add("WID", rect->width, "its_feature/feature_boundary/profile_width/theoretical_size");
+      p.add("CRAD", rect->corner_radius, "its_feature/orthogonal_radius/theoretical_size");
+      p.add("CPA", centre.x, "its_feature/feature_placement/location/coordinates[x] (+ profile centre)");
+      p.add("CPO", centre.y, "its_feature/feature_placement/location/coordinates[y] (+ profile centre)");
+      pocket_technology(in, p, true);
+    } else if (auto* circle = std::get_if<CircularProfile>(&pocket->profile)) {
+      // POCKET2(RTP, RFP, SDIS, DP, DPR, PRAD, CPA, CPO,
+      //         FFD, FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF)
+      cycle.name = "POCKET2";
+      planes(in, p, true, absolute_depth(in));
+      p.add("PRAD", circle->diameter / 2, "its_feature/feature_boundary/diameter/theoretical_size / 2");
+      p.add("CPA", placement.location.x, "its_feature/feature_placement/location/coordinates[x]");
+      p.add("CPO", placement.location.y, "its_feature/feature_placement/location/coordinates[y]");
+      pocket_technology(in, p, false);
+    } else {
+      return std::nullopt;  // general profiles need CYCLE63 contour programming
+    }
+  } else if (auto* face = std::get_if<PlanarFace>(&in.feature.shape)) {
+    // CYCLE71(_RTP, _RFP, _SDIS, _DP, _PA, _PO, _LENG, _WID, _STA, _MID,
+    //         _MIDA, _FDP, _FALD, _FFP1, _VARI, _FDP1)
+    const bool finish = is_finish(in.op.kind);
+    const bool bidirectional = !std::holds_alternative<UnidirectionalMilling>(in.op.strategy);
+    std::optional<double> stepover;
+    if (auto* b = std::get_if<BidirectionalMilling>(&in.op.strategy)) stepover = b->stepover;
+    if (auto* u = std::get_if<UnidirectionalMilling>(&in.op.strategy)) stepover = u->stepover;
+    if (!stepover) stepover = in.op.radial_cutting_depth;
+    cycle.name = "CYCLE71";
+    p.add("_RTP", in.retract, "\"MillingOp\"/retract_plane above its_feature/feature_placement");
+    p.add("_RFP", in.top, "its_feature/feature_placement/location/coordinates[z]");
+    p.add("_SDIS", in.safety, "hard coded 2 mm (Table 1)");
+    p.add("_DP", in.top - in.feature.depth, "its_feature/depth/position/location/coordinates[z]");
+    p.add("_PA", placement.location.x, "its_feature/feature_placement/location/coordinates[x]");
+    p.add("_PO", placement.location.y, "its_feature/feature_placement/location/coordinates[y]");
+    p.add("_LENG", face->length, "its_feature/course_of_travel/distance");
+    p.add("_WID", face->width, "its_feature/removal_boundary length");
+    p.add("_STA", rotation_angle(placement), "its_feature/feature_placement/ref_direction/direction_ratios");
+    p.add("_MID", in.op.axial_cutting_depth.value_or(in.feature.depth), "\"MillingOp\"/axial_cutting_depth");
+    p.add("_MIDA", stepover.value_or(in.tool.diameter / 2), "its_machining_strategy/stepover");
+    p.add("_FDP", 1, "overrun beyond the face in the machining direction (poster default)");
+    p.add("_FALD", finish ? 0 : in.op.allowance_bottom, "\"MillingOp\"/allowance_bottom");
+    p.add("_FFP1", in.feed.value, "\"MillingOp\"/its_technology/feedrate");
+    // Units: 1 roughing, 2 finishing; tens: 1 one direction, 3 alternating,
+    // both parallel to the (rotated) abscissa = course of travel.
+    p.add("_VARI", (bidirectional ? 30 : 10) + (finish ? 2 : 1), "classname of the operation and its strategy");
+    p.add("_FDP1", std::nullopt, "not used");
+  } else if (auto* slot = std::get_if<Slot>(&in.feature.shape)) {
+    if (!slot->rounded_ends) return std::nullopt;
+    // SLOT1(RTP, RFP, SDIS, DP, DPR, NUM, LENG, WID, CPA, CPO, RAD, STA1,
+    //       INDA, FFD, FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF)
+    // One slot (NUM=1) on a circle of radius 0 centred on the slot's middle,
+    // turned by STA1: SLOT1 places a single slot by its centre this way.
+    const Vec3 middle = placement.to_global({slot->length / 2, 0});
+    cycle.name = "SLOT1";
+    planes(in, p, true, absolute_depth(in));
+    p.add("NUM", 1, "one slot");
+    p.add("LENG", slot->length + slot->width, "its_feature/course_of_travel/distance + swept_shape width");
+    p.add("WID", slot->width, "its_feature/swept_shape/width");
+    p.add("CPA", middle.x, "its_feature/feature_placement + course_of_travel / 2 [x]");
+    p.add("CPO", middle.y, "its_feature/feature_placement + course_of_travel / 2 [y]");
+    p.add("RAD", 0, "single slot at the reference point");
+    p.add("STA1", rotation_angle(placement), "its_feature/feature_placement/ref_direction/direction_ratios");
+    p.add("INDA", std::nullopt, "one slot: no indexing angle");
+    const bool finish = is_finish(in.op.kind);
+    const double mid = in.op.axial_cutting_depth.value_or(in.feature.depth);
+    p.add("FFD", in.feed.value, "\"MillingOp\"/its_technology/feedrate");
+    p.add("FFP1", in.feed.value, "\"MillingOp\"/its_technology/feedrate");
+    p.add("MID", mid, "\"MillingOp\"/axial_cutting_depth");
+    p.add("CDIR", milling_direction(in.op.strategy), "\"MillingOp\"/its_machining_strategy/cutmode");
+    p.add("FAL", finish ? 0 : in.op.allowance_side, "\"MillingOp\"/allowance_side");
+    p.add("VARI", finish ? 2 : 1, "classname of the operation: 1 roughing, 2 finishing");
+    p.add("MIDF", finish ? std::optional<double>(mid) : std::nullopt, "\"MillingOp\"/axial_cutting_depth");
+    p.add("FFP2", finish ? std::optional<double>(in.feed.value) : std::nullopt, "\"MillingOp\"/its_technology/feedrate");
+    p.add("SSF", finish ? std::optional<double>(in.spindle.rpm) : std::nullopt, "\"MillingOp\"/its_technology/spindle");
+  } else {
+    return std::nullopt;
+  }
+  cycle.parameters = p.take();
+  return cycle;
+}
+
+}  // namespace stepnc::post

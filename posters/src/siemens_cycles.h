@@ -1,0 +1,27 @@
+// Siemens 840D feature cycles (POCKET1, POCKET2, CYCLE71, SLOT1) filled from
+// the machining description, following seed 000 Table 1.
+#pragma once
+
+#include <optional>
+
+#include "stepnc/post/machining.h"
+#include "stepnc/post/program.h"
+
+namespace stepnc::post {
+
+struct CycleInput {
+  const Feature& feature;
+  const Operation& op;
+  const Tool& tool;
+  SpindleOn spindle;
+  FeedRate feed;
+  double top;      // RFP
+  double retract;  // RTP
+  double safety;   // SDIS
+};
+
+// The cycle for this workingstep, or nullopt when the 840D has none that
+// keeps the operation's intent (the printer then posts the motion).
+std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in);
+
+}  // namespace stepnc::post

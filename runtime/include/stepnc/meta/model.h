@@ -1,0 +1,76 @@
+// Model: owns the instances of one population (a Part 21 DATA section or a
+// project built in code). Instances are carved from large arena blocks,
+// not allocated one by one, and destroyed together with the model.
+//
+//   meta::Model model;
+//   auto& point = model.create<machining_schema::cartesian_point>();
+//   point.coordinates = {0.0, 0.0, 10.0};
+//
+// Instances never move, so pointers between them stay valid for the
+// model's lifetime.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <new>
+#include <span>
+#include <vector>
+
+#include "stepnc/meta/info.h"
+
+namespace stepnc::meta {
+
+class Model {
+ public:
+  Model() = default;
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+  Model(Model&&) noexcept = default;
+  Model& operator=(Model&&) noexcept = default;
+  ~Model();
+
+  // Creates an instance of a generated entity class. Without an id, the
+  // next free one (one more than the largest so far) is used.
+  template <class T>
+  T& create(std::uint32_t id = 0) {
+    static_assert(!T::meta_entity_is_abstract, "an ABSTRACT entity cannot be instantiated");
+    T* object = new (allocate(sizeof(T), alignof(T))) T();
+    adopt(*object, id);
+    return *object;
+  }
+
+  // Creates an instance of the entity by its table (the reader's path);
+  // null when the entity is abstract.
+  Instance* create(const EntityInfo& entity, std::uint32_t id = 0);
+
+  // Every instance, in creation order.
+  std::span<Instance* const> instances() const noexcept { return instances_; }
+  std::size_t size() const noexcept { return instances_.size(); }
+
+  // Bytes reserved by the arena (for memory reports).
+  std::size_t arena_bytes() const noexcept { return arena_bytes_; }
+
+  // Raw arena storage; used by meta::create_in. Exposed for generated code only.
+  void* allocate(std::size_t size, std::size_t alignment);
+  void adopt(Instance& instance, std::uint32_t id);
+
+ private:
+  struct Block {
+    std::unique_ptr<std::byte[]> bytes;
+    std::size_t size = 0;
+  };
+  std::vector<Block> blocks_;
+  std::byte* cursor_ = nullptr;
+  std::size_t remaining_ = 0;
+  std::size_t arena_bytes_ = 0;
+  std::vector<Instance*> instances_;
+  std::uint32_t last_id_ = 0;
+};
+
+template <class Object>
+Instance* create_in(Model& model, std::uint32_t id) {
+  return &model.create<Object>(id);
+}
+
+}  // namespace stepnc::meta

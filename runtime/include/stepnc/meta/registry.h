@@ -1,0 +1,58 @@
+// Registry: finds entities and named types by name across the schemas a
+// program links, case-insensitively (Part 21 writes names in upper case).
+//
+//   meta::Registry registry({&machining_schema::meta_schema, &milling_schema::meta_schema});
+//   const meta::EntityInfo* e = registry.find_entity("CLOSED_POCKET");
+//   meta::Instance* pocket = e->create(model, 0);
+#pragma once
+
+#include <initializer_list>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "stepnc/meta/info.h"
+
+namespace stepnc::meta {
+
+class Registry {
+ public:
+  Registry() = default;
+  Registry(std::initializer_list<const SchemaInfo*> schemas);
+
+  // Adds a schema; entity and type names of later schemas do not shadow
+  // earlier ones (the first registration wins).
+  void add(const SchemaInfo& schema);
+
+  std::span<const SchemaInfo* const> schemas() const noexcept { return schemas_; }
+
+  const SchemaInfo* find_schema(std::string_view name) const noexcept;
+  const EntityInfo* find_entity(std::string_view name) const noexcept;
+  const TypeInfo* find_type(std::string_view name) const noexcept;
+
+  // The complex (ANDOR) combination whose instances consist of exactly the
+  // entities named (in any order, case-insensitive): the parts of a Part
+  // 21 complex record, every supertype included. Null when none matches.
+  const EntityInfo* find_complex(std::span<const std::string_view> part_names) const;
+
+  // Every entity of every schema, in registration then source order.
+  std::span<const EntityInfo* const> entities() const noexcept { return entities_; }
+
+ private:
+  struct Entry {
+    std::string_view name;
+    const void* info;
+  };
+  static const void* lookup(const std::vector<Entry>& table, std::string_view name) noexcept;
+  static void insert(std::vector<Entry>& table, std::string_view name, const void* info);
+
+  std::vector<const SchemaInfo*> schemas_;
+  std::vector<const EntityInfo*> entities_;
+  std::vector<Entry> entity_index_;  // sorted case-insensitively by name
+  std::vector<Entry> type_index_;
+};
+
+// Case-insensitive ASCII comparison, as EXPRESS and Part 21 compare names.
+bool equal_names(std::string_view a, std::string_view b) noexcept;
+
+}  // namespace stepnc::meta

@@ -1,0 +1,66 @@
+// Errors as values for the Part 21 layer: a position, an optional instance
+// id, and a message. The library never prints; callers format with
+// Diagnostic::to_string() ("file:line:col: error: #id: message").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stepnc::p21 {
+
+// 1-based line and byte column; 0 means "unknown".
+struct SourceLocation {
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+  friend bool operator==(const SourceLocation&, const SourceLocation&) = default;
+};
+
+enum class Severity : std::uint8_t { warning, error };
+
+struct Diagnostic {
+  Severity severity = Severity::error;
+  std::string file;
+  SourceLocation location;
+  std::uint64_t instance_id = 0;  // 0: not tied to an instance
+  std::string message;
+
+  // "file:line:col: error: #id: message" (parts that are unknown are left out).
+  std::string to_string() const;
+};
+
+// A syntax problem found by a low-level routine that knows only byte
+// offsets; the document turns it into a Diagnostic with line:col.
+struct ParseError {
+  std::uint64_t offset = 0;  // absolute byte offset in the file buffer
+  std::string message;
+};
+
+// Collects diagnostics up to a limit. Once the limit of errors is reached
+// further errors are dropped and limit_reached() is true, so a lenient
+// reader can stop cleanly.
+class Diagnostics {
+ public:
+  explicit Diagnostics(std::size_t error_limit = 100) : error_limit_(error_limit) {}
+
+  // Returns false when the error limit has been reached (the caller stops).
+  bool add(Diagnostic diagnostic);
+
+  const std::vector<Diagnostic>& items() const { return items_; }
+  std::size_t error_count() const { return error_count_; }
+  bool has_errors() const { return error_count_ > 0; }
+  bool limit_reached() const { return error_count_ >= error_limit_; }
+  std::size_t error_limit() const { return error_limit_; }
+
+  // All items, one per line, each formatted with Diagnostic::to_string().
+  std::string to_string() const;
+
+ private:
+  std::size_t error_limit_;
+  std::size_t error_count_ = 0;
+  std::vector<Diagnostic> items_;
+};
+
+}  // namespace stepnc::p21

@@ -1,0 +1,147 @@
+// A Part 21 (ISO 10303-21, 3rd edition) exchange structure read into
+// memory: the file buffer, the header, the sections, and a compact index
+// of instance records (`#id` -> byte range + entity name). Parameters are
+// parsed per record on demand with ParamTree, so reading a file costs one
+// pass over the bytes plus 24 bytes per instance.
+//
+//   ReadResult result = read_file("part.stp");           // strict by default
+//   if (!result.ok()) { print(result.diagnostics.to_string()); return 1; }
+//   const Document& doc = *result.document;
+//   ParamTree tree;
+//   for (const RecordEntry& r : doc.records()) {
+//     doc.parse(r, tree);                                  // cannot fail after a
+//     ...                                                  // validating read
+//   }
+//
+// Schema-independent only: entity names are not checked against a
+// schema; the typed layer builds on records() / find() / parse().
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepnc/p21/diagnostic.h"
+#include "stepnc/p21/parameters.h"
+
+namespace stepnc::p21 {
+
+struct ReadOptions {
+  // Strict: any error makes the read fail (no document is returned).
+  // Lenient: records with errors are dropped, everything else is kept,
+  // errors are reported up to `error_limit`, then reading stops cleanly.
+  bool strict = true;
+  std::size_t error_limit = 100;
+  // Parse every record's parameters while reading (syntax of values,
+  // escapes, numbers) and check that every `#n` reference names an
+  // instance of the file. A layer that parses every record anyway (the
+  // typed reader) may turn this off and use Document::parse() itself.
+  bool validate_parameters = true;
+};
+
+// A header entity such as FILE_NAME(...); all of them are kept, known or not.
+struct HeaderEntity {
+  std::string name;
+  std::string text;          // `NAME(...);` normalised (no comments, no spaces)
+  std::uint64_t offset = 0;  // of the name in the file
+};
+
+struct Header {
+  std::vector<HeaderEntity> entities;  // in file order
+
+  const HeaderEntity* find(std::string_view name) const;
+  // Convenience readers of the three mandatory entities (empty when absent).
+  std::vector<std::string> schema_names() const;        // FILE_SCHEMA
+  std::vector<std::string> description() const;         // FILE_DESCRIPTION #1
+  std::string file_name() const;                        // FILE_NAME #1
+};
+
+enum class SectionKind : std::uint8_t { anchor, reference, data, signature };
+
+// One section after the header, in file order.
+struct Section {
+  SectionKind kind = SectionKind::data;
+  // DATA: the optional `('name',('SCHEMA'))` parameter text, normalised;
+  // empty for a plain `DATA;`. Others: their body verbatim, kept as is.
+  std::string text;
+  std::uint32_t first_record = 0;  // DATA: index into Document::records()
+  std::uint32_t record_count = 0;
+};
+
+// One instance record in the index (24 bytes).
+struct RecordEntry {
+  static constexpr std::uint32_t complex_entity = 0xFFFFFFFFu;
+
+  std::uint64_t id = 0;
+  std::uint64_t offset = 0;  // of the '#' in the file buffer
+  std::uint32_t length = 0;  // through the closing ';'
+  std::uint32_t entity = 0;  // index into Document::entity_names(), or complex_entity
+};
+static_assert(sizeof(RecordEntry) == 24);
+
+class Document {
+ public:
+  Document() = default;
+  Document(Document&&) noexcept;
+  Document& operator=(Document&&) noexcept;
+  ~Document();
+
+  const std::string& file_name() const { return file_name_; }
+  std::string_view buffer() const { return buffer_ ? std::string_view(*buffer_) : std::string_view(); }
+  const Header& header() const { return header_; }
+  std::span<const Section> sections() const { return sections_; }
+
+  // Records of all DATA sections, in file order.
+  std::span<const RecordEntry> records() const { return records_; }
+  // The record with this id, or nullptr. O(1).
+  const RecordEntry* find(std::uint64_t id) const;
+
+  // Distinct entity names in order of first appearance (upper case as
+  // written). A typed layer can resolve each name once, not per instance.
+  std::span<const std::string_view> entity_names() const { return entity_names_; }
+  // "" for complex instances (their parts come from parse()).
+  std::string_view entity_name(const RecordEntry& r) const;
+  // `#id=...;` exactly as in the file (comments and spacing included).
+  std::string_view text(const RecordEntry& r) const { return buffer().substr(r.offset, r.length); }
+  std::optional<ParseError> parse(const RecordEntry& r, ParamTree& tree) const {
+    return tree.parse(text(r), r.offset);
+  }
+
+  // Line and column of a byte offset, computed on demand (the line table
+  // is built on first use; not thread-safe on that first call).
+  SourceLocation location(std::uint64_t offset) const;
+  // A Diagnostic for a ParseError, with this file's name and line:col.
+  Diagnostic diagnostic(const ParseError& error, std::uint64_t instance_id = 0,
+                        Severity severity = Severity::error) const;
+
+ private:
+  friend class DocumentBuilder;
+  struct IdTable;
+
+  std::string file_name_;
+  std::unique_ptr<const std::string> buffer_;  // heap-held: views stay valid on move
+  Header header_;
+  std::vector<Section> sections_;
+  std::vector<RecordEntry> records_;
+  std::vector<std::string_view> entity_names_;  // views into buffer_
+  std::unique_ptr<IdTable> ids_;
+  mutable std::vector<std::uint64_t> line_starts_;
+};
+
+struct ReadResult {
+  std::optional<Document> document;  // absent when a strict read failed
+  Diagnostics diagnostics;
+  bool ok() const { return document.has_value() && !diagnostics.has_errors(); }
+};
+
+// Reads and indexes a file. Errors (I/O included) come back as diagnostics.
+ReadResult read_file(const std::filesystem::path& path, const ReadOptions& options = {});
+// Same, from text already in memory; `file_name` is used in diagnostics.
+ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options = {});
+
+}  // namespace stepnc::p21

@@ -1,0 +1,490 @@
+#include "stepnc/meta/io.h"
+
+#include <algorithm>
+#include <array>
+#include <fmt/format.h>
+
+#include "stepnc/meta/registry.h"
+
+namespace stepnc::meta {
+
+namespace {
+
+// EXPRESS names in the tables keep their spelling; Part 21 writes them in
+// upper case. Converted on the stack: no allocation per record.
+class UpperName {
+ public:
+  explicit UpperName(std::string_view name) {
+    if (name.size() > buffer_.size()) {
+      long_.assign(name);
+      for (char& c : long_) c = upper(c);
+      view_ = long_;
+      return;
+    }
+    std::transform(name.begin(), name.end(), buffer_.begin(), upper);
+    view_ = std::string_view(buffer_.data(), name.size());
+  }
+  operator std::string_view() const { return view_; }  // NOLINT: a name, used as one
+
+ private:
+  static char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+  std::array<char, 128> buffer_;
+  std::string long_;
+  std::string_view view_;
+};
+
+void write_attribute(Instance& instance, const AttributeInfo& attribute, p21::Writer& writer) {
+  if (!attribute.stored()) {
+    writer.derived();
+    return;
+  }
+  if (auto value = get(instance, attribute)) {
+    write_value(*value, writer);
+  } else {
+    writer.null();
+  }
+}
+
+void write_select(const Select& select, p21::Writer& writer) {
+  if (Instance* target = select.instance()) {
+    writer.reference(target->id());
+    return;
+  }
+  const TypeInfo& member = *select.member();
+  writer.begin_typed(UpperName(member.name));
+  const TypeInfo& storage = member.resolved();
+  std::visit(
+      [&](const auto& v) {
+        using V = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<V, std::int64_t>) {
+          switch (storage.kind) {
+            case TypeKind::Boolean: writer.boolean(v != 0); break;
+            case TypeKind::Logical: writer.logical(static_cast<Logical>(v)); break;
+            case TypeKind::Enumeration:
+              writer.enumeration(UpperName(storage.items[static_cast<std::size_t>(v)]));
+              break;
+            default: writer.integer(v); break;
+          }
+        } else if constexpr (std::is_same_v<V, double>) {
+          writer.real(v);
+        } else if constexpr (std::is_same_v<V, String>) {
+          if (storage.kind == TypeKind::Binary) {
+            writer.binary(v.view());
+          } else {
+            writer.string(v.view());
+          }
+        } else {
+          writer.null();  // unreachable: an empty select is written as `$` by the caller
+        }
+      },
+      select.storage());
+  writer.end_typed();
+}
+
+}  // namespace
+
+void write_value(const ValueRef& value, p21::Writer& writer) {
+  switch (value.kind()) {
+    case TypeKind::Integer: writer.integer(value.integer()); break;
+    case TypeKind::Real:
+    case TypeKind::Number: writer.real(value.real()); break;
+    case TypeKind::Boolean: writer.boolean(value.boolean()); break;
+    case TypeKind::Logical: writer.logical(value.logical()); break;
+    case TypeKind::String: writer.string(value.string()); break;
+    case TypeKind::Binary: writer.binary(value.binary().hex_digits.view()); break;
+    case TypeKind::Enumeration: writer.enumeration(UpperName(value.enumeration())); break;
+    case TypeKind::Entity:
+      if (Instance* target = value.instance()) {
+        writer.reference(target->id());
+      } else {
+        writer.null();
+      }
+      break;
+    case TypeKind::Select:
+      if (value.select().empty()) {
+        writer.null();
+      } else {
+        write_select(value.select(), writer);
+      }
+      break;
+    case TypeKind::Alias: break;  // resolved() never yields an alias
+    case TypeKind::Array:
+    case TypeKind::List:
+    case TypeKind::Bag:
+    case TypeKind::Set: {
+      writer.begin_list();
+      const std::size_t n = value.size();
+      for (std::size_t i = 0; i < n; ++i) write_value(value.element(i), writer);
+      writer.end_list();
+      break;
+    }
+  }
+}
+
+void write_instance(const Instance& const_instance, p21::Writer& writer) {
+  // Writing reads values only; the accessors are shared with the setters.
+  auto& instance = const_cast<Instance&>(const_instance);
+  const EntityInfo& entity = instance.entity_info();
+  if (!entity.is_complex()) {
+    writer.begin_instance(instance.id(), UpperName(entity.name));
+    for (const AttributeInfo& a : entity.attributes) write_attribute(instance, a, writer);
+    writer.end_instance();
+    return;
+  }
+  // A complex instance lists each entity of the combination (supertypes
+  // included) in alphabetical order, with the attributes it declares.
+  std::vector<const EntityInfo*> parts;
+  for (const Upcast& u : entity.upcasts)
+    if (u.entity != &entity) parts.push_back(u.entity);
+  std::sort(parts.begin(), parts.end(), [](const EntityInfo* a, const EntityInfo* b) {
+    return std::string_view(UpperName(a->name)) < std::string_view(UpperName(b->name));
+  });
+  writer.begin_complex_instance(instance.id());
+  for (const EntityInfo* part : parts) {
+    writer.begin_part(UpperName(part->name));
+    for (const AttributeInfo& a : entity.attributes)
+      if (a.owner == part) write_attribute(instance, a, writer);
+    writer.end_part();
+  }
+  writer.end_complex_instance();
+}
+
+void write_model(const Model& model, const FileHeader& header, p21::Writer& writer) {
+  auto strings = [&](const std::vector<std::string>& list) {
+    writer.begin_list();
+    for (const std::string& s : list) writer.string(s);
+    writer.end_list();
+  };
+  writer.begin_file();
+  writer.begin_header_entity("FILE_DESCRIPTION");
+  strings(header.description);
+  writer.string(header.implementation_level);
+  writer.end_header_entity();
+  writer.begin_header_entity("FILE_NAME");
+  writer.string(header.name);
+  writer.string(header.time_stamp);
+  strings(header.author);
+  strings(header.organization);
+  writer.string(header.preprocessor_version);
+  writer.string(header.originating_system);
+  writer.string(header.authorization);
+  writer.end_header_entity();
+  writer.begin_header_entity("FILE_SCHEMA");
+  std::vector<std::string> schemas;
+  for (const std::string& s : header.schemas) schemas.emplace_back(UpperName(s));
+  strings(schemas);
+  writer.end_header_entity();
+  writer.end_header();
+
+  writer.begin_data();
+  std::vector<const Instance*> ordered(model.instances().begin(), model.instances().end());
+  std::sort(ordered.begin(), ordered.end(),
+            [](const Instance* a, const Instance* b) { return a->id() < b->id(); });
+  for (const Instance* instance : ordered) write_instance(*instance, writer);
+  writer.end_data();
+  writer.end_file();
+}
+
+std::string to_text(const Model& model, const FileHeader& header) {
+  p21::Writer writer;
+  write_model(model, header, writer);
+  return writer.take();
+}
+
+std::optional<std::string> write_file(const Model& model, const FileHeader& header,
+                                      const std::filesystem::path& path) {
+  p21::AtomicFile file;
+  if (auto error = file.open(path)) return error;
+  p21::Writer writer(file);
+  write_model(model, header, writer);
+  if (auto error = writer.finish()) return error;
+  return file.commit();
+}
+
+// ---------------------------------------------------------------- reading
+
+namespace {
+
+std::string_view describe(const TypeInfo& type) {
+  const TypeInfo& r = type.resolved();
+  switch (r.kind) {
+    case TypeKind::Integer: return "an INTEGER";
+    case TypeKind::Real: return "a REAL";
+    case TypeKind::Number: return "a NUMBER";
+    case TypeKind::Boolean: return "a BOOLEAN";
+    case TypeKind::Logical: return "a LOGICAL";
+    case TypeKind::String: return "a STRING";
+    case TypeKind::Binary: return "a BINARY";
+    case TypeKind::Entity: return "an entity reference";
+    case TypeKind::Enumeration: return "an enumeration item";
+    case TypeKind::Select: return "a SELECT value (reference or typed parameter)";
+    case TypeKind::Alias: return "a value";
+    case TypeKind::Array:
+    case TypeKind::List:
+    case TypeKind::Bag:
+    case TypeKind::Set: return "a list";
+  }
+  return "a value";
+}
+
+// Reads parameter values into typed storage, reporting each problem with
+// the attribute it belongs to.
+class Filler {
+ public:
+  Filler(FillContext& context, const AttributeInfo& attribute)
+      : context_(context), attribute_(attribute) {}
+
+  std::size_t problems() const { return problems_; }
+
+  void read(const ValueRef& target, const p21::Value& v) {
+    const TypeInfo& type = target.resolved();
+    using p21::ParamKind;
+    switch (type.kind) {
+      case TypeKind::Integer:
+        if (v.is(ParamKind::integer)) return target.set_integer(v.integer());
+        break;
+      case TypeKind::Real:
+      case TypeKind::Number:
+        if (v.is(ParamKind::real) || v.is(ParamKind::integer)) return target.set_real(v.number());
+        break;
+      case TypeKind::Boolean:
+        if (v.is(ParamKind::logical) && v.logical() != p21::Logical::unknown)
+          return target.set_boolean(v.logical() == p21::Logical::true_value);
+        break;
+      case TypeKind::Logical:
+        if (v.is(ParamKind::logical)) return target.set_logical(v.logical());
+        break;
+      case TypeKind::String:
+        if (v.is(ParamKind::string)) return target.set_string(v.text());
+        break;
+      case TypeKind::Binary:
+        if (v.is(ParamKind::binary)) return target.set_binary(Binary{String(v.text())});
+        break;
+      case TypeKind::Enumeration:
+        if (v.is(ParamKind::enumeration)) {
+          if (auto index = type.find_item(v.text())) return target.set_enumeration(*index);
+          return fail(v, fmt::format("unknown item .{}. of enumeration {}", v.text(), type.name));
+        }
+        break;
+      case TypeKind::Entity:
+        if (v.is(ParamKind::reference)) return read_reference(target, v);
+        break;
+      case TypeKind::Select:
+        if (v.is(ParamKind::reference) || v.is(ParamKind::typed)) return read_select(target.select(), type, v);
+        break;
+      case TypeKind::Alias: break;
+      case TypeKind::Array:
+      case TypeKind::List:
+      case TypeKind::Bag:
+      case TypeKind::Set:
+        if (v.is(ParamKind::list)) return read_aggregate(target, type, v);
+        break;
+    }
+    fail(v, fmt::format("expected {}, found {}", describe(type), p21::to_string(v.kind())));
+  }
+
+  void fail(const p21::Value& v, std::string_view message) {
+    ++problems_;
+    context_.error(v.offset(), fmt::format("attribute '{}' of {}: {}", attribute_.name,
+                                           attribute_.owner->name, message));
+  }
+
+ private:
+  Instance* resolve(const p21::Value& v) {
+    Instance* target = context_.resolve(v.reference());
+    if (target == nullptr) fail(v, fmt::format("#{} does not exist", v.reference()));
+    return target;
+  }
+
+  void read_reference(const ValueRef& target, const p21::Value& v) {
+    Instance* instance = resolve(v);
+    if (instance == nullptr) return;
+    if (!target.set_instance(instance))
+      fail(v, fmt::format("#{} is {}, not {}", v.reference(), entity_name(*instance),
+                          target.resolved().entity->name));
+  }
+
+  static std::string entity_name(const Instance& instance) {
+    const EntityInfo& e = instance.entity_info();
+    if (!e.is_complex()) return std::string(e.name);
+    std::string names;
+    for (const EntityInfo* p : e.parts) {
+      if (!names.empty()) names += '+';
+      names += p->name;
+    }
+    return names;
+  }
+
+  void read_select(Select& select, const TypeInfo& type, const p21::Value& v) {
+    if (v.is(p21::ParamKind::reference)) {
+      Instance* instance = resolve(v);
+      if (instance == nullptr) return;
+      for (const TypeInfo* member : type.members)
+        if (member->kind == TypeKind::Entity && instance->entity_info().is_a(*member->entity))
+          return select.set_instance(instance);
+      return fail(v, fmt::format("#{} is {}, which select {} does not allow", v.reference(),
+                                 entity_name(*instance), type.name));
+    }
+    const TypeInfo* member = nullptr;
+    for (const TypeInfo* m : type.members)
+      if (m->kind != TypeKind::Entity && equal_names(m->name, v.text())) member = m;
+    if (member == nullptr)
+      return fail(v, fmt::format("{} is not a member of select {}", v.text(), type.name));
+    const p21::Value inner = *v.children().begin();
+    const TypeInfo& storage = member->resolved();
+    // Read into a local of the member's storage type, then keep it in the
+    // select's storage (integers for the one-byte kinds, see Select).
+    std::int64_t integer = 0;
+    bool boolean = false;
+    Logical logical = Logical::unknown;
+    std::uint8_t item = 0;
+    double real = 0;
+    String text;
+    Binary binary;
+    void* slot = nullptr;
+    switch (storage.kind) {
+      case TypeKind::Integer: slot = &integer; break;
+      case TypeKind::Boolean: slot = &boolean; break;
+      case TypeKind::Logical: slot = &logical; break;
+      case TypeKind::Enumeration: slot = &item; break;
+      case TypeKind::Real:
+      case TypeKind::Number: slot = &real; break;
+      case TypeKind::String: slot = &text; break;
+      case TypeKind::Binary: slot = &binary; break;
+      default:
+        return fail(v, fmt::format("select member {} holds aggregates, which typed select values "
+                                   "do not support yet",
+                                   member->name));
+    }
+    const std::size_t before = problems_;
+    read(ValueRef(storage, slot), inner);
+    if (problems_ != before) return;
+    switch (storage.kind) {
+      case TypeKind::Integer: return select.set_value(*member, integer);
+      case TypeKind::Boolean: return select.set_value(*member, std::int64_t{boolean});
+      case TypeKind::Logical: return select.set_value(*member, static_cast<std::int64_t>(logical));
+      case TypeKind::Enumeration: return select.set_value(*member, std::int64_t{item});
+      case TypeKind::String: return select.set_value(*member, std::move(text));
+      case TypeKind::Binary: return select.set_value(*member, std::move(binary.hex_digits));
+      default: return select.set_value(*member, real);
+    }
+  }
+
+  void read_aggregate(const ValueRef& target, const TypeInfo& type, const p21::Value& v) {
+    const std::size_t n = v.size();
+    if (static_cast<std::int64_t>(n) < type.lower || (type.upper >= 0 && static_cast<std::int64_t>(n) > type.upper)) {
+      const std::string upper = type.upper < 0 ? "?" : std::to_string(type.upper);
+      fail(v, fmt::format("{} elements, outside the bounds [{}:{}]", n, type.lower, upper));
+    }
+    std::size_t kept = n;
+    if (!target.resize(n)) {
+      kept = static_cast<std::size_t>(type.upper);
+      target.resize(kept);
+    }
+    std::size_t i = 0;
+    for (p21::Value element : v.children()) {
+      if (i == kept) break;
+      if (element.is(p21::ParamKind::null)) {
+        fail(element, "`$` inside an aggregate");
+      } else {
+        read(target.element(i), element);
+      }
+      ++i;
+    }
+  }
+
+  FillContext& context_;
+  const AttributeInfo& attribute_;
+  std::size_t problems_ = 0;
+};
+
+}  // namespace
+
+std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, FillContext& context) {
+  const EntityInfo& entity = instance.entity_info();
+  std::size_t problems = 0;
+  auto report = [&](std::uint64_t offset, std::string message) {
+    ++problems;
+    context.error(offset, std::move(message));
+  };
+
+  auto fill_part = [&](const p21::EntityPart& part, const EntityInfo* owner) {
+    std::vector<const AttributeInfo*> attributes;
+    for (const AttributeInfo& a : entity.attributes)
+      if (owner == nullptr || a.owner == owner) attributes.push_back(&a);
+    const std::size_t count = part.list().size();
+    if (count != attributes.size()) {
+      report(part.list().offset(), fmt::format("{} has {} attributes, found {}", UpperName(part.entity()).operator std::string_view(),
+                                               attributes.size(), count));
+    }
+    std::size_t i = 0;
+    for (p21::Value v : part.attributes()) {
+      if (i == attributes.size()) break;
+      const AttributeInfo& a = *attributes[i++];
+      Filler filler(context, a);
+      if (!a.stored()) {
+        if (!v.is(p21::ParamKind::derived)) filler.fail(v, "derived here; expected `*`");
+      } else if (v.is(p21::ParamKind::null)) {
+        if (a.optional) {
+          reset(instance, a);
+        } else {
+          filler.fail(v, "a required value is missing (`$`)");
+        }
+      } else if (v.is(p21::ParamKind::derived)) {
+        filler.fail(v, "`*` given for an explicit attribute");
+      } else {
+        filler.read(emplace(instance, a), v);
+      }
+      problems += filler.problems();
+    }
+  };
+
+  const auto parts = record.parts();
+  if (!entity.is_complex()) {
+    if (parts.size() != 1) {
+      report(record.base_offset(), fmt::format("expected one {} record, found {} parts", entity.name, parts.size()));
+      return problems;
+    }
+    fill_part(parts.front(), nullptr);
+    return problems;
+  }
+  for (const p21::EntityPart& part : parts) {
+    const auto match = std::find_if(entity.upcasts.begin(), entity.upcasts.end(), [&](const Upcast& u) {
+      return u.entity != &entity && equal_names(u.entity->name, part.entity());
+    });
+    if (match == entity.upcasts.end()) {
+      report(part.list().offset(), fmt::format("{} is not part of this complex instance", part.entity()));
+      continue;
+    }
+    fill_part(part, match->entity);
+  }
+  return problems;
+}
+
+// ---------------------------------------------------------------- dump
+
+std::string dump(const Instance& const_instance) {
+  auto& instance = const_cast<Instance&>(const_instance);
+  const EntityInfo& entity = instance.entity_info();
+  std::string out = fmt::format("#{}=", instance.id());
+  if (entity.is_complex()) {
+    for (std::size_t i = 0; i < entity.parts.size(); ++i)
+      out += fmt::format("{}{}", i == 0 ? "" : "+", entity.parts[i]->name);
+  } else {
+    out += entity.name;
+  }
+  out += fmt::format(" ({})\n", entity.schema->name);
+  for (const AttributeInfo& a : entity.attributes) {
+    // The value alone: written into a one-element list, whose parentheses
+    // are then dropped (the Part 21 writer only writes values in lists).
+    p21::Writer writer;
+    writer.begin_list();
+    write_attribute(instance, a, writer);
+    writer.end_list();
+    const std::string_view text = writer.text();
+    out += fmt::format("  {}: {}\n", a.name, text.substr(1, text.size() - 2));
+  }
+  return out;
+}
+
+}  // namespace stepnc::meta

@@ -1,0 +1,79 @@
+#include "stepnc/meta/registry.h"
+
+#include <algorithm>
+
+namespace stepnc::meta {
+
+namespace {
+char lower(char c) noexcept { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
+
+bool less_names(std::string_view a, std::string_view b) noexcept {
+  return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(),
+                                      [](char x, char y) { return lower(x) < lower(y); });
+}
+}  // namespace
+
+bool equal_names(std::string_view a, std::string_view b) noexcept {
+  return a.size() == b.size() &&
+         std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return lower(x) == lower(y); });
+}
+
+Registry::Registry(std::initializer_list<const SchemaInfo*> schemas) {
+  for (const SchemaInfo* s : schemas) add(*s);
+}
+
+void Registry::insert(std::vector<Entry>& table, std::string_view name, const void* info) {
+  auto at = std::lower_bound(table.begin(), table.end(), name,
+                             [](const Entry& e, std::string_view n) { return less_names(e.name, n); });
+  if (at != table.end() && equal_names(at->name, name)) return;  // first registration wins
+  table.insert(at, Entry{name, info});
+}
+
+const void* Registry::lookup(const std::vector<Entry>& table, std::string_view name) noexcept {
+  auto at = std::lower_bound(table.begin(), table.end(), name,
+                             [](const Entry& e, std::string_view n) { return less_names(e.name, n); });
+  return at != table.end() && equal_names(at->name, name) ? at->info : nullptr;
+}
+
+void Registry::add(const SchemaInfo& schema) {
+  if (std::find(schemas_.begin(), schemas_.end(), &schema) != schemas_.end()) return;
+  schemas_.push_back(&schema);
+  for (const EntityInfo* e : schema.entities) {
+    entities_.push_back(e);
+    if (!e->is_complex()) insert(entity_index_, e->name, e);
+  }
+  for (const TypeInfo* t : schema.types) insert(type_index_, t->name, t);
+}
+
+const SchemaInfo* Registry::find_schema(std::string_view name) const noexcept {
+  for (const SchemaInfo* s : schemas_)
+    if (equal_names(s->name, name)) return s;
+  return nullptr;
+}
+
+const EntityInfo* Registry::find_entity(std::string_view name) const noexcept {
+  return static_cast<const EntityInfo*>(lookup(entity_index_, name));
+}
+
+const TypeInfo* Registry::find_type(std::string_view name) const noexcept {
+  return static_cast<const TypeInfo*>(lookup(type_index_, name));
+}
+
+const EntityInfo* Registry::find_complex(std::span<const std::string_view> part_names) const {
+  for (const EntityInfo* e : entities_) {
+    if (!e->is_complex()) continue;
+    // The upcast table lists the combination itself (unnamed) and every
+    // entity it is made of, each once.
+    const std::size_t named = e->upcasts.size() - 1;
+    if (named != part_names.size()) continue;
+    const bool same_set = std::all_of(e->upcasts.begin(), e->upcasts.end(), [&](const Upcast& u) {
+      return u.entity == e || std::any_of(part_names.begin(), part_names.end(), [&](std::string_view n) {
+               return equal_names(u.entity->name, n);
+             });
+    });
+    if (same_set) return e;
+  }
+  return nullptr;
+}
+
+}  // namespace stepnc::meta

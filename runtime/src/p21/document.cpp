@@ -1,0 +1,322 @@
+#include "stepnc/p21/document.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cstdio>
+#include <unordered_map>
+
+#include "lexical.h"
+#include "scanner.h"
+#include "stepnc/p21/writer.h"
+
+namespace stepnc::p21 {
+
+// ------------------------------------------------------------ diagnostics
+
+std::string Diagnostic::to_string() const {
+  std::string out = file;
+  if (location.line != 0) out += fmt::format("{}{}:{}", out.empty() ? "" : ":", location.line, location.column);
+  if (!out.empty()) out += ": ";
+  out += severity == Severity::error ? "error: " : "warning: ";
+  if (instance_id != 0) out += fmt::format("#{}: ", instance_id);
+  out += message;
+  return out;
+}
+
+bool Diagnostics::add(Diagnostic diagnostic) {
+  if (diagnostic.severity == Severity::error) {
+    if (limit_reached()) return false;
+    ++error_count_;
+  }
+  items_.push_back(std::move(diagnostic));
+  return !limit_reached();
+}
+
+std::string Diagnostics::to_string() const {
+  std::string out;
+  for (const Diagnostic& d : items_) {
+    out += d.to_string();
+    out += '\n';
+  }
+  return out;
+}
+
+// ----------------------------------------------------------------- header
+
+const HeaderEntity* Header::find(std::string_view name) const {
+  for (const HeaderEntity& entity : entities)
+    if (entity.name == name) return &entity;
+  return nullptr;
+}
+
+namespace {
+
+// The strings of the first attribute of a header entity, whether it is a
+// list of strings (FILE_SCHEMA, FILE_DESCRIPTION) or a single string.
+std::vector<std::string> first_attribute_strings(const Header& header, std::string_view name) {
+  std::vector<std::string> strings;
+  const HeaderEntity* entity = header.find(name);
+  ParamTree tree;
+  if (entity == nullptr || tree.parse(entity->text) || tree.parts().empty()) return strings;
+  const std::optional<Value> first = tree.parts().front().attributes().at(0);
+  if (!first) return strings;
+  if (first->is(ParamKind::string)) strings.emplace_back(first->text());
+  for (Value v : first->children())
+    if (v.is(ParamKind::string)) strings.emplace_back(v.text());
+  return strings;
+}
+
+}  // namespace
+
+std::vector<std::string> Header::schema_names() const { return first_attribute_strings(*this, "FILE_SCHEMA"); }
+std::vector<std::string> Header::description() const { return first_attribute_strings(*this, "FILE_DESCRIPTION"); }
+std::string Header::file_name() const {
+  std::vector<std::string> names = first_attribute_strings(*this, "FILE_NAME");
+  return names.empty() ? std::string() : names.front();
+}
+
+// --------------------------------------------------------------- id table
+
+// Instance id -> record index. Slots hold index + 1 (0 = empty).
+// Ids are usually dense and ascending (#1..#n), so the table starts as a
+// direct array indexed by id: 4 bytes per id, and consecutive records
+// touch consecutive slots. When ids turn out sparse (an id beyond twice
+// the count so far, e.g. #4000000000) it becomes an open-addressing hash
+// (linear probing, at most half full, 8-16 bytes per instance).
+struct Document::IdTable {
+  static constexpr std::uint64_t kDenseSlack = 1 << 16;
+
+  bool direct = true;
+  std::vector<std::uint32_t> slots;
+  unsigned shift = 64;
+  std::size_t count = 0;
+
+  explicit IdTable(std::size_t expected) { slots.assign(expected + 1, 0); }
+
+  // Inserts records[index]; returns the index already stored for its id, if any.
+  std::optional<std::uint32_t> insert(std::uint32_t index, std::span<const RecordEntry> records) {
+    const std::uint64_t id = records[index].id;
+    if (direct) {
+      if (id >= slots.size()) {
+        if (id > 2 * count + kDenseSlack) {
+          become_hash(index, records);
+          return place(index, records);
+        }
+        slots.resize(std::max<std::size_t>(static_cast<std::size_t>(id) + 1, slots.size() * 2), 0);
+      }
+      std::uint32_t& slot = slots[static_cast<std::size_t>(id)];
+      if (slot != 0) return slot - 1;
+      slot = index + 1;
+      ++count;
+      return std::nullopt;
+    }
+    if ((count + 1) * 2 > slots.size()) rehash(slots.size() * 2, index, records);
+    return place(index, records);
+  }
+
+  const RecordEntry* find(std::uint64_t id, std::span<const RecordEntry> records) const {
+    if (direct) {
+      if (id >= slots.size() || slots[static_cast<std::size_t>(id)] == 0) return nullptr;
+      return &records[slots[static_cast<std::size_t>(id)] - 1];
+    }
+    const std::size_t mask = slots.size() - 1;
+    for (std::size_t s = home(id);; s = (s + 1) & mask) {
+      if (slots[s] == 0) return nullptr;
+      const RecordEntry& r = records[slots[s] - 1];
+      if (r.id == id) return &r;
+    }
+  }
+
+ private:
+  std::size_t home(std::uint64_t id) const {
+    return static_cast<std::size_t>((id * 0x9E3779B97F4A7C15ull) >> shift);
+  }
+
+  void become_hash(std::uint32_t index, std::span<const RecordEntry> records) {
+    direct = false;
+    rehash(2 * (count + 1), index, records);
+  }
+
+  // Rebuilds the hash with at least `capacity` slots from records[0, index)
+  // (all of them are in the table: rejected duplicates are never kept).
+  void rehash(std::size_t capacity, std::uint32_t index, std::span<const RecordEntry> records) {
+    capacity = std::bit_ceil(std::max<std::size_t>(16, capacity));
+    slots.assign(capacity, 0);
+    shift = 64 - static_cast<unsigned>(std::countr_zero(capacity));
+    count = 0;
+    for (std::uint32_t i = 0; i < index; ++i) place(i, records);
+  }
+
+  std::optional<std::uint32_t> place(std::uint32_t index, std::span<const RecordEntry> records) {
+    const std::uint64_t id = records[index].id;
+    const std::size_t mask = slots.size() - 1;
+    for (std::size_t s = home(id);; s = (s + 1) & mask) {
+      if (slots[s] == 0) {
+        slots[s] = index + 1;
+        ++count;
+        return std::nullopt;
+      }
+      if (records[slots[s] - 1].id == id) return slots[s] - 1;
+    }
+  }
+};
+
+Document::Document(Document&&) noexcept = default;
+Document& Document::operator=(Document&&) noexcept = default;
+Document::~Document() = default;
+
+const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
+
+std::string_view Document::entity_name(const RecordEntry& r) const {
+  return r.entity == RecordEntry::complex_entity ? std::string_view() : entity_names_[r.entity];
+}
+
+SourceLocation Document::location(std::uint64_t offset) const {
+  const std::string_view text = buffer();
+  if (line_starts_.empty()) {
+    line_starts_.push_back(0);
+    for (std::size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') line_starts_.push_back(i + 1);
+  }
+  offset = std::min<std::uint64_t>(offset, text.size());
+  const auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+  const auto line = static_cast<std::uint32_t>(next - line_starts_.begin());
+  return {line, static_cast<std::uint32_t>(offset - *(next - 1) + 1)};
+}
+
+Diagnostic Document::diagnostic(const ParseError& error, std::uint64_t instance_id, Severity severity) const {
+  return Diagnostic{severity, file_name_, location(error.offset), instance_id, error.message};
+}
+
+// ---------------------------------------------------------------- reading
+
+// Builds a Document: the scanner runs over the whole buffer and this
+// handler indexes each record (id, byte range, entity name) as it comes.
+// With validation on, each record's parameters are parsed right away
+// (while its bytes are in cache); references are checked at once when
+// they point backwards, and at the end otherwise. Records with errors are
+// left out (lenient mode). Diagnostics come in file order per check:
+// syntax and duplicate ids first, then missing references.
+class DocumentBuilder final : public RecordHandler {
+ public:
+  DocumentBuilder(std::string text, std::string file_name, const ReadOptions& options)
+      : options_(options), diagnostics_(options.error_limit) {
+    doc_.file_name_ = std::move(file_name);
+    doc_.buffer_ = std::make_unique<const std::string>(std::move(text));
+  }
+
+  ReadResult run() {
+    // Typical records are 40-80 bytes: reserve so that the index rarely
+    // regrows (untouched capacity costs address space, not memory).
+    const std::size_t expected = doc_.buffer_->size() / 48;
+    doc_.records_.reserve(expected);
+    doc_.ids_ = std::make_unique<Document::IdTable>(std::min<std::size_t>(expected, 1 << 16));
+    detail::Scanner scanner(*doc_.buffer_, doc_.file_name_, options_, diagnostics_,
+                            [this](std::uint64_t offset) { return doc_.location(offset); });
+    scanner_ = &scanner;
+    if (scanner.run(*this)) check_forward_references();
+    close_data_section();
+    doc_.header_ = scanner.header();
+    doc_.entity_names_.assign(scanner.entity_names().begin(), scanner.entity_names().end());
+    ReadResult result{std::nullopt, std::move(diagnostics_)};
+    if (!(options_.strict && result.diagnostics.has_errors())) result.document = std::move(doc_);
+    return result;
+  }
+
+  bool on_section(const Section& section, StreamContext&) override {
+    close_data_section();
+    doc_.sections_.push_back(section);
+    doc_.sections_.back().first_record = static_cast<std::uint32_t>(doc_.records_.size());
+    return true;
+  }
+
+  bool on_record(const RecordView& record, StreamContext&) override {
+    if (record.text.size() > 0xFFFFFFFFu) return report(record.offset, "record longer than 4 GiB", record.id);
+    if (options_.validate_parameters) {
+      if (auto error = tree_.parse(record.text, record.offset)) return report(error->offset, error->message, record.id);
+    }
+    std::vector<RecordEntry>& records = doc_.records_;
+    records.push_back(RecordEntry{record.id, record.offset, static_cast<std::uint32_t>(record.text.size()),
+                                  record.entity});
+    const auto index = static_cast<std::uint32_t>(records.size() - 1);
+    if (const auto first = doc_.ids_->insert(index, records)) {
+      records.pop_back();
+      return report(record.offset,
+                    fmt::format("duplicate instance id (first defined at line {})",
+                                doc_.location(records[*first].offset).line),
+                    record.id);
+    }
+    if (options_.validate_parameters) {
+      for (const ParamNode& node : tree_.nodes()) {
+        if (node.kind == ParamKind::reference && doc_.find(node.value.reference) == nullptr)
+          unresolved_.push_back({node.value.reference, record.offset + node.source_offset, record.id});
+      }
+    }
+    return true;
+  }
+
+ private:
+  struct Unresolved {
+    std::uint64_t target;
+    std::uint64_t offset;
+    std::uint64_t from;
+  };
+
+  void close_data_section() {
+    if (!doc_.sections_.empty() && doc_.sections_.back().kind == SectionKind::data)
+      doc_.sections_.back().record_count =
+          static_cast<std::uint32_t>(doc_.records_.size()) - doc_.sections_.back().first_record;
+  }
+
+  bool report(std::uint64_t offset, std::string message, std::uint64_t id) {
+    return scanner_->report(doc_.diagnostic(ParseError{offset, std::move(message)}, id));
+  }
+
+  void check_forward_references() {
+    for (const Unresolved& u : unresolved_) {
+      if (doc_.find(u.target) != nullptr) continue;
+      if (!report(u.offset, fmt::format("reference to missing instance #{}", u.target), u.from)) return;
+    }
+  }
+
+  const ReadOptions& options_;
+  Diagnostics diagnostics_;
+  Document doc_;
+  detail::Scanner* scanner_ = nullptr;
+  ParamTree tree_;
+  std::vector<Unresolved> unresolved_;
+};
+
+ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
+  return DocumentBuilder(std::move(text), std::move(file_name), options).run();
+}
+
+ReadResult read_file(const std::filesystem::path& path, const ReadOptions& options) {
+  std::string text;
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  const auto io_error = [&](std::string_view what) {
+    ReadResult result{std::nullopt, Diagnostics(options.error_limit)};
+    result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0, std::string(what)});
+    return result;
+  };
+  if (file == nullptr) return io_error("cannot open file");
+  if (std::fseek(file, 0, SEEK_END) == 0) {
+    const long size = std::ftell(file);
+    if (size > 0) text.resize(static_cast<std::size_t>(size));
+    std::rewind(file);
+  }
+  std::size_t got = std::fread(text.data(), 1, text.size(), file);
+  text.resize(got);
+  // Files whose size is not known up front (pipes) are read to the end.
+  char chunk[65536];
+  while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file)) text.append(chunk, n);
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) return io_error("read error");
+  return read_text(std::move(text), path.string(), options);
+}
+
+}  // namespace stepnc::p21

@@ -1,0 +1,450 @@
+#include "stepnc/p21/parameters.h"
+
+#include <charconv>
+#include <cstring>
+
+#include "lexical.h"
+#include "stepnc/p21/text_codec.h"
+
+namespace stepnc::p21 {
+
+std::string_view to_string(ParamKind kind) {
+  switch (kind) {
+    case ParamKind::integer: return "integer";
+    case ParamKind::real: return "real";
+    case ParamKind::string: return "string";
+    case ParamKind::binary: return "binary";
+    case ParamKind::enumeration: return "enumeration";
+    case ParamKind::logical: return "logical";
+    case ParamKind::null: return "$";
+    case ParamKind::derived: return "*";
+    case ParamKind::reference: return "reference";
+    case ParamKind::list: return "list";
+    case ParamKind::typed: return "typed parameter";
+  }
+  return "?";
+}
+
+// ---------------------------------------------------------------- Value
+
+const ParamNode& Value::node() const { return tree_->nodes_[index_]; }
+ParamKind Value::kind() const { return node().kind; }
+std::int64_t Value::integer() const { return node().value.integer; }
+double Value::real() const { return node().value.real; }
+double Value::number() const {
+  const ParamNode& n = node();
+  return n.kind == ParamKind::integer ? static_cast<double>(n.value.integer) : n.value.real;
+}
+std::uint64_t Value::reference() const { return node().value.reference; }
+Logical Value::logical() const { return node().value.logical; }
+
+std::string_view Value::source() const {
+  const ParamNode& n = node();
+  return tree_->source_.substr(n.source_offset, n.source_length);
+}
+
+std::string_view Value::text() const {
+  const ParamNode& n = node();
+  switch (n.kind) {
+    case ParamKind::string:
+    case ParamKind::binary:
+    case ParamKind::enumeration:
+    case ParamKind::typed: {
+      const std::string_view base = n.text_in_scratch ? std::string_view(tree_->scratch_) : tree_->source_;
+      return base.substr(n.value.text.offset, n.value.text.length);
+    }
+    case ParamKind::logical: return source().substr(1, 1);
+    default: return source();
+  }
+}
+
+std::uint64_t Value::offset() const { return tree_->base_offset_ + node().source_offset; }
+
+Value::Children Value::children() const {
+  const ParamNode& n = node();
+  if (n.kind != ParamKind::list && n.kind != ParamKind::typed) return Children(*tree_, index_, index_);
+  return Children(*tree_, index_ + 1, n.end);
+}
+
+std::size_t Value::size() const {
+  std::size_t count = 0;
+  for ([[maybe_unused]] Value child : children()) ++count;
+  return count;
+}
+
+Value::Children::iterator& Value::Children::iterator::operator++() {
+  index_ = tree_->nodes()[index_].end;
+  return *this;
+}
+
+std::optional<Value> Value::Children::at(std::size_t i) const {
+  for (Value child : *this) {
+    if (i-- == 0) return child;
+  }
+  return std::nullopt;
+}
+
+// ----------------------------------------------------------- the parser
+
+// Recursive descent over one record. Nesting is bounded so hostile input
+// cannot exhaust the stack.
+class RecordParser {
+ public:
+  RecordParser(ParamTree& tree, std::string_view text, std::uint64_t base)
+      : tree_(tree), begin_(text.data()), p_(text.data()), end_(text.data() + text.size()), base_(base) {}
+
+  std::optional<ParseError> run() {
+    skip();
+    if (p_ < end_ && *p_ == '#') {
+      ++p_;
+      const char* digits = p_;
+      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+      const auto [ptr, ec] = std::from_chars(digits, p_, tree_.id_);
+      if (digits == p_ || ec != std::errc() || tree_.id_ == 0)
+        return fail(digits, "expected an instance id (a positive integer) after '#'");
+      skip();
+      if (!expect('=')) return error_;
+      skip();
+    }
+    if (p_ < end_ && *p_ == '(') {
+      tree_.complex_ = true;
+      ++p_;
+      skip();
+      while (p_ < end_ && *p_ != ')') {
+        if (!parse_part()) return error_;
+        skip();
+      }
+      if (tree_.parts_.empty()) return fail(p_, "a complex instance needs at least one entity");
+      if (!expect(')')) return error_;
+    } else {
+      if (!parse_part()) return error_;
+    }
+    skip();
+    if (!expect(';')) return error_;
+    skip();
+    if (!error_ && p_ != end_) fail(p_, "unexpected text after ';'");
+    return error_;
+  }
+
+ private:
+  static constexpr int kMaxDepth = 200;
+  static constexpr std::size_t kMaxNumberLength = 400;
+
+  std::uint32_t offset_of(const char* p) const { return static_cast<std::uint32_t>(p - begin_); }
+
+  std::optional<ParseError> fail(const char* at, std::string message) {
+    if (!error_) error_ = ParseError{base_ + static_cast<std::uint64_t>(at - begin_), std::move(message)};
+    return error_;
+  }
+
+  // Most tokens are not preceded by space: test for that inline.
+  void skip() {
+    if (p_ < end_ && (detail::is_space(*p_) || *p_ == '/')) skip_slow();
+  }
+  void skip_slow() {
+    const char* unterminated = nullptr;
+    p_ = detail::skip_space(p_, end_, &unterminated);
+    if (unterminated) fail(unterminated, "unterminated comment");
+  }
+
+  bool expect(char c) {
+    if (error_) return false;
+    if (p_ < end_ && *p_ == c) {
+      ++p_;
+      return true;
+    }
+    fail(p_, p_ < end_ ? describe_unexpected(std::string("expected '") + c + "'")
+                       : std::string("unexpected end of record, expected '") + c + "'");
+    return false;
+  }
+
+  std::string describe_unexpected(std::string expected) const {
+    const auto c = static_cast<unsigned char>(*p_);
+    if (c >= 0x20 && c < 0x7F) return expected + ", found '" + static_cast<char>(c) + "'";
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    return expected + ", found byte 0x" + kHex[c >> 4] + kHex[c & 0xF];
+  }
+
+  std::uint32_t add_node(ParamKind kind, const char* start) {
+    ParamNode node;
+    node.kind = kind;
+    node.source_offset = offset_of(start);
+    tree_.nodes_.push_back(node);
+    return static_cast<std::uint32_t>(tree_.nodes_.size() - 1);
+  }
+  void close_node(std::uint32_t index) {
+    ParamNode& node = tree_.nodes_[index];
+    node.end = static_cast<std::uint32_t>(tree_.nodes_.size());
+    node.source_length = offset_of(p_) - node.source_offset;
+  }
+
+  std::string_view keyword() {
+    const char* start = p_;
+    if (p_ < end_ && detail::is_keyword_start(*p_)) {
+      ++p_;
+      while (p_ < end_ && detail::is_keyword_char(*p_)) ++p_;
+    }
+    return {start, static_cast<std::size_t>(p_ - start)};
+  }
+
+  bool parse_part() {
+    const std::string_view name = keyword();
+    if (name.empty()) {
+      fail(p_, p_ < end_ ? describe_unexpected("expected an entity name") : "unexpected end of record");
+      return false;
+    }
+    skip();
+    if (p_ >= end_ || *p_ != '(') return expect('(');
+    const std::uint32_t list = static_cast<std::uint32_t>(tree_.nodes_.size());
+    if (!parse_list(0)) return false;
+    tree_.parts_.emplace_back(tree_, list, name);
+    return true;
+  }
+
+  // At '('.
+  bool parse_list(int depth) {
+    if (depth > kMaxDepth) {
+      fail(p_, "lists nested too deeply");
+      return false;
+    }
+    const std::uint32_t index = add_node(ParamKind::list, p_);
+    ++p_;
+    skip();
+    if (p_ < end_ && *p_ == ')') {
+      ++p_;
+      close_node(index);
+      return !error_;
+    }
+    for (;;) {
+      if (!parse_value(depth)) return false;
+      skip();
+      if (p_ < end_ && *p_ == ',') {
+        ++p_;
+        skip();
+        continue;
+      }
+      if (!expect(')')) return false;
+      close_node(index);
+      return true;
+    }
+  }
+
+  bool parse_value(int depth) {
+    if (error_) return false;
+    if (p_ >= end_) {
+      fail(p_, "unexpected end of record, expected a value");
+      return false;
+    }
+    const char* start = p_;
+    switch (*p_) {
+      case '#': return parse_reference();
+      case '$': ++p_, close_node(add_node(ParamKind::null, start)); return true;
+      case '*': ++p_, close_node(add_node(ParamKind::derived, start)); return true;
+      case '\'': return parse_string();
+      case '"': return parse_binary();
+      case '.': return parse_enumeration();
+      case '(': return parse_list(depth + 1);
+      default: break;
+    }
+    if (detail::is_digit(*p_) || *p_ == '+' || *p_ == '-') return parse_number();
+    if (detail::is_keyword_start(*p_)) return parse_typed(depth);
+    fail(p_, describe_unexpected("expected a value"));
+    return false;
+  }
+
+  bool parse_reference() {
+    const std::uint32_t index = add_node(ParamKind::reference, p_);
+    ++p_;
+    const char* digits = p_;
+    while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    std::uint64_t id = 0;
+    const auto [ptr, ec] = std::from_chars(digits, p_, id);
+    if (digits == p_ || ec != std::errc() || id == 0) {
+      fail(digits, ec == std::errc::result_out_of_range ? "instance id too large"
+                   : digits != p_                        ? "instance id 0 is not allowed (ids start at 1)"
+                                                         : "expected an instance id after '#'");
+      return false;
+    }
+    tree_.nodes_[index].value.reference = id;
+    close_node(index);
+    return true;
+  }
+
+  bool parse_number() {
+    const char* start = p_;
+    if (*p_ == '+' || *p_ == '-') ++p_;
+    bool is_real = false;
+    const char* digits = p_;
+    while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    if (p_ == digits) {
+      fail(start, "expected digits in number");
+      return false;
+    }
+    if (p_ < end_ && *p_ == '.') {
+      is_real = true;
+      ++p_;
+      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    }
+    if (p_ < end_ && (*p_ == 'E' || *p_ == 'e')) {
+      is_real = true;
+      ++p_;
+      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    }
+    const std::string_view spelling(start, static_cast<std::size_t>(p_ - start));
+    if (spelling.size() > kMaxNumberLength) {
+      fail(start, "number too long");
+      return false;
+    }
+    const std::uint32_t index = add_node(is_real ? ParamKind::real : ParamKind::integer, start);
+    ParamNode& node = tree_.nodes_[index];
+    if (is_real) {
+      // The spelling was checked above; from_chars only needs the '+' gone.
+      const char* first = *start == '+' ? start + 1 : start;
+      const auto [ptr, ec] = std::from_chars(first, p_, node.value.real);
+      if (ec != std::errc() || ptr != p_) {
+        const std::optional<double> value = parse_real(spelling);  // underflow is fine, the rest is not
+        if (!value) {
+          fail(start, "invalid real '" + std::string(spelling) + "'");
+          return false;
+        }
+        node.value.real = *value;
+      }
+    } else {
+      const std::optional<std::int64_t> value = parse_integer(spelling);
+      if (!value) {
+        fail(start, "integer out of range '" + std::string(spelling) + "'");
+        return false;
+      }
+      node.value.integer = *value;
+    }
+    close_node(index);
+    return true;
+  }
+
+  bool parse_string() {
+    const std::uint32_t index = add_node(ParamKind::string, p_);
+    const char* content = p_ + 1;
+    const char* close = detail::find_string_end(content, end_);
+    if (close >= end_) {
+      fail(p_, "unterminated string");
+      return false;
+    }
+    const std::string_view token(content, static_cast<std::size_t>(close - content));
+    p_ = close + 1;
+    ParamNode& node = tree_.nodes_[index];
+    if (!needs_decoding(token)) {
+      node.value.text = {offset_of(content), static_cast<std::uint32_t>(token.size())};
+    } else {
+      const std::size_t scratch_start = tree_.scratch_.size();
+      if (auto error = decode_string(token, tree_.scratch_)) {
+        fail(content + error->offset, error->message);
+        return false;
+      }
+      node.text_in_scratch = true;
+      node.value.text = {static_cast<std::uint32_t>(scratch_start),
+                         static_cast<std::uint32_t>(tree_.scratch_.size() - scratch_start)};
+    }
+    close_node(index);
+    return true;
+  }
+
+  // Anything but plain printable ASCII goes through the full decoder,
+  // which also validates UTF-8 and rejects control characters.
+  static bool needs_decoding(std::string_view token) {
+    for (char c : token) {
+      const auto uc = static_cast<unsigned char>(c);
+      if (uc < 0x20 || uc >= 0x7F || c == '\\' || c == '\'') return true;
+    }
+    return false;
+  }
+
+  bool parse_binary() {
+    const std::uint32_t index = add_node(ParamKind::binary, p_);
+    ++p_;
+    const char* digits = p_;
+    while (p_ < end_ && detail::is_hex_digit(*p_)) ++p_;
+    if (p_ >= end_ || *p_ != '"') {
+      fail(p_, p_ < end_ ? "binary values hold only hex digits" : "unterminated binary");
+      return false;
+    }
+    if (digits == p_ || *digits < '0' || *digits > '3') {
+      fail(digits, "a binary value starts with the count of unused bits, 0 to 3");
+      return false;
+    }
+    tree_.nodes_[index].value.text = {offset_of(digits), static_cast<std::uint32_t>(p_ - digits)};
+    ++p_;
+    close_node(index);
+    return true;
+  }
+
+  bool parse_enumeration() {
+    const char* start = p_;
+    ++p_;
+    const std::string_view item = keyword();
+    if (item.empty() || p_ >= end_ || *p_ != '.') {
+      fail(start, "malformed enumeration or logical (expected .NAME.)");
+      return false;
+    }
+    ++p_;
+    const bool is_logical = item == "T" || item == "F" || item == "U";
+    const std::uint32_t index = add_node(is_logical ? ParamKind::logical : ParamKind::enumeration, start);
+    ParamNode& node = tree_.nodes_[index];
+    if (is_logical) {
+      node.value.logical = item == "T" ? Logical::true_value
+                           : item == "F" ? Logical::false_value
+                                         : Logical::unknown;
+    } else {
+      node.value.text = {offset_of(item.data()), static_cast<std::uint32_t>(item.size())};
+    }
+    close_node(index);
+    return true;
+  }
+
+  // NAME(value)
+  bool parse_typed(int depth) {
+    if (depth > kMaxDepth) {
+      fail(p_, "typed parameters nested too deeply");
+      return false;
+    }
+    const char* start = p_;
+    const std::string_view name = keyword();
+    const std::uint32_t index = add_node(ParamKind::typed, start);
+    tree_.nodes_[index].value.text = {offset_of(name.data()), static_cast<std::uint32_t>(name.size())};
+    skip();
+    if (!expect('(')) return false;
+    skip();
+    if (!parse_value(depth + 1)) return false;
+    skip();
+    if (!expect(')')) return false;
+    close_node(index);
+    return true;
+  }
+
+  ParamTree& tree_;
+  const char* begin_;
+  const char* p_;
+  const char* end_;
+  std::uint64_t base_;
+  std::optional<ParseError> error_;
+};
+
+std::optional<ParseError> ParamTree::parse(std::string_view record_text, std::uint64_t base_offset) {
+  source_ = record_text;
+  base_offset_ = base_offset;
+  id_ = 0;
+  complex_ = false;
+  nodes_.clear();
+  parts_.clear();
+  scratch_.clear();
+  if (record_text.size() > 0xFFFFFFF0u)
+    return ParseError{base_offset, "record longer than 4 GiB"};
+  std::optional<ParseError> error = RecordParser(*this, record_text, base_offset).run();
+  if (error) {
+    nodes_.clear();
+    parts_.clear();
+  }
+  return error;
+}
+
+}  // namespace stepnc::p21

@@ -1,0 +1,300 @@
+#include "stepnc/p21/text_codec.h"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+#include "code_pages.h"
+#include "lexical.h"
+
+namespace stepnc::p21 {
+namespace {
+
+using detail::hex_value;
+using detail::is_hex_digit;
+
+void append_utf8(std::uint32_t cp, std::string& out) {
+  if (cp < 0x80) {
+    out += static_cast<char>(cp);
+  } else if (cp < 0x800) {
+    out += static_cast<char>(0xC0 | (cp >> 6));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else if (cp < 0x10000) {
+    out += static_cast<char>(0xE0 | (cp >> 12));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (cp >> 18));
+    out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (cp & 0x3F));
+  }
+}
+
+// Decodes one UTF-8 sequence at text[i]; returns its length (0 if invalid).
+std::size_t next_utf8(std::string_view text, std::size_t i, std::uint32_t& cp) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  std::size_t length = 0;
+  std::uint32_t min = 0;
+  if (lead < 0x80) {
+    cp = lead;
+    return 1;
+  } else if ((lead & 0xE0) == 0xC0) {
+    length = 2, cp = lead & 0x1F, min = 0x80;
+  } else if ((lead & 0xF0) == 0xE0) {
+    length = 3, cp = lead & 0x0F, min = 0x800;
+  } else if ((lead & 0xF8) == 0xF0) {
+    length = 4, cp = lead & 0x07, min = 0x10000;
+  } else {
+    return 0;
+  }
+  if (i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (byte(i + k) & 0x3F);
+  }
+  if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+  return length;
+}
+
+// Reads `digits` hex digits at token[i] into value; false if any is not hex.
+bool read_hex(std::string_view token, std::size_t i, int digits, std::uint32_t& value) {
+  if (i + digits > token.size()) return false;
+  value = 0;
+  for (int k = 0; k < digits; ++k) {
+    if (!is_hex_digit(token[i + k])) return false;
+    value = value * 16 + static_cast<std::uint32_t>(hex_value(token[i + k]));
+  }
+  return true;
+}
+
+bool starts_with_at(std::string_view token, std::size_t i, std::string_view prefix) {
+  return token.substr(i, prefix.size()) == prefix;
+}
+
+// Decodes a \X2\ (4 hex digits per unit, UTF-16 surrogates combined) or
+// \X4\ (8 hex digits) run up to \X0\. `i` points after the opening escape
+// and is left after \X0\.
+std::optional<StringDecodeError> decode_wide_run(std::string_view token, std::size_t& i, int digits,
+                                                 std::string& out) {
+  const std::size_t start = i;
+  std::uint32_t pending_high = 0;
+  while (!starts_with_at(token, i, "\\X0\\")) {
+    std::uint32_t unit = 0;
+    if (!read_hex(token, i, digits, unit))
+      return StringDecodeError{i, i >= token.size() ? "\\X2\\ or \\X4\\ escape without closing \\X0\\"
+                                                     : "bad hex digits in \\X2\\ or \\X4\\ escape"};
+    i += digits;
+    if (digits == 4 && unit >= 0xD800 && unit <= 0xDBFF && pending_high == 0) {
+      pending_high = unit;
+      continue;
+    }
+    if (pending_high != 0) {
+      if (unit < 0xDC00 || unit > 0xDFFF) return StringDecodeError{i - digits, "unpaired UTF-16 surrogate"};
+      unit = 0x10000 + ((pending_high - 0xD800) << 10) + (unit - 0xDC00);
+      pending_high = 0;
+    } else if ((unit >= 0xD800 && unit <= 0xDFFF) || unit > 0x10FFFF) {
+      return StringDecodeError{i - digits, "invalid character code in escape"};
+    }
+    append_utf8(unit, out);
+  }
+  if (pending_high != 0) return StringDecodeError{i, "unpaired UTF-16 surrogate"};
+  if (i == start) return StringDecodeError{start, "empty \\X2\\ or \\X4\\ escape"};
+  i += 4;
+  return std::nullopt;
+}
+
+}  // namespace
+
+bool string_needs_decoding(std::string_view token) {
+  for (char c : token)
+    if (c == '\'' || c == '\\' || c == '\n' || c == '\r') return true;
+  return false;
+}
+
+std::optional<StringDecodeError> decode_string(std::string_view token, std::string& out) {
+  int code_page = 0;  // 0 = ISO 8859-1 (\PA\), 1.. = ISO 8859-2.. (\PB\..)
+  std::size_t i = 0;
+  while (i < token.size()) {
+    const char c = token[i];
+    const auto uc = static_cast<unsigned char>(c);
+    if (c == '\'') {
+      if (i + 1 >= token.size() || token[i + 1] != '\'')
+        return StringDecodeError{i, "apostrophe inside a string must be doubled"};
+      out += '\'';
+      i += 2;
+    } else if (c == '\\') {
+      if (starts_with_at(token, i, "\\\\")) {
+        out += '\\';
+        i += 2;
+      } else if (starts_with_at(token, i, "\\X\\")) {
+        std::uint32_t code = 0;
+        if (!read_hex(token, i + 3, 2, code)) return StringDecodeError{i, "\\X\\ needs two hex digits"};
+        append_utf8(code, out);
+        i += 5;
+      } else if (starts_with_at(token, i, "\\X2\\") || starts_with_at(token, i, "\\X4\\")) {
+        const int digits = token[i + 2] == '2' ? 4 : 8;
+        i += 4;
+        if (auto error = decode_wide_run(token, i, digits, out)) return error;
+      } else if (starts_with_at(token, i, "\\S\\")) {
+        if (i + 3 >= token.size() || token[i + 3] < 0x20 || token[i + 3] > 0x7E)
+          return StringDecodeError{i, "\\S\\ must be followed by a printable character"};
+        const std::uint32_t byte = static_cast<unsigned char>(token[i + 3]) + 0x80u;
+        std::uint32_t cp = byte;
+        if (code_page > 0) {
+          cp = byte >= 0xA0 ? detail::kCodePages[code_page - 1][byte - 0xA0] : byte;
+          if (cp == 0) return StringDecodeError{i, "\\S\\ names a character the code page does not define"};
+        }
+        append_utf8(cp, out);
+        i += 4;
+      } else if (i + 3 < token.size() && token[i + 1] == 'P' && token[i + 2] >= 'A' && token[i + 2] <= 'I' &&
+                 token[i + 3] == '\\') {
+        code_page = token[i + 2] - 'A';
+        i += 4;
+      } else {
+        return StringDecodeError{i, "unknown escape (a backslash must be written \\\\)"};
+      }
+    } else if (c == '\n' || c == '\r') {
+      ++i;  // line folding, not part of the value
+    } else if (uc < 0x20 || uc == 0x7F) {
+      return StringDecodeError{i, "control character in string"};
+    } else if (uc >= 0x80) {
+      std::uint32_t cp = 0;
+      const std::size_t length = next_utf8(token, i, cp);
+      if (length == 0) return StringDecodeError{i, "invalid UTF-8 in string"};
+      out.append(token.substr(i, length));
+      i += length;
+    } else {
+      out += c;
+      ++i;
+    }
+  }
+  return std::nullopt;
+}
+
+bool encode_string(std::string_view text, std::string& out) {
+  static constexpr char kHex[] = "0123456789ABCDEF";
+  const std::size_t rollback = out.size();
+  out += '\'';
+  bool in_wide_run = false;
+  int run_digits = 0;
+  const auto close_run = [&] {
+    if (in_wide_run) out += "\\X0\\";
+    in_wide_run = false;
+  };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    std::uint32_t cp = 0;
+    const std::size_t length = next_utf8(text, i, cp);
+    if (length == 0) {
+      out.resize(rollback);
+      return false;
+    }
+    i += length;
+    if (cp >= 0x20 && cp < 0x7F) {
+      close_run();
+      out += static_cast<char>(cp);
+      if (cp == '\'' || cp == '\\') out += static_cast<char>(cp);
+    } else if (cp <= 0xFF) {
+      close_run();
+      out += "\\X\\";
+      out += kHex[cp >> 4];
+      out += kHex[cp & 0xF];
+    } else {
+      const int digits = cp <= 0xFFFF ? 4 : 8;
+      if (in_wide_run && run_digits != digits) close_run();
+      if (!in_wide_run) {
+        out += digits == 4 ? "\\X2\\" : "\\X4\\";
+        in_wide_run = true;
+        run_digits = digits;
+      }
+      for (int shift = (digits - 1) * 4; shift >= 0; shift -= 4) out += kHex[(cp >> shift) & 0xF];
+    }
+  }
+  close_run();
+  out += '\'';
+  return true;
+}
+
+bool format_real(double value, std::string& out) {
+  if (!std::isfinite(value)) return false;
+  std::array<char, 40> buffer{};
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  if (ec != std::errc()) return false;
+  const std::string_view shortest(buffer.data(), static_cast<std::size_t>(end - buffer.data()));
+  // to_chars gives e.g. "10", "0.1", "1e-05", "1.5e+300"; Part 21 needs a
+  // '.' in the mantissa and an upper-case 'E' exponent.
+  const std::size_t e = shortest.find('e');
+  const std::string_view mantissa = shortest.substr(0, e);
+  out += mantissa;
+  if (mantissa.find('.') == std::string_view::npos) out += '.';
+  if (e != std::string_view::npos) {
+    out += 'E';
+    std::string_view exponent = shortest.substr(e + 1);
+    if (exponent.front() == '-') {
+      out += '-';
+      exponent.remove_prefix(1);
+    } else if (exponent.front() == '+') {
+      exponent.remove_prefix(1);
+    }
+    while (exponent.size() > 1 && exponent.front() == '0') exponent.remove_prefix(1);
+    out += exponent;
+  }
+  return true;
+}
+
+namespace {
+
+// Accepts: [sign] digits [ '.' digits* ] [ ('E'|'e') [sign] digits ].
+bool is_number_spelling(std::string_view s) {
+  std::size_t i = 0;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  const std::size_t digits_start = i;
+  while (i < s.size() && detail::is_digit(s[i])) ++i;
+  if (i == digits_start) return false;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && detail::is_digit(s[i])) ++i;
+  }
+  if (i < s.size() && (s[i] == 'E' || s[i] == 'e')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    const std::size_t exponent_start = i;
+    while (i < s.size() && detail::is_digit(s[i])) ++i;
+    if (i == exponent_start) return false;
+  }
+  return i == s.size();
+}
+
+}  // namespace
+
+std::optional<double> parse_real(std::string_view spelling) {
+  if (!is_number_spelling(spelling)) return std::nullopt;
+  if (spelling.front() == '+') spelling.remove_prefix(1);
+  double value = 0;
+  const auto [end, ec] = std::from_chars(spelling.data(), spelling.data() + spelling.size(), value);
+  if (ec == std::errc::result_out_of_range) {
+    // Underflow is not an error: such a value is zero (or a tiny
+    // subnormal) to every reader. Overflow is.
+    if (std::strtod(std::string(spelling).c_str(), nullptr) == 0.0) return spelling.front() == '-' ? -0.0 : 0.0;
+    return std::nullopt;
+  }
+  if (ec != std::errc() || end != spelling.data() + spelling.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<std::int64_t> parse_integer(std::string_view spelling) {
+  const bool signed_ = !spelling.empty() && (spelling.front() == '+' || spelling.front() == '-');
+  if (spelling.size() == (signed_ ? 1u : 0u)) return std::nullopt;
+  for (std::size_t i = signed_ ? 1 : 0; i < spelling.size(); ++i)
+    if (!detail::is_digit(spelling[i])) return std::nullopt;
+  if (spelling.front() == '+') spelling.remove_prefix(1);
+  std::int64_t value = 0;
+  const auto [end, ec] = std::from_chars(spelling.data(), spelling.data() + spelling.size(), value);
+  if (ec != std::errc() || end != spelling.data() + spelling.size()) return std::nullopt;
+  return value;
+}
+
+}  // namespace stepnc::p21

@@ -1,0 +1,147 @@
+// Reals and integers: shortest round-trip writing and exact reading.
+#include <catch2/catch.hpp>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "stepnc/p21/document.h"
+#include "stepnc/p21/text_codec.h"
+#include "stepnc/p21/writer.h"
+#include "test_helpers.h"
+
+using namespace stepnc::p21;
+
+namespace {
+
+std::string formatted(double value) {
+  std::string out;
+  REQUIRE(format_real(value, out));
+  return out;
+}
+
+// format -> parse gives the same bits (so -0.0 stays negative).
+void check_round_trip(double value) {
+  const std::string text = formatted(value);
+  INFO(text);
+  REQUIRE(text.find('.') != std::string::npos);
+  const std::optional<double> back = parse_real(text);
+  REQUIRE(back.has_value());
+  CHECK(std::bit_cast<std::uint64_t>(*back) == std::bit_cast<std::uint64_t>(value));
+}
+
+}  // namespace
+
+TEST_CASE("reals are written in the shortest valid Part 21 form", "[p21][numbers]") {
+  CHECK(formatted(10.0) == "10.");
+  CHECK(formatted(0.1) == "0.1");
+  CHECK(formatted(1.5) == "1.5");
+  CHECK(formatted(-0.0) == "-0.");
+  CHECK(formatted(0.0) == "0.");
+  CHECK(formatted(1e-5) == "1.E-5");
+  CHECK(formatted(1e308) == "1.E308");
+  CHECK(formatted(-2.5e-300) == "-2.5E-300");
+  CHECK(formatted(5e-324) == "5.E-324");
+  CHECK(formatted(123456789012345680.0) == "123456789012345680.");  // shorter than 1.2345678901234568E17
+  CHECK(formatted(1e22) == "1.E22");
+  CHECK(formatted(100.0) == "100.");
+  std::string out;
+  CHECK_FALSE(format_real(std::numeric_limits<double>::quiet_NaN(), out));
+  CHECK_FALSE(format_real(std::numeric_limits<double>::infinity(), out));
+  CHECK(out.empty());
+}
+
+TEST_CASE("parsing reals and integers", "[p21][numbers]") {
+  CHECK(parse_real("10.000") == 10.0);
+  CHECK(parse_real("+2.5E+3") == 2500.0);
+  CHECK(parse_real("1.E-5") == 1e-5);
+  CHECK(parse_real("-0.") == 0.0);
+  CHECK(std::signbit(*parse_real("-0.")));
+  CHECK(parse_real("1e-400") == 0.0);  // underflow reads as zero
+  CHECK_FALSE(parse_real("1E400").has_value());
+  CHECK_FALSE(parse_real("1.E").has_value());
+  CHECK_FALSE(parse_real(".5").has_value());
+  CHECK_FALSE(parse_real("").has_value());
+  CHECK(parse_integer("-9223372036854775808") == std::numeric_limits<std::int64_t>::min());
+  CHECK(parse_integer("+42") == 42);
+  CHECK_FALSE(parse_integer("9223372036854775808").has_value());
+  CHECK_FALSE(parse_integer("+-5").has_value());
+  CHECK_FALSE(parse_integer("-").has_value());
+}
+
+TEST_CASE("every double survives format -> parse: edge cases", "[p21][numbers]") {
+  const double edge_cases[] = {0.0,
+                               -0.0,
+                               1.0,
+                               -1.0,
+                               10.0,
+                               1e308,
+                               -1e308,
+                               std::numeric_limits<double>::max(),
+                               std::numeric_limits<double>::lowest(),
+                               std::numeric_limits<double>::min(),
+                               std::numeric_limits<double>::denorm_min(),
+                               -std::numeric_limits<double>::denorm_min(),
+                               2.2250738585072009e-308,  // largest subnormal
+                               std::numeric_limits<double>::epsilon(),
+                               9007199254740992.0,  // 2^53
+                               9007199254740993.0,
+                               0.1 + 0.2,
+                               1.0 / 3.0,
+                               123456.0,
+                               1e22,
+                               1e23,
+                               5e-324};
+  for (double value : edge_cases) check_round_trip(value);
+}
+
+TEST_CASE("every double survives format -> parse: random bit patterns and integers", "[p21][numbers]") {
+  std::mt19937_64 random(10303);
+  int checked = 0;
+  while (checked < 200000) {
+    const double value = std::bit_cast<double>(random());
+    if (!std::isfinite(value)) continue;
+    check_round_trip(value);
+    ++checked;
+  }
+  for (int i = -1000; i <= 1000; ++i) check_round_trip(static_cast<double>(i) * 0.25);
+  for (int e = -20; e <= 20; ++e) check_round_trip(std::pow(10.0, e));
+}
+
+TEST_CASE("reals written by the Writer read back through the reader unchanged", "[p21][numbers]") {
+  std::mt19937_64 random(14649);
+  std::uniform_real_distribution<double> coordinate(-1000.0, 1000.0);
+  std::vector<double> values = {0.0, -0.0, 1e308, 5e-324, 10.0, 1e-5, 0.1};
+  for (int i = 0; i < 2000; ++i) values.push_back(coordinate(random));
+  for (int i = 0; i < 2000; ++i) {
+    const double value = std::bit_cast<double>(random());
+    if (std::isfinite(value)) values.push_back(value);
+  }
+
+  Writer writer;
+  writer.begin_file();
+  writer.end_header();
+  writer.begin_data();
+  writer.begin_instance(1, "REALS");
+  writer.begin_list();
+  for (double value : values) writer.real(value);
+  writer.end_list();
+  writer.end_instance();
+  writer.end_data();
+  writer.end_file();
+  REQUIRE_FALSE(writer.finish().has_value());
+
+  ReadResult result = read_text(writer.take(), "reals.stp");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  ParamTree tree;
+  REQUIRE_FALSE(result.document->parse(result.document->records()[0], tree));
+  std::size_t i = 0;
+  bool all_equal = true;
+  for (Value v : tree.parts()[0].attributes().at(0)->children()) {
+    all_equal = all_equal && std::bit_cast<std::uint64_t>(v.real()) == std::bit_cast<std::uint64_t>(values[i++]);
+  }
+  CHECK(i == values.size());
+  CHECK(all_equal);
+}

@@ -1,0 +1,223 @@
+// Every ISO 10303-21 syntax feature, read with asserted values.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include "stepnc/p21/document.h"
+#include "test_helpers.h"
+
+using namespace stepnc::p21;
+using p21_test::read_data;
+
+namespace {
+
+// Parses record #id of `doc` into `tree` and returns its single part.
+const EntityPart& parse_simple(const Document& doc, std::uint64_t id, ParamTree& tree) {
+  const RecordEntry* record = doc.find(id);
+  REQUIRE(record != nullptr);
+  REQUIRE_FALSE(doc.parse(*record, tree).has_value());
+  REQUIRE(tree.parts().size() == 1);
+  return tree.parts().front();
+}
+
+std::vector<Value> attributes(const EntityPart& part) {
+  std::vector<Value> values;
+  for (Value v : part.attributes()) values.push_back(v);
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("the feature file reads with every value as written", "[p21][syntax]") {
+  ReadResult result = read_file(p21_test::data_dir() / "data" / "features.stp");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  const Document& doc = *result.document;
+  ParamTree tree;
+
+  SECTION("header entities, known and unknown, are kept in order") {
+    const Header& header = doc.header();
+    REQUIRE(header.entities.size() == 4);
+    CHECK(header.entities[0].name == "FILE_DESCRIPTION");
+    CHECK(header.entities[3].name == "MY_HEADER_EXTENSION");
+    CHECK(header.entities[3].text == "MY_HEADER_EXTENSION('kept',42);");
+    CHECK(header.description() == std::vector<std::string>{"Part 21 feature test", "second line"});
+    CHECK(header.file_name() == "features.stp");
+    CHECK(header.schema_names() == std::vector<std::string>{"MACHINING_SCHEMA", "MILLING_SCHEMA"});
+  }
+
+  SECTION("sections: anchor kept verbatim, two DATA sections with their parameters") {
+    const auto sections = doc.sections();
+    REQUIRE(sections.size() == 3);
+    CHECK(sections[0].kind == SectionKind::anchor);
+    CHECK(sections[0].text == "<origin> = #10;");
+    CHECK(sections[1].kind == SectionKind::data);
+    CHECK(sections[1].text == "(('first'),('MACHINING_SCHEMA'))");
+    CHECK(sections[1].record_count == 6);
+    CHECK(sections[2].text.empty());
+    CHECK(sections[2].first_record == 6);
+    CHECK(sections[2].record_count == 2);
+    CHECK(doc.records().size() == 8);
+  }
+
+  SECTION("spaces and comments around tokens; reals keep their spelling") {
+    const EntityPart& part = parse_simple(doc, 10, tree);
+    CHECK(part.entity() == "CARTESIAN_POINT");
+    CHECK(doc.entity_name(*doc.find(10)) == "CARTESIAN_POINT");
+    const auto values = attributes(part);
+    REQUIRE(values.size() == 2);
+    CHECK(values[0].text() == "origin");
+    std::vector<Value> coordinates(values[1].children().begin(), values[1].children().end());
+    REQUIRE(coordinates.size() == 3);
+    CHECK(coordinates[0].real() == 0.0);
+    CHECK(coordinates[1].real() == 10.0);
+    CHECK(coordinates[1].source() == "10.000");
+    CHECK(coordinates[2].real() == -2.5e-3);
+    CHECK(coordinates[2].source() == "-2.5E-3");
+  }
+
+  SECTION("every simple value kind") {
+    const auto v = attributes(parse_simple(doc, 11, tree));
+    REQUIRE(v.size() == 14);
+    CHECK(v[0].kind() == ParamKind::integer);
+    CHECK(v[0].integer() == 42);
+    CHECK(v[1].integer() == -7);
+    CHECK(v[2].integer() == 3);
+    CHECK(v[3].kind() == ParamKind::real);
+    CHECK(v[3].real() == 1.5e10);
+    CHECK(v[3].number() == 1.5e10);
+    CHECK(v[4].kind() == ParamKind::string);
+    CHECK(v[4].text() == "it's \xC3\xA9t\xC3\xA9");
+    CHECK(v[4].source() == "'it''s \\X\\E9t\\X2\\00E9\\X0\\'");
+    CHECK(v[5].kind() == ParamKind::enumeration);
+    CHECK(v[5].text() == "MILLING");
+    CHECK(v[6].logical() == Logical::true_value);
+    CHECK(v[7].logical() == Logical::false_value);
+    CHECK(v[8].logical() == Logical::unknown);
+    CHECK(v[8].text() == "U");
+    CHECK(v[9].kind() == ParamKind::binary);
+    CHECK(v[9].text() == "0FF");
+    CHECK(v[10].kind() == ParamKind::null);
+    CHECK(v[11].kind() == ParamKind::derived);
+    CHECK(v[12].kind() == ParamKind::reference);
+    CHECK(v[12].reference() == 10);
+    CHECK(v[13].reference() == 99);  // forward reference into a later section
+  }
+
+  SECTION("nested lists, empty list, typed parameters") {
+    const auto v = attributes(parse_simple(doc, 12, tree));
+    REQUIRE(v.size() == 4);
+    CHECK(v[0].size() == 2);
+    const Value inner = *v[0].children().at(1);
+    CHECK(inner.size() == 2);
+    CHECK(inner.children().at(0)->integer() == 3);
+    CHECK(inner.children().at(1)->integer() == 4);
+    CHECK_FALSE(inner.children().at(2).has_value());
+    CHECK(v[1].kind() == ParamKind::list);
+    CHECK(v[1].size() == 0);
+    CHECK(v[2].kind() == ParamKind::typed);
+    CHECK(v[2].text() == "LENGTH_MEASURE");
+    CHECK(v[2].children().at(0)->real() == 2.5);
+    CHECK(v[3].text() == "POSITIVE_LENGTH_MEASURE");
+    const Value nested = *v[3].children().at(0);
+    CHECK(nested.text() == "LENGTH_MEASURE");
+    CHECK(nested.children().at(0)->real() == 1.0);
+  }
+
+  SECTION("complex instance parts") {
+    const RecordEntry* record = doc.find(13);
+    REQUIRE(record != nullptr);
+    CHECK(record->entity == RecordEntry::complex_entity);
+    CHECK(doc.entity_name(*record).empty());
+    REQUIRE_FALSE(doc.parse(*record, tree).has_value());
+    CHECK(tree.is_complex());
+    CHECK(tree.id() == 13);
+    REQUIRE(tree.parts().size() == 3);
+    CHECK(tree.parts()[0].entity() == "REPRESENTATION_ITEM");
+    CHECK(tree.parts()[0].attributes().at(0)->text() == "ri");
+    CHECK(tree.parts()[1].entity() == "GEOMETRIC_REPRESENTATION_ITEM");
+    CHECK(tree.parts()[1].attributes().empty());
+    CHECK(tree.parts()[2].entity() == "CARTESIAN_POINT");
+    CHECK(tree.parts()[2].attributes().at(0)->size() == 2);
+  }
+
+  SECTION("comments inside a record") {
+    const auto v = attributes(parse_simple(doc, 14, tree));
+    REQUIRE(v.size() == 2);
+    CHECK(v[0].integer() == 1);
+    CHECK(v[1].integer() == 2);
+  }
+
+  SECTION("large and sparse ids, forward references") {
+    CHECK(doc.find(4000000000ull) != nullptr);
+    CHECK(doc.find(100000) != nullptr);
+    CHECK(doc.find(5) == nullptr);
+    CHECK(attributes(parse_simple(doc, 4000000000ull, tree))[0].reference() == 100000);
+    CHECK(parse_simple(doc, 99, tree).entity() == "UNKNOWN_ENTITY_KEPT");
+  }
+
+  SECTION("entity names are interned once each") {
+    std::vector<std::string_view> names(doc.entity_names().begin(), doc.entity_names().end());
+    CHECK(names == std::vector<std::string_view>{"CARTESIAN_POINT", "VALUES", "NESTED", "COMMENTED", "BIG_ID",
+                                                 "SECOND_SECTION", "UNKNOWN_ENTITY_KEPT"});
+  }
+
+  SECTION("line and column of any offset") {
+    const RecordEntry* record = doc.find(11);
+    CHECK(doc.location(record->offset) == SourceLocation{13, 1});
+    CHECK(doc.location(record->offset + 4) == SourceLocation{13, 5});
+    CHECK(doc.location(0) == SourceLocation{1, 1});
+  }
+}
+
+TEST_CASE("CRLF line endings and lines split anywhere", "[p21][syntax]") {
+  ReadResult result =
+      read_data("#1=A(1,\r\n  'two',\r\n  (3.,\r\n4.));\r\n#2=B(#1);\r\n#3=C('folded \r\nstring');\r\n");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  const Document& doc = *result.document;
+  ParamTree tree;
+  REQUIRE_FALSE(doc.parse(*doc.find(1), tree));
+  CHECK(tree.parts()[0].attributes().at(2)->children().at(1)->real() == 4.0);
+  CHECK(doc.location(doc.find(2)->offset) == SourceLocation{12, 1});
+  REQUIRE_FALSE(doc.parse(*doc.find(3), tree));
+  CHECK(tree.parts()[0].attributes().at(0)->text() == "folded string");
+}
+
+TEST_CASE("a very long line: one list of 200000 references", "[p21][syntax]") {
+  std::string data = "#1=P((";
+  for (int i = 0; i < 200000; ++i) data += fmt::format("{}#{}", i ? "," : "", i + 2);
+  data += "));";
+  for (int i = 0; i < 200000; ++i) data += fmt::format("\n#{}=Q();", i + 2);
+  ReadResult result = read_data(data);
+  REQUIRE(result.ok());
+  ParamTree tree;
+  REQUIRE_FALSE(result.document->parse(*result.document->find(1), tree));
+  const Value list = *tree.parts()[0].attributes().at(0);
+  CHECK(list.size() == 200000);
+  std::uint64_t expected = 2;
+  bool in_order = true;
+  for (Value v : list.children()) in_order = in_order && v.reference() == expected++;
+  CHECK(in_order);
+  CHECK(result.document->records().size() == 200001);
+}
+
+TEST_CASE("lower-case keywords and user-defined entity names are accepted", "[p21][syntax]") {
+  ReadResult result = read_data("#1=!USER_DEFINED(1);#2=lower_case(.item.);");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  CHECK(result.document->entity_name(result.document->records()[0]) == "!USER_DEFINED");
+  ParamTree tree;
+  REQUIRE_FALSE(result.document->parse(result.document->records()[1], tree));
+  CHECK(tree.parts()[0].attributes().at(0)->text() == "item");
+}
+
+TEST_CASE("records can be indexed without parsing their parameters", "[p21][syntax]") {
+  ReadOptions options;
+  options.validate_parameters = false;
+  ReadResult result = read_text(p21_test::wrap("#1=A(1,2 3);#2=B(#77);"), "t.stp", options);
+  REQUIRE(result.ok());  // neither the bad list nor the missing #77 is looked at
+  ParamTree tree;
+  const std::optional<ParseError> error = result.document->parse(*result.document->find(1), tree);
+  REQUIRE(error.has_value());
+  CHECK(result.document->diagnostic(*error, 1).to_string() == "t.stp:8:10: error: #1: expected ')', found '3'");
+}

@@ -1,0 +1,26 @@
+// Machining descriptions the posters tests run on, built the way the
+// typed-model adapter will fill them from Part 21 files.
+#pragma once
+
+#include "stepnc/post/machining.h"
+
+namespace stepnc::post::testing {
+
+// ISO 14649-11 Example 1 (samples/milling/example1.stp): planar face,
+// round hole (drill, ream), closed pocket (rough, finish), with the
+// sample's #ids, names and values converted to NC units.
+MachiningProject example1();
+
+// Every milling feature and hole cycle the posters generate, one each:
+// circular pocket, non-convex general pocket, open pocket, step, slots,
+// centre drilling, peck drilling, tapping, boring.
+MachiningProject milling_features();
+
+// The shaft of samples/turning/shaft.stp: face, centre hole, contour rough
+// (cutting-depth list) and finish, relief groove.
+MachiningProject shaft();
+
+// A freeform operation whose explicit toolpath is a polyline plus an arc.
+MachiningProject explicit_toolpath(std::size_t points);
+
+}  // namespace stepnc::post::testing

@@ -1,0 +1,278 @@
+#include "simulation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "stepnc/post/feature_geometry.h"
+#include "stepnc/post/motion.h"
+
+namespace stepnc::post::testing {
+
+namespace {
+
+constexpr double tolerance = 0.01;
+
+struct Allowance {
+  double side = 0, bottom = 0;
+};
+
+// The allowance the last operation on each feature leaves, in plan order.
+void last_allowances(const MachiningProject& project, const Executable& e, std::map<int, Allowance>& out) {
+  if (e.kind == ExecutableKind::workingstep) {
+    const Operation& op = project.operations[static_cast<std::size_t>(e.step.operation)];
+    const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling ||
+                       op.kind == OperationKind::plane_rough_milling || op.kind == OperationKind::contouring_rough ||
+                       op.kind == OperationKind::facing_rough;
+    out[e.step.feature] = rough ? Allowance{op.allowance_side + op.allowance, op.allowance_bottom + op.allowance}
+                                : Allowance{};
+    return;
+  }
+  for (const auto& child : e.children) last_allowances(project, child, out);
+}
+
+// Where the tool is during a move, sampled so no cell is skipped.
+template <class F>
+void sample_move(const Move& m, double step, F&& at) {
+  if (m.kind == Move::Kind::arc) {
+    for (const Vec3 p : arc_points(m, step)) at(p);
+    return;
+  }
+  const double len = std::hypot(m.to.x - m.from.x, m.to.y - m.from.y, m.to.z - m.from.z);
+  const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+  for (int i = 0; i <= n; ++i) {
+    const double t = static_cast<double>(i) / n;
+    at({m.from.x + (m.to.x - m.from.x) * t, m.from.y + (m.to.y - m.from.y) * t, m.from.z + (m.to.z - m.from.z) * t});
+  }
+}
+
+class HeightMap {
+ public:
+  HeightMap(Vec3 lo, Vec3 hi, double cell)
+      : lo_(lo), cell_(cell), nx_(static_cast<int>(std::ceil((hi.x - lo.x) / cell))),
+        ny_(static_cast<int>(std::ceil((hi.y - lo.y) / cell))),
+        h_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), hi.z), bottom_(lo.z) {}
+
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  Vec2 centre(int i, int j) const { return {lo_.x + (i + 0.5) * cell_, lo_.y + (j + 0.5) * cell_}; }
+  double& at(int i, int j) { return h_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)]; }
+
+  // Calls f(i, j) for every cell whose centre lies within r of p.
+  template <class F>
+  void disc(Vec3 p, double r, F&& f) {
+    const int i0 = std::max(0, static_cast<int>(std::floor((p.x - r - lo_.x) / cell_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((p.x + r - lo_.x) / cell_)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((p.y - r - lo_.y) / cell_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((p.y + r - lo_.y) / cell_)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vec2 c = centre(i, j);
+        if ((c.x - p.x) * (c.x - p.x) + (c.y - p.y) * (c.y - p.y) <= r * r) f(i, j);
+      }
+  }
+
+  double bottom() const { return bottom_; }
+
+ private:
+  Vec3 lo_;
+  double cell_;
+  int nx_, ny_;
+  std::vector<double> h_;
+  double bottom_;
+};
+
+}  // namespace
+
+SimulationReport simulate_milling(const MachiningProject& project, const Program& program, double cell) {
+  SimulationReport report;
+  const Workpiece& w = project.workpiece;
+  HeightMap map(w.block_min, w.block_max, cell);
+  double radius = 0;
+  bool cutting_tool = true;
+  bool first_move = true;
+  for (const Move& m : expand_motion(program)) {
+    if (m.kind == Move::Kind::tool_change) {
+      const ToolEntry* entry = program.tool(static_cast<int>(m.value));
+      radius = entry ? entry->tool.diameter / 2 : 0;
+      cutting_tool = entry && entry->tool.kind != ToolKind::tap;  // a tap cuts threads only
+      continue;
+    }
+    if (m.kind == Move::Kind::rapid) {
+      if (first_move) {
+        first_move = false;
+        continue;
+      }
+      ++report.rapids_checked;
+      double worst = 0;
+      Vec3 where{};
+      sample_move(m, cell / 2, [&](Vec3 p) {
+        map.disc(p, std::max(0.0, radius - cell), [&](int i, int j) {
+          const double depth = map.at(i, j) - p.z;
+          if (depth > worst) {
+            worst = depth;
+            where = p;
+          }
+        });
+      });
+      if (worst > tolerance)
+        report.problems.push_back(fmt::format("rapid (block {}) runs {:.3f} mm into material at ({:.3f}, {:.3f}, {:.3f})",
+                                              m.block, worst, where.x, where.y, where.z));
+      continue;
+    }
+    if (m.kind != Move::Kind::feed && m.kind != Move::Kind::arc) continue;
+    first_move = false;
+    if (!cutting_tool) continue;
+    sample_move(m, cell / 2, [&](Vec3 p) {
+      map.disc(p, radius, [&](int i, int j) {
+        double& h = map.at(i, j);
+        h = std::max(map.bottom(), std::min(h, p.z));
+      });
+    });
+  }
+
+  std::map<int, Allowance> allowance;
+  last_allowances(project, project.main_workplan, allowance);
+  const double margin = 1.5 * cell;
+  // Sharp convex corners of polygon pockets stay uncut within one tool radius.
+  std::vector<std::pair<Vec2, double>> unreachable;
+  double largest_radius = 0;
+  for (const auto& entry : program.tools) largest_radius = std::max(largest_radius, entry.tool.diameter / 2);
+  for (const Feature& f : project.features)
+    if (auto* pocket = std::get_if<ClosedPocket>(&f.shape))
+      if (auto* polygon = std::get_if<PolygonProfile>(&pocket->profile); polygon && polygon->corner_radius == 0)
+        for (const Vec2 v : polygon->vertices) {
+          const Vec3 g = f.placement.to_global(v);
+          unreachable.push_back({{g.x, g.y}, largest_radius * 1.5});
+        }
+
+  std::size_t reported = 0;
+  for (int j = 0; j < map.ny(); ++j) {
+    for (int i = 0; i < map.nx(); ++i) {
+      const Vec2 c = map.centre(i, j);
+      double must_reach = std::numeric_limits<double>::infinity();  // deepest bottom covering the cell
+      double may_reach = w.block_max.z;                             // deepest bottom allowed near it
+      for (std::size_t k = 0; k < project.features.size(); ++k) {
+        const Feature& f = project.features[k];
+        const double d = feature_signed_distance(f, c);
+        const Allowance a = allowance.count(static_cast<int>(k)) ? allowance[static_cast<int>(k)] : Allowance{};
+        const bool through = std::holds_alternative<RoundHole>(f.shape) &&
+                             std::get<RoundHole>(f.shape).bottom == HoleBottom::through;
+        const double bottom = through ? w.block_min.z : f.placement.location.z - f.depth;
+        if (d <= margin) may_reach = std::min(may_reach, bottom);
+        if (d <= -(margin + a.side)) must_reach = std::min(must_reach, bottom + a.bottom);
+      }
+      const bool corner = std::any_of(unreachable.begin(), unreachable.end(), [&](const auto& u) {
+        return std::hypot(c.x - u.first.x, c.y - u.first.y) < u.second;
+      });
+      const double h = map.at(i, j);
+      ++report.cells_checked;
+      auto note = [&](std::string text) {
+        if (++reported <= 20) report.problems.push_back(std::move(text));
+      };
+      if (std::isfinite(must_reach) && !corner && h > must_reach + tolerance)
+        note(fmt::format("({:.2f}, {:.2f}) left at z {:.3f}, feature bottom {:.3f}", c.x, c.y, h, must_reach));
+      if (h < may_reach - tolerance)
+        note(fmt::format("({:.2f}, {:.2f}) cut to z {:.3f}, below the allowed {:.3f}", c.x, c.y, h, may_reach));
+    }
+  }
+  if (reported > 20) report.problems.push_back(fmt::format("... {} cell problems in all", reported));
+  return report;
+}
+
+SimulationReport simulate_turning(const MachiningProject& project, const Program& program, double bin) {
+  SimulationReport report;
+  const Workpiece& w = project.workpiece;
+  const double z0 = -w.stock_length, z1 = w.stock_front;
+  const int n = static_cast<int>(std::ceil((z1 - z0) / bin));
+  std::vector<double> r(static_cast<std::size_t>(n), w.stock_radius);
+  auto index = [&](double z) { return static_cast<int>(std::floor((z - z0) / bin)); };
+  double width = 0;  // grooving insert width behind the reference corner
+  bool first_move = true;
+  for (const Move& m : expand_motion(program)) {
+    if (m.kind == Move::Kind::tool_change) {
+      const ToolEntry* entry = program.tool(static_cast<int>(m.value));
+      width = entry && entry->tool.kind == ToolKind::grooving_insert ? entry->tool.cutting_width : 0;
+      continue;
+    }
+    const bool rapid = m.kind == Move::Kind::rapid;
+    if (!rapid && m.kind != Move::Kind::feed) continue;
+    if (rapid && first_move) {
+      first_move = false;
+      continue;
+    }
+    first_move = false;
+    // Every bin the tool edge covers during the move, with the radius it reaches.
+    sample_move(m, bin / 2, [&](Vec3 p) {
+      const int a = index(p.z - width + 1e-9), b = index(p.z - 1e-9);
+      for (int k = std::max(0, std::min(a, b)); k <= std::min(n - 1, std::max(a, b)); ++k) {
+        double& radius = r[static_cast<std::size_t>(k)];
+        if (rapid) {
+          if (radius - p.x > tolerance && p.x > 1e-6) {
+            if (report.problems.size() < 20)
+              report.problems.push_back(fmt::format("rapid (block {}) at x {:.3f} z {:.3f} meets material of radius {:.3f}",
+                                                    m.block, p.x, p.z, radius));
+          }
+        } else {
+          radius = std::min(radius, std::max(0.0, p.x));
+        }
+      }
+    });
+    if (rapid) ++report.rapids_checked;
+  }
+  std::map<int, Allowance> allowance;
+  last_allowances(project, project.main_workplan, allowance);
+  // z where the target radius jumps: a point tool cuts both sides there.
+  std::vector<double> edges{0, z0, z1};
+  for (const Feature& feature : project.features) {
+    if (auto* profile = std::get_if<TurningProfile>(&feature.shape))
+      for (const Vec2 p : profile->points) edges.push_back(p.x);
+    if (auto* groove = std::get_if<Groove>(&feature.shape)) {
+      edges.push_back(groove->z);
+      edges.push_back(groove->z - groove->width);
+    }
+  }
+  // Target radius per z: stock, faced to z = 0, then profiles and grooves.
+  for (int k = 0; k < n; ++k) {
+    const double z = z0 + (k + 0.5) * bin;
+    double target = w.stock_radius;
+    bool machined = false;
+    if (z > 0) {
+      target = 0;
+      machined = true;
+    }
+    for (std::size_t f = 0; f < project.features.size(); ++f) {
+      const Feature& feature = project.features[f];
+      const double extra = allowance.count(static_cast<int>(f)) ? allowance[static_cast<int>(f)].side : 0;
+      if (auto* profile = std::get_if<TurningProfile>(&feature.shape)) {
+        const auto& pts = profile->points;
+        for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+          const double za = pts[i].x, zb = pts[i + 1].x;
+          if (z <= std::min(za, zb) || z > std::max(za, zb)) continue;
+          target = std::min(target, pts[i].y + (pts[i + 1].y - pts[i].y) * (z - za) / (zb - za) + extra);
+          machined = true;
+        }
+      } else if (auto* groove = std::get_if<Groove>(&feature.shape)) {
+        if (z < groove->z && z > groove->z - groove->width) {
+          target = std::min(target, groove->bottom_radius);
+          machined = true;
+        }
+      }
+    }
+    const double have = r[static_cast<std::size_t>(k)];
+    ++report.cells_checked;
+    const bool near_edge =
+        std::any_of(edges.begin(), edges.end(), [&](double e) { return std::abs(z - e) < 2 * bin; });
+    if (near_edge) continue;
+    if (machined && have > target + tolerance && report.problems.size() < 20)
+      report.problems.push_back(fmt::format("z {:.3f}: radius {:.3f} left, target {:.3f}", z, have, target));
+    if (have < target - tolerance && report.problems.size() < 20)
+      report.problems.push_back(fmt::format("z {:.3f}: cut to radius {:.3f}, below the target {:.3f}", z, have, target));
+  }
+  return report;
+}
+
+}  // namespace stepnc::post::testing

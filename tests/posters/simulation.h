@@ -1,0 +1,32 @@
+// Simple material-removal simulations of posted motion, for tests:
+// a 2.5D height map for milling (flat-bottomed cylindrical tools), and a
+// radius-per-z profile for turning (a point tool; grooving inserts cut
+// their width behind the reference corner).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "stepnc/post/machining.h"
+#include "stepnc/post/program.h"
+
+namespace stepnc::post::testing {
+
+struct SimulationReport {
+  std::vector<std::string> problems;  // empty = every check passed
+  std::size_t rapids_checked = 0;
+  std::size_t cells_checked = 0;
+};
+
+// Checks, for the final state after the whole program:
+//  - each feature is cut to its depth over its outline, within the
+//    allowance left by the last operation on it (sharp convex corners of
+//    general profiles excepted: a round tool cannot reach them);
+//  - nothing outside the features is cut below the top the features allow;
+//  - no rapid move runs through material (the first move, from an unknown
+//    start, excepted).
+SimulationReport simulate_milling(const MachiningProject& project, const Program& program, double cell = 0.5);
+
+SimulationReport simulate_turning(const MachiningProject& project, const Program& program, double bin = 0.02);
+
+}  // namespace stepnc::post::testing

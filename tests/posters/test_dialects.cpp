@@ -1,0 +1,104 @@
+#include <catch2/catch.hpp>
+
+#include "projects.h"
+#include "stepnc/post/dialect.h"
+#include "stepnc/post/generate.h"
+#include "stepnc/post/plot.h"
+
+using namespace stepnc::post;
+
+namespace {
+
+std::string posted(const MachiningProject& project, Dialect dialect) {
+  const auto result = generate(project);
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  return print(result.program, dialect).text;
+}
+
+bool has_line(const std::string& text, const std::string& line) {
+  return text.find("\n" + line + "\n") != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("dialect names") {
+  CHECK(dialect_from_name("siemens840d") == Dialect::siemens840d);
+  CHECK(dialect_from_name("fanuc") == Dialect::fanuc);
+  CHECK_FALSE(dialect_from_name("heidenhain"));
+  CHECK(to_string(Dialect::canonical) == "canonical");
+}
+
+TEST_CASE("hole cycles in each dialect") {
+  const auto project = testing::milling_features();
+  const std::string ngc = posted(project, Dialect::rs274ngc);
+  CHECK(has_line(ngc, "G99 G82 X130 Y80 Z-2 R2 P0.5 F300"));   // centre drilling with dwell
+  CHECK(has_line(ngc, "G99 G83 X130 Y80 Z-20 R2 Q6 F300"));     // peck drilling
+  CHECK(has_line(ngc, "G99 G84 X130 Y80 Z-20 R2 F450"));        // tapping: 1.5 mm x 300 rev/min
+  CHECK(has_line(ngc, "G99 G86 X145 Y80 Z-15 R2 P0 F300"));     // boring, spindle stop
+  CHECK(has_line(ngc, "G99 G89 X145 Y80 Z-15 R2 P0.2 F300"));   // boring, dwell, feed out
+
+  const std::string fanuc = posted(project, Dialect::fanuc);
+  CHECK(has_line(fanuc, "G99 G82 X130. Y80. Z-2. R2. P500 F300."));
+  CHECK(has_line(fanuc, "G99 G83 X130. Y80. Z-20. R2. Q6. F300."));
+
+  const std::string siemens = posted(project, Dialect::siemens840d);
+  // RTP, RFP, SDIS, DP, DPR(, DTB ...)
+  CHECK(siemens.find(" CYCLE82(5,0,2,-2,,0.5)\n") != std::string::npos);
+  // ..., FDEP, FDPR, DAM, DTB, DTS, FRF, VARI
+  CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-6,,6,0,0,1,1)\n") != std::string::npos);
+  // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
+  CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,3,,1.5,,300,300)\n") != std::string::npos);
+  // ..., DTB, SDIR, RPA, RPO, RPAP
+  CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,3,0,0,0)\n") != std::string::npos);
+  CHECK(siemens.find(" CYCLE85(5,0,2,-15,,0.2,300,300)\n") != std::string::npos);
+  // Round-ended slot as SLOT1, circular pocket as POCKET2.
+  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,1,0,2,3,1200,2400)\n") != std::string::npos);
+  CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,1200,1200,3,0,0.5,1)\n") != std::string::npos);
+}
+
+TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is constant") {
+  auto project = testing::shaft();
+  const std::string ngc = posted(project, Dialect::rs274ngc);
+  CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G80"));
+  CHECK(has_line(ngc, "G96 D3000 S200 M3"));
+  CHECK(has_line(ngc, "G95 F0.3"));
+  CHECK(has_line(ngc, "G1 Z-90"));  // a rough pass
+  CHECK(ngc.find("X69") != std::string::npos);  // r 34.5 written as a diameter
+
+  // The shaft's depth list is not constant: Fanuc posts the passes.
+  CHECK(posted(project, Dialect::fanuc).find("G71") == std::string::npos);
+  std::get<UnidirectionalTurning>(project.operations[3].strategy).cutting_depths = {3};
+  const std::string fanuc = posted(project, Dialect::fanuc);
+  CHECK(has_line(fanuc, "G71 U3. R2."));
+  CHECK(has_line(fanuc, "G71 P1100 Q1107 U1. W0. F0.3"));
+  CHECK(has_line(fanuc, "N1100 G0 X32."));
+  CHECK(has_line(fanuc, "N1107 G1 X70. Z-120."));
+  CHECK(has_line(fanuc, "G50 S3000."));
+  CHECK(has_line(fanuc, "G96 S200. M03"));
+  CHECK(has_line(fanuc, "T0101"));
+}
+
+TEST_CASE("numbers: fixed decimals, trimmed, no negative zero") {
+  MachiningProject project = testing::explicit_toolpath(3);
+  auto& line = std::get<Polyline>(project.operations[0].toolpaths[0].elements[0]);
+  line.points = {{1.23456, -0.00001, -2}, {10, 0.5, -2}, {-3.1, 2.25, -2.5}};
+  std::get<CircularArc>(project.operations[0].toolpaths[0].elements[1]) = {{3.1, -2.25, -2.5}, {0, 0, 0}, true, 0};
+  const std::string ngc = posted(project, Dialect::rs274ngc);
+  CHECK(has_line(ngc, "G1 X1.2346 Y0 Z-2"));
+  CHECK(has_line(ngc, "X10 Y0.5"));
+  CHECK(has_line(ngc, "G2 X3.1 Y-2.25 I3.1 J-2.25"));
+  const std::string fanuc = posted(project, Dialect::fanuc);
+  CHECK(has_line(fanuc, "G1 X1.235 Y0. Z-2."));
+}
+
+TEST_CASE("the SVG plot draws workpiece, features, feeds and rapids") {
+  const auto project = testing::example1();
+  const auto result = generate(project);
+  const std::string svg = plot_svg(project, result.program);
+  CHECK(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0) == 0);
+  CHECK(svg.find("stroke-dasharray") != std::string::npos);  // rapids
+  CHECK(svg.find("#1f4fd1") != std::string::npos);           // feeds
+  CHECK(svg.find("#2a9d2a") != std::string::npos);           // feature outlines
+  CHECK(svg.find("<title>EXECUTE EXAMPLE1</title>") != std::string::npos);
+}

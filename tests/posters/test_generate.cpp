@@ -1,0 +1,232 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "projects.h"
+#include "stepnc/post/dialect.h"
+#include "stepnc/post/generate.h"
+
+using namespace stepnc::post;
+
+namespace {
+
+std::vector<std::string> workingstep_comments(const Program& program) {
+  std::vector<std::string> out;
+  for (const auto& block : program.blocks)
+    if (auto* c = std::get_if<Comment>(&block.statement); c && c->text.rfind("WS(", 0) == 0) out.push_back(c->text);
+  return out;
+}
+
+bool mentions(const GenerateResult& result, const std::string& text) {
+  return std::any_of(result.diagnostics.begin(), result.diagnostics.end(),
+                     [&](const Diagnostic& d) { return d.to_string().find(text) != std::string::npos; });
+}
+
+Executable plan(ExecutableKind kind, std::int64_t id, std::vector<Executable> children) {
+  Executable e;
+  e.kind = kind;
+  e.source = {id, "PLAN"};
+  e.children = std::move(children);
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("Example 1 posts its five workingsteps in order with three tools") {
+  const auto result = generate(testing::example1());
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  const auto comments = workingstep_comments(result.program);
+  REQUIRE(comments.size() == 5);
+  CHECK(comments[0].find("WS FINISH PLANAR FACE1 #10") != std::string::npos);
+  CHECK(comments[4].find("WS FINISH POCKET1 #14") != std::string::npos);
+  REQUIRE(result.program.tools.size() == 3);
+  CHECK(result.program.tools[0].tool.source.name == "MILL 20MM");
+  CHECK(result.program.tools[1].number == 2);
+  // The bottom fillet (1.0) is smaller than the mill's corner radius (1.5):
+  // a warning naming the pocket, as the sample's README notes.
+  REQUIRE(result.diagnostics.size() == 2);  // once per pocket operation
+  CHECK(result.diagnostics[0].severity == Diagnostic::Severity::warning);
+  CHECK(result.diagnostics[0].where.id == 18);
+}
+
+TEST_CASE("technology: ISO signs, feed per tooth and cutting speed") {
+  auto project = testing::example1();
+  project.main_workplan.children.resize(1);
+  Technology& t = *project.operations[0].technology;
+  SECTION("negative spindle speed turns clockwise") {
+    const auto result = generate(project);
+    const auto it = std::find_if(result.program.blocks.begin(), result.program.blocks.end(),
+                                 [](const Block& b) { return std::holds_alternative<SpindleOn>(b.statement); });
+    REQUIRE(it != result.program.blocks.end());
+    CHECK(std::get<SpindleOn>(it->statement).clockwise);
+    CHECK(std::get<SpindleOn>(it->statement).rpm == Approx(720));
+  }
+  SECTION("feed per tooth times flutes times speed") {
+    t.feedrate.reset();
+    t.feed_per_tooth = 0.1;
+    const auto result = generate(project);
+    REQUIRE(result.ok());
+    const auto it = std::find_if(result.program.blocks.begin(), result.program.blocks.end(),
+                                 [](const Block& b) { return std::holds_alternative<FeedRate>(b.statement); });
+    CHECK(std::get<FeedRate>(it->statement).value == Approx(0.1 * 4 * 720));
+  }
+  SECTION("cutting speed gives the spindle speed") {
+    t.spindle_rpm.reset();
+    t.cutting_speed = 62.83185307;  // m/min on a 20 mm mill: 1000 rev/min
+    const auto result = generate(project);
+    REQUIRE(result.ok());
+    const auto it = std::find_if(result.program.blocks.begin(), result.program.blocks.end(),
+                                 [](const Block& b) { return std::holds_alternative<SpindleOn>(b.statement); });
+    CHECK(std::get<SpindleOn>(it->statement).rpm == Approx(1000).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("executable order: nested workplans, parallel and selective") {
+  auto project = testing::example1();
+  auto ws = project.main_workplan.children;
+  project.main_workplan.children = {
+      plan(ExecutableKind::workplan, 90, {ws[0], plan(ExecutableKind::parallel, 91, {ws[1], ws[2]})}),
+      plan(ExecutableKind::selective, 92, {ws[3], ws[4]}),
+      ws[4]};
+  const auto result = generate(project);
+  REQUIRE(result.ok());
+  const auto comments = workingstep_comments(result.program);
+  REQUIRE(comments.size() == 5);
+  CHECK(comments[0].find("#10") != std::string::npos);
+  CHECK(comments[1].find("#11") != std::string::npos);  // parallel: listed order
+  CHECK(comments[2].find("#12") != std::string::npos);
+  CHECK(comments[3].find("#13") != std::string::npos);  // selective: the first alternative
+  CHECK(comments[4].find("#14") != std::string::npos);
+  const bool noted = std::any_of(result.program.blocks.begin(), result.program.blocks.end(), [](const Block& b) {
+    auto* c = std::get_if<Comment>(&b.statement);
+    return c && c->text == "selective #92: first of 2 alternatives";
+  });
+  CHECK(noted);
+}
+
+TEST_CASE("diagnostics name the instance and stop the program") {
+  auto project = testing::example1();
+  SECTION("unknown strategy") {
+    project.operations[3].strategy = UnknownStrategy{"CENTER_MILLING"};
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#22 'ROUGH POCKET1': error: unknown machining strategy 'CENTER_MILLING'"));
+  }
+  SECTION("tool too big for the pocket corner radius") {
+    std::get<PolygonProfile>(std::get<ClosedPocket>(project.features[2].shape).profile).corner_radius = 6;
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
+  }
+  SECTION("missing technology") {
+    project.operations[1].technology.reset();
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#20 'DRILL HOLE1': error: missing technology"));
+  }
+  SECTION("feed per tooth without flutes") {
+    project.operations[1].technology->feedrate.reset();
+    project.operations[1].technology->feed_per_tooth = 0.05;
+    project.tools[1].flutes = 0;
+    const auto result = generate(project);
+    CHECK(mentions(result, "#20 'DRILL HOLE1': error: missing technology: feed per tooth needs the tool's flute count"));
+  }
+  SECTION("drill larger than the hole") {
+    project.tools[1].diameter = 25;
+    CHECK(mentions(generate(project), "#20 'DRILL HOLE1': error: tool 'SPIRAL_DRILL_20MM' (diameter 25) is larger"));
+  }
+  SECTION("operation that does not fit the feature") {
+    project.main_workplan.children[1].step.feature = 2;  // drilling a pocket
+    CHECK(mentions(generate(project), "#20 'DRILL HOLE1': error: drilling cannot machine feature 'POCKET1' (#18)"));
+  }
+  SECTION("control structures are reported, not guessed") {
+    Executable loop;
+    loop.kind = ExecutableKind::unsupported;
+    loop.source = {77, "REPEAT"};
+    loop.entity_name = "while_statement";
+    project.main_workplan.children.push_back(loop);
+    CHECK(mentions(generate(project), "#77 'REPEAT': error: while_statement is not supported"));
+  }
+  SECTION("retract plane above the security plane") {
+    project.operations[0].retract_plane = 40;
+    CHECK(mentions(generate(project), "#19 'FINISH PLANAR FACE1': error: retract plane z=45 lies above the security plane"));
+  }
+}
+
+TEST_CASE("contour_parallel on a non-convex profile is refused, bidirectional works") {
+  auto project = testing::milling_features();
+  project.operations[2].strategy = ContourParallel{};
+  CHECK(mentions(generate(project), "#32 'ZIGZAG L': error: contour_parallel on a non-convex general profile"));
+}
+
+TEST_CASE("unidirectional turning follows the cutting-depth list (seed 001 5.2)") {
+  const auto result = generate(testing::shaft());
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  // Passes of the contour rough: feed moves along -z at constant radius.
+  std::vector<double> radii;
+  Vec3 at{};
+  const std::int64_t rough_id = 23;
+  for (const auto& block : result.program.blocks) {
+    const Provenance& p = result.program.provenance[block.provenance];
+    if (auto* l = std::get_if<Linear>(&block.statement)) {
+      if (p.operation.id == rough_id && std::abs(l->to.x - at.x) < 1e-9 && l->to.z < at.z - 1) radii.push_back(l->to.x);
+      at = l->to;
+    } else if (auto* r = std::get_if<Rapid>(&block.statement)) {
+      at = r->to;
+    }
+  }
+  // From r 37.5: 3, 3, 3, 3, 3, 2.5, 1.5, then the last entry repeats and
+  // the final pass takes what is left down to r 16 + 0.5 allowance; then
+  // the contour pass leaving the allowance (its runs along -z: approach,
+  // r 18 + 0.5, r 25 + 0.5, r 35 + 0.5).
+  const std::vector<double> expected{34.5, 31.5, 28.5, 25.5, 22.5, 20, 18.5, 17, 16.5, 16.5, 18.5, 25.5, 35.5};
+  REQUIRE(radii.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) CHECK(radii[i] == Approx(expected[i]));
+}
+
+TEST_CASE("explicit toolpaths post exactly the points they carry") {
+  const auto project = testing::explicit_toolpath(500);
+  const auto result = generate(project);
+  REQUIRE(result.ok());
+  const auto& points = std::get<Polyline>(project.operations[0].toolpaths[0].elements[0]).points;
+  std::vector<Vec3> posted;
+  for (const auto& block : result.program.blocks)
+    if (auto* l = std::get_if<Linear>(&block.statement)) posted.push_back(l->to);
+  REQUIRE(posted.size() == points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    CHECK(posted[i].x == points[i].x);
+    CHECK(posted[i].y == points[i].y);
+    CHECK(posted[i].z == points[i].z);
+  }
+  const auto arc = std::find_if(result.program.blocks.begin(), result.program.blocks.end(),
+                                [](const Block& b) { return std::holds_alternative<Arc>(b.statement); });
+  REQUIRE(arc != result.program.blocks.end());
+  CHECK(std::get<Arc>(arc->statement).extra_turns == 1);
+}
+
+TEST_CASE("traceability: every posted line of a workingstep maps back to it") {
+  const auto result = generate(testing::example1());
+  const auto printed = print(result.program, Dialect::rs274ngc);
+  const std::string json = trace_json(result.program, printed);
+  CHECK(json.find("\"workingstep\": {\"id\": 13, \"name\": \"WS ROUGH POCKET1\"}, \"operation\": {\"id\": 22, "
+                  "\"name\": \"ROUGH POCKET1\"}, \"feature\": {\"id\": 18, \"name\": \"POCKET1\"}") !=
+        std::string::npos);
+  // Every motion line between the first and the last workingstep is traced.
+  std::size_t line = 0, untraced_motion = 0;
+  std::size_t next = 0;
+  std::string_view text = printed.text;
+  const std::size_t first_traced = printed.trace.front().line, last_traced = printed.trace.back().line;
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    const std::string_view l = text.substr(0, end);
+    text.remove_prefix(end + 1);
+    ++line;
+    while (next < printed.trace.size() && printed.trace[next].line < line) ++next;
+    const bool traced = next < printed.trace.size() && printed.trace[next].line == line;
+    if (line > first_traced && line < last_traced && (l.rfind("G1", 0) == 0 || l.rfind("G2", 0) == 0) && !traced)
+      ++untraced_motion;
+  }
+  CHECK(untraced_motion == 0);
+}

@@ -1,0 +1,95 @@
+// Every rs274ngc program the tests post runs through LinuxCNC's standalone
+// interpreter (`rs274 -g`); it must run without error, and its canonical
+// machining calls must match our `canonical` printer move by move within
+// 1 micrometre.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "canonical_compare.h"
+#include "projects.h"
+#include "stepnc/post/dialect.h"
+#include "stepnc/post/generate.h"
+
+namespace fs = std::filesystem;
+using namespace stepnc::post;
+
+namespace {
+
+std::string find_rs274() {
+  if (const char* path = std::getenv("PATH")) {
+    std::stringstream dirs(path);
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+      const fs::path candidate = fs::path(dir) / "rs274";
+      if (fs::exists(candidate)) return candidate.string();
+    }
+  }
+  return {};
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+void check_with_linuxcnc(const std::string& name, const MachiningProject& project) {
+  const std::string rs274 = find_rs274();
+  if (rs274.empty()) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: LinuxCNC comparison of '" << name
+                                                                                             << "' skipped");
+    return;
+  }
+  const auto generated = generate(project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const Program& program = generated.program;
+
+  const fs::path dir = fs::temp_directory_path() / ("stepnc_posters_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path ngc = dir / (name + ".ngc"), table = dir / (name + ".tbl"), out = dir / (name + ".canon"),
+                 err = dir / (name + ".err");
+  write(ngc, print(program, Dialect::rs274ngc).text);
+  write(table, linuxcnc_tool_table(program));
+  const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' '" + ngc.string() + "' '" +
+                              out.string() + "' > /dev/null 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  const std::string errors = read(err), listing = read(out);
+  INFO("program: " << ngc.string() << "\nrs274 stderr: " << errors);
+  REQUIRE(status == 0);
+  std::string rest = errors;  // nothing on stderr but its banner
+  if (const auto banner = rest.find("executing"); banner != std::string::npos) rest.erase(banner, 9);
+  CHECK(rest.find_first_not_of(" \n") == std::string::npos);
+  CHECK(testing::non_canonical_lines(listing).empty());
+
+  const auto theirs = testing::canonical_moves(listing);
+  const auto ours = testing::canonical_moves(print(program, Dialect::canonical).text);
+  INFO(ours.size() << " moves compared");
+  CHECK(ours.size() > 10);
+  CHECK(testing::compare_moves(ours, theirs, 0.001) == "");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+TEST_CASE("LinuxCNC runs the Example 1 mill program and agrees move by move") {
+  check_with_linuxcnc("example1", testing::example1());
+}
+
+TEST_CASE("LinuxCNC runs every milling feature and hole cycle and agrees move by move") {
+  check_with_linuxcnc("milling_features", testing::milling_features());
+}
+
+TEST_CASE("LinuxCNC runs the lathe program (diameter mode, CSS) and agrees move by move") {
+  check_with_linuxcnc("shaft", testing::shaft());
+}
+
+TEST_CASE("LinuxCNC runs a program with an explicit toolpath and a helix") {
+  check_with_linuxcnc("explicit", testing::explicit_toolpath(2000));
+}
