@@ -5,8 +5,14 @@
 // the entity being declared (WHERE, DERIVE, bounds); then the schema's
 // visible declarations, enumeration items, and the built-ins.
 //
-// Attribute qualifiers (`x.name`) are checked only where the type of `x` is
-// known without type inference: enumeration references `type.item`.
+// Attribute qualifiers (`x.name`) are checked where the type of `x` is known
+// statically (a Shape): an entity, a select of entities, an enumeration type
+// (for `type.item`). An attribute is accepted if the entity, one of its
+// ancestors or one of its subtypes declares it, because schemas commonly
+// read a subtype's attribute after testing TYPEOF. Where nothing is known
+// (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
+#include <unordered_set>
+
 #include <fmt/format.h>
 
 #include "model/names.h"
@@ -18,6 +24,51 @@ namespace {
 using Binding = ast::Binding;
 using BindingKind = ast::Binding::Kind;
 
+// What an expression is statically known to be.
+struct Shape {
+  enum class Kind : uint8_t { Unknown, Entity, Select, Aggregate };
+  Kind kind = Kind::Unknown;
+  const Entity* entity = nullptr;       // Entity
+  const DefinedType* select = nullptr;  // Select
+  std::shared_ptr<const Shape> element;  // Aggregate
+
+  static Shape of_entity(const Entity* entity) { return entity ? Shape{Kind::Entity, entity, nullptr, {}} : Shape{}; }
+};
+
+// Does `entity`, an ancestor or a descendant declare `name`?
+bool family_has_attribute(const Entity& entity, std::string_view name) {
+  std::unordered_set<const Entity*> seen;
+  auto declares = [&](const Entity& e) {
+    for (const auto& attribute : e.attributes)
+      if (same_name(attribute->name, name) || same_name(attribute->renamed_to, name)) return true;
+    return false;
+  };
+  std::function<bool(const Entity&)> up = [&](const Entity& e) {
+    if (!seen.insert(&e).second) return false;
+    if (declares(e)) return true;
+    for (const Entity* supertype : e.supertypes)
+      if (up(*supertype)) return true;
+    return false;
+  };
+  if (up(entity)) return true;
+  seen.clear();
+  std::function<bool(const Entity&)> down = [&](const Entity& e) {
+    if (!seen.insert(&e).second) return false;
+    if (declares(e)) return true;
+    for (const Entity* subtype : e.subtypes)
+      if (down(*subtype)) return true;
+    return false;
+  };
+  return down(entity);
+}
+
+// The attribute `name` as seen from `entity` itself (own or inherited).
+const Attribute* own_or_inherited(const Entity& entity, std::string_view name) {
+  const auto attributes = visible_attributes(entity);
+  auto it = attributes.find(lowercase(name));
+  return it == attributes.end() ? nullptr : it->second;
+}
+
 class Checker {
  public:
   Checker(SchemaWork& work, Reporter& reporter) : work_(work), reporter_(reporter) {}
@@ -28,7 +79,7 @@ class Checker {
       check(*syntax->value);
     }
     for (auto& [type, syntax] : work_.types) {
-      SelfScope self(*this, true);
+      SelfScope self(*this, true, type->kind == DefinedType::Kind::Alias ? shape_of(type->underlying) : Shape{});
       if (syntax->kind == ast::TypeDecl::Kind::Alias) check_type_spec(syntax->underlying);
       for (const ast::DomainRule& rule : syntax->where) check(*rule.expression);
     }
@@ -39,10 +90,16 @@ class Checker {
   }
 
  private:
+  struct Entry {
+    Binding binding;
+    Shape shape;
+  };
+
   SchemaWork& work_;
   Reporter& reporter_;
-  std::vector<std::unordered_map<std::string, Binding>> scopes_;
+  std::vector<std::unordered_map<std::string, Entry>> scopes_;
   bool self_allowed_ = false;
+  Shape self_shape_;
 
   struct ScopeGuard {
     Checker& checker;
@@ -51,40 +108,91 @@ class Checker {
   };
   struct SelfScope {
     Checker& checker;
-    bool saved;
-    SelfScope(Checker& c, bool allowed) : checker(c), saved(c.self_allowed_) { checker.self_allowed_ = allowed; }
-    ~SelfScope() { checker.self_allowed_ = saved; }
+    bool saved_allowed;
+    Shape saved_shape;
+    SelfScope(Checker& c, bool allowed, Shape shape = {})
+        : checker(c), saved_allowed(c.self_allowed_), saved_shape(c.self_shape_) {
+      checker.self_allowed_ = allowed;
+      checker.self_shape_ = std::move(shape);
+    }
+    ~SelfScope() {
+      checker.self_allowed_ = saved_allowed;
+      checker.self_shape_ = std::move(saved_shape);
+    }
   };
 
   void error(ast::Position at, std::string message) { reporter_.error(work_.file, at, std::move(message)); }
 
-  void bind(const std::string& name, Binding binding) { scopes_.back()[lowercase(name)] = binding; }
-  void bind_local(const ast::Name& name) { bind(name.text, {.kind = BindingKind::Local}); }
+  void bind(const std::string& name, Binding binding, Shape shape = {}) {
+    scopes_.back()[lowercase(name)] = {binding, std::move(shape)};
+  }
+  void bind_local(const ast::Name& name, Shape shape = {}) {
+    bind(name.text, {.kind = BindingKind::Local}, std::move(shape));
+  }
+
+  // ------------------------------------------------------------ shapes
+
+  static Shape shape_of(const TypeRef& type, int depth = 0) {
+    if (depth > 64) return {};  // alias chains are short; cycles are not ours to report here
+    switch (type.kind) {
+      case TypeRef::Kind::Entity: return Shape::of_entity(type.entity);
+      case TypeRef::Kind::Defined:
+        if (!type.defined) return {};
+        if (type.defined->kind == DefinedType::Kind::Alias) return shape_of(type.defined->underlying, depth + 1);
+        if (type.defined->kind == DefinedType::Kind::Select) return {Shape::Kind::Select, nullptr, type.defined, {}};
+        return {};
+      case TypeRef::Kind::Aggregate:
+        if (!type.element) return {};
+        return {Shape::Kind::Aggregate, nullptr, nullptr, std::make_shared<Shape>(shape_of(*type.element, depth + 1))};
+      default: return {};
+    }
+  }
+
+  // The same for a type as written in an algorithm (parameters, locals).
+  Shape shape_of(const ast::TypeSpec& type, int depth = 0) const {
+    using K = ast::TypeSpec::Kind;
+    if (type.kind == K::Named) {
+      const Symbol* symbol = work_.find(type.name.text);
+      if (!symbol) return {};
+      if (symbol->kind == Symbol::Kind::Entity) return Shape::of_entity(symbol->entity);
+      if (symbol->kind == Symbol::Kind::Type) {
+        TypeRef ref;
+        ref.kind = TypeRef::Kind::Defined;
+        ref.defined = symbol->type;
+        return shape_of(ref);
+      }
+      return {};
+    }
+    if (type.is_aggregate() && type.element && depth < 64)
+      return {Shape::Kind::Aggregate, nullptr, nullptr, std::make_shared<Shape>(shape_of(*type.element, depth + 1))};
+    return {};
+  }
 
   // ------------------------------------------------------------ lookup
 
-  Binding lookup(std::string_view name) const {
+  Entry lookup(std::string_view name) const {
     const std::string key = lowercase(name);
     for (auto scope = scopes_.rbegin(); scope != scopes_.rend(); ++scope)
       if (auto it = scope->find(key); it != scope->end()) return it->second;
     if (auto it = work_.visible.find(key); it != work_.visible.end()) {
       const Symbol& symbol = it->second;
       switch (symbol.kind) {
-        case Symbol::Kind::Entity: return {.kind = BindingKind::Entity, .entity = symbol.entity};
-        case Symbol::Kind::Type: return {.kind = BindingKind::Type, .type = symbol.type};
-        case Symbol::Kind::Constant: return {.kind = BindingKind::Constant, .constant = symbol.constant};
-        case Symbol::Kind::Function: return {.kind = BindingKind::Function, .algorithm = symbol.algorithm};
-        case Symbol::Kind::Procedure: return {.kind = BindingKind::Procedure, .algorithm = symbol.algorithm};
+        case Symbol::Kind::Entity: return {{.kind = BindingKind::Entity, .entity = symbol.entity}, {}};
+        case Symbol::Kind::Type: return {{.kind = BindingKind::Type, .type = symbol.type}, {}};
+        case Symbol::Kind::Constant:
+          return {{.kind = BindingKind::Constant, .constant = symbol.constant}, shape_of(symbol.constant->type)};
+        case Symbol::Kind::Function: return {{.kind = BindingKind::Function, .algorithm = symbol.algorithm}, {}};
+        case Symbol::Kind::Procedure: return {{.kind = BindingKind::Procedure, .algorithm = symbol.algorithm}, {}};
         case Symbol::Kind::Rule:
         case Symbol::Kind::SubtypeConstraint: break;  // not usable in expressions
       }
     }
     if (auto it = work_.enumeration_items.find(key); it != work_.enumeration_items.end())
-      return {.kind = BindingKind::EnumerationItem, .type = it->second.front()};
+      return {{.kind = BindingKind::EnumerationItem, .type = it->second.front()}, {}};
     switch (builtin_kind(name)) {
-      case Builtin::Constant: return {.kind = BindingKind::BuiltinConstant};
-      case Builtin::Function: return {.kind = BindingKind::BuiltinFunction};
-      case Builtin::Procedure: return {.kind = BindingKind::BuiltinProcedure};
+      case Builtin::Constant: return {{.kind = BindingKind::BuiltinConstant}, {}};
+      case Builtin::Function: return {{.kind = BindingKind::BuiltinFunction}, {}};
+      case Builtin::Procedure: return {{.kind = BindingKind::BuiltinProcedure}, {}};
       case Builtin::None: break;
     }
     return {};
@@ -92,11 +200,14 @@ class Checker {
 
   // ------------------------------------------------------------ expressions
 
-  void check(const ast::Expression& e) {
+  // Binds the names of `e` and reports those that mean nothing; returns
+  // what `e` is statically known to be.
+  Shape check(const ast::Expression& e) {
     using K = ast::Expression::Kind;
     switch (e.kind) {
       case K::Name: {
-        e.binding = lookup(e.text);
+        Entry entry = lookup(e.text);
+        e.binding = entry.binding;
         switch (e.binding.kind) {
           case BindingKind::Unresolved: error(e.position, fmt::format("unknown name '{}'", e.text)); break;
           case BindingKind::Function:
@@ -105,49 +216,87 @@ class Checker {
           case BindingKind::BuiltinProcedure:
             error(e.position, fmt::format("'{}' is an algorithm, not a value; call it with arguments", e.text));
             break;
+          case BindingKind::Attribute: return shape_of(e.binding.attribute->type);
           default: break;
         }
-        return;
+        return entry.shape;
       }
       case K::Call: {
-        e.binding = lookup(e.text);
-        switch (e.binding.kind) {
-          case BindingKind::Function:
-          case BindingKind::BuiltinFunction:
-          case BindingKind::Entity: break;  // an entity constructor
-          case BindingKind::Unresolved: error(e.position, fmt::format("unknown function '{}'", e.text)); break;
-          default: error(e.position, fmt::format("'{}' is not a function or an entity", e.text)); break;
-        }
+        e.binding = lookup(e.text).binding;
         for (const auto& operand : e.operands) check(*operand);
-        return;
+        switch (e.binding.kind) {
+          case BindingKind::Function: return e.binding.algorithm ? shape_of(e.binding.algorithm->result) : Shape{};
+          case BindingKind::BuiltinFunction: return {};
+          case BindingKind::Entity: return Shape::of_entity(e.binding.entity);  // an entity constructor
+          case BindingKind::Unresolved: error(e.position, fmt::format("unknown function '{}'", e.text)); return {};
+          default: error(e.position, fmt::format("'{}' is not a function or an entity", e.text)); return {};
+        }
       }
       case K::Self:
         if (!self_allowed_) error(e.position, "SELF is only allowed in entity and type declarations");
-        return;
+        return self_shape_;
       case K::Attribute: {
         const ast::Expression& base = *e.operands[0];
-        check(base);
-        if (base.kind == K::Name && base.binding.kind == BindingKind::Type) check_enumeration_reference(e, base);
-        return;
+        const Shape base_shape = check(base);
+        if (base.kind == K::Name && base.binding.kind == BindingKind::Type) {
+          check_enumeration_reference(e, base);
+          return {};
+        }
+        return check_attribute_reference(e, base_shape);
       }
       case K::Group: {
         check(*e.operands[0]);
-        const Binding target = lookup(e.text);
-        if (target.kind != BindingKind::Entity) error(e.position, fmt::format("unknown entity '{}'", e.text));
+        const Binding target = lookup(e.text).binding;
         e.binding = target;
-        return;
+        if (target.kind != BindingKind::Entity) {
+          error(e.position, fmt::format("unknown entity '{}'", e.text));
+          return {};
+        }
+        return Shape::of_entity(target.entity);
+      }
+      case K::Index: {
+        const Shape base = check(*e.operands[0]);
+        for (size_t i = 1; i < e.operands.size(); ++i) check(*e.operands[i]);
+        // One index selects an element; a range keeps the aggregate.
+        if (base.kind == Shape::Kind::Aggregate && e.operands.size() == 2 && base.element) return *base.element;
+        return e.operands.size() == 2 ? Shape{} : base;
       }
       case K::Query: {
-        check(*e.operands[0]);
+        const Shape source = check(*e.operands[0]);
         ScopeGuard scope(*this);
-        bind(e.text, {.kind = BindingKind::Local});
+        bind(e.text, {.kind = BindingKind::Local},
+             source.kind == Shape::Kind::Aggregate && source.element ? *source.element : Shape{});
         check(*e.operands[1]);
-        return;
+        return source;
       }
       default:
         for (const auto& operand : e.operands) check(*operand);
-        return;
+        return {};
     }
+  }
+
+  // `x.name` where `x` is known to be an entity or a select: some entity it
+  // may be must declare `name`.
+  Shape check_attribute_reference(const ast::Expression& e, const Shape& base) {
+    if (base.kind == Shape::Kind::Entity) {
+      if (!family_has_attribute(*base.entity, e.text)) {
+        error(e.position, fmt::format("entity '{}' has no attribute '{}'", base.entity->name, e.text));
+        return {};
+      }
+      const Attribute* attribute = own_or_inherited(*base.entity, e.text);
+      return attribute ? shape_of(attribute->type) : Shape{};
+    }
+    if (base.kind == Shape::Kind::Select && !base.select->extensible) {
+      bool any_entity = false;
+      for (const auto& member : base.select->select_closure) {
+        if (!member.entity) continue;
+        any_entity = true;
+        if (family_has_attribute(*member.entity, e.text)) return {};
+      }
+      if (any_entity)
+        error(e.position, fmt::format("no entity of select type '{}' has an attribute '{}'", base.select->name, e.text));
+    }
+    return {};
   }
 
   // `type.item`: the item must belong to the enumeration `type`.
@@ -176,9 +325,9 @@ class Checker {
 
   void check_entity(const Entity& entity, const ast::EntityDecl& syntax) {
     ScopeGuard scope(*this);
-    SelfScope self(*this, true);
+    SelfScope self(*this, true, Shape::of_entity(&entity));
     for (const auto& [key, attribute] : visible_attributes(entity))
-      scopes_.back()[key] = {.kind = BindingKind::Attribute, .attribute = attribute};
+      scopes_.back()[key] = {{.kind = BindingKind::Attribute, .attribute = attribute}, {}};
     for (const ast::AttributeDecl& attribute : syntax.attributes) {
       check_type_spec(attribute.type);
       if (attribute.inverse_lower) check(*attribute.inverse_lower);
@@ -190,16 +339,14 @@ class Checker {
 
   void check_parameters(const std::vector<ast::Parameter>& parameters) {
     for (const ast::Parameter& group : parameters)
-      for (const ast::Name& name : group.names) bind_local(name);
+      for (const ast::Name& name : group.names) bind_local(name, shape_of(group.type));
     for (const ast::Parameter& group : parameters) check_type_spec(group.type);
   }
 
   // Local declarations, then statements, in a scope the caller opened.
   void check_body(const ast::AlgorithmBody& body) {
-    for (const auto& function : body.functions)
-      bind(function->name.text, {.kind = BindingKind::Function});
-    for (const auto& procedure : body.procedures)
-      bind(procedure->name.text, {.kind = BindingKind::Procedure});
+    for (const auto& function : body.functions) bind(function->name.text, {.kind = BindingKind::Function});
+    for (const auto& procedure : body.procedures) bind(procedure->name.text, {.kind = BindingKind::Procedure});
     for (const auto& entity : body.entities)
       error(entity->name.position, "ENTITY declarations inside algorithms are not supported");
     for (const auto& type : body.types)
@@ -208,12 +355,12 @@ class Checker {
     for (const auto& procedure : body.procedures) check_procedure(*procedure);
     for (const ast::ConstantDecl& constant : body.constants) {
       check(*constant.value);
-      bind_local(constant.name);
+      bind_local(constant.name, shape_of(constant.type));
     }
     for (const ast::LocalVariable& local : body.locals) {
       check_type_spec(local.type);
       if (local.initializer) check(*local.initializer);
-      for (const ast::Name& name : local.names) bind_local(name);
+      for (const ast::Name& name : local.names) bind_local(name, shape_of(local.type));
     }
     for (const auto& statement : body.statements) check(*statement);
   }
@@ -236,6 +383,13 @@ class Checker {
   void check_rule(const ast::RuleDecl& rule) {
     ScopeGuard scope(*this);
     SelfScope self(*this, false);
+    // Inside a RULE an entity name stands for its population: a set of it.
+    for (const ast::Name& name : rule.entities) {
+      const Symbol* symbol = work_.find(name.text);
+      if (symbol && symbol->kind == Symbol::Kind::Entity)
+        bind(name.text, {.kind = BindingKind::Entity, .entity = symbol->entity},
+             {Shape::Kind::Aggregate, nullptr, nullptr, std::make_shared<Shape>(Shape::of_entity(symbol->entity))});
+    }
     check_body(rule.body);
     for (const ast::DomainRule& domain_rule : rule.where) check(*domain_rule.expression);
   }
@@ -250,9 +404,9 @@ class Checker {
     using K = ast::Statement::Kind;
     switch (s.kind) {
       case K::Alias: {
-        check(*s.target);
+        Shape target = check(*s.target);
         ScopeGuard scope(*this);
-        bind_local(s.name);
+        bind_local(s.name, std::move(target));
         check(s.body);
         return;
       }
@@ -275,7 +429,7 @@ class Checker {
         check(s.else_body);
         return;
       case K::Call: {
-        s.binding = lookup(s.name.text);
+        s.binding = lookup(s.name.text).binding;
         if (s.binding.kind == BindingKind::Unresolved)
           error(s.name.position, fmt::format("unknown procedure '{}'", s.name.text));
         else if (s.binding.kind != BindingKind::Procedure && s.binding.kind != BindingKind::BuiltinProcedure)

@@ -93,14 +93,14 @@ std::string trace_json(const Program& program, const PrintedProgram& printed) {
   return out;
 }
 
-std::string linuxcnc_tool_table(const Program& program) {
+std::string linuxcnc_tool_table(const Program& program, bool with_lengths) {
   std::string out;
   for (const auto& entry : program.tools) {
     const double diameter = entry.tool.kind == ToolKind::turning_insert || entry.tool.kind == ToolKind::grooving_insert
                                 ? 2 * entry.tool.nose_radius
                                 : entry.tool.diameter;
     fmt::format_to(std::back_inserter(out), "T{} P{} D{:.4f} Z{:.4f} ;{}\n", entry.number, entry.number, diameter,
-                   entry.tool.length, entry.tool.source.name);
+                   with_lengths ? entry.tool.length : 0.0, entry.tool.source.name);
   }
   return out;
 }

@@ -24,7 +24,6 @@ class FanucPrinter final : public GcodePrinter {
     start_line();
     word("O1000");
     finish_line();
-    comment(program_.name);
     line(lathe() ? "G18 G21 G40 G97 G99" : "G17 G21 G40 G49 G80 G90 G94");
   }
   void epilogue() override {
@@ -55,22 +54,24 @@ class FanucPrinter final : public GcodePrinter {
   static std::string fmt_tool(int n) { return fmt::format("T{:02d}", n); }
   static std::string fmt_h(int n) { return fmt::format("H{:02d}", n); }
   static std::string lathe_tool(int n) { return fmt::format("T{:02d}{:02d}", n, n); }
+  // S words are integers on a Fanuc (a decimal point can raise an alarm).
+  static std::string integer_word(char letter, double value) { return fmt::format("{}{}", letter, std::lround(value)); }
   static std::string milliseconds(double seconds) { return fmt::format("P{}", std::lround(seconds * 1000)); }
   void spindle_on(const SpindleOn& s) override {
     if (s.css) {
       if (s.max_rpm > 0) {
         start_line();
         word("G50");
-        word('S', std::round(s.max_rpm));
+        word(integer_word('S', s.max_rpm));
         finish_line();
       }
       start_line();
       word("G96");
-      word('S', std::round(s.surface_speed));
+      word(integer_word('S', s.surface_speed));
     } else {
       start_line();
       if (lathe()) word("G97");
-      word('S', std::round(s.rpm));
+      word(integer_word('S', s.rpm));
     }
     word(s.clockwise ? "M03" : "M04");
     finish_line();

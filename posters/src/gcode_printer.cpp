@@ -49,12 +49,25 @@ PrintedProgram GcodePrinter::print() {
   return std::move(out_);
 }
 
-void GcodePrinter::statement(const Statement& s, std::size_t) {
+namespace {
+
+const Vec3* motion_end(const Statement& s) {
+  if (auto* r = std::get_if<Rapid>(&s)) return &r->to;
+  if (auto* l = std::get_if<Linear>(&s)) return &l->to;
+  if (auto* a = std::get_if<Arc>(&s)) return &a->to;
+  return nullptr;
+}
+
+}  // namespace
+
+void GcodePrinter::statement(const Statement& s, std::size_t index) {
   std::visit(
       [&](const auto& st) {
         using S = std::decay_t<decltype(st)>;
         if constexpr (std::is_same_v<S, ToolChange>) {
+          // The change moves the spindle: state every axis on the next move.
           forget_motion_mode();
+          forget_position();
           tool_change(st);
         } else if constexpr (std::is_same_v<S, SpindleOn>) {
           spindle_on(st);
@@ -97,9 +110,17 @@ void GcodePrinter::statement(const Statement& s, std::size_t) {
           last_ = {st.x, st.y, st.r};
         } else if constexpr (std::is_same_v<S, FeatureCycle>) {
           if (feature_cycle(st)) {
+            // The cycle leaves the tool above the feature, where its motion
+            // would have ended in the plane: carry on from there.
             skip_ = st.replaces;
             forget_motion_mode();
-            forget_position();
+            for (std::size_t k = index + st.replaces; k > index; --k) {
+              if (const Vec3* end = motion_end(program_.blocks[k].statement)) {
+                last_ = *end;
+                known_ = true;
+                break;
+              }
+            }
           }
         } else if constexpr (std::is_same_v<S, Comment>) {
           comment(st.text);

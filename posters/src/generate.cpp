@@ -672,7 +672,10 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
   double last_level = step.top;
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const double z = levels[k];
-    const double approach_z = last_level + options_.safety_distance;
+    // Roughing clears each level completely, so the next plunge can start
+    // just above it; finishing levels cut the walls only and always plunge
+    // from above the feature.
+    const double approach_z = (rough ? last_level : step.top) + options_.safety_distance;
     const bool floor = k + 1 == levels.size();
     if (!rough && !floor) {
       // Finishing: the walls layer by layer with the boundary lap only.
@@ -813,6 +816,11 @@ void Generator::explicit_toolpaths(const Job& step) {
     error(op.source, "freeform operation without toolpaths");
     return;
   }
+  std::size_t count = 0;
+  for (const Toolpath& path : op.toolpaths)
+    for (const ToolpathElement& element : path.elements)
+      count += std::holds_alternative<Polyline>(element) ? std::get<Polyline>(element).points.size() : 1;
+  program_.blocks.reserve(program_.blocks.size() + count + 8);
   bool first = true;
   for (const Toolpath& path : op.toolpaths) {
     for (const ToolpathElement& element : path.elements) {

@@ -17,7 +17,6 @@ class Rs274ngcPrinter final : public GcodePrinter {
 
   void prologue() override {
     line("%");
-    comment(program_.name);
     // Lathe: XZ plane, diameter mode.
     line(lathe() ? "G18 G7 G21 G90 G40 G80" : "G17 G21 G90 G40 G49 G80 G94");
   }
@@ -84,8 +83,9 @@ class Rs274ngcPrinter final : public GcodePrinter {
     word('Z', c.bottom);
     word('R', c.r);
     if (c.kind == DrillKind::peck) word('Q', c.peck);
-    // G82/G89 dwell; LinuxCNC requires P on G86 too.
-    if (c.dwell > 0 || c.kind == DrillKind::bore_spindle_stop) word('P', c.dwell);
+    // P is sticky between cycles in LinuxCNC: give it to every cycle that
+    // dwells (G82, G89; G84 and G86 always dwell, P0 for none).
+    if (c.dwell > 0 || c.kind == DrillKind::bore_spindle_stop || c.kind == DrillKind::tap) word('P', c.dwell);
     word('F', c.feed);
     finish_line();
     line("G80");

@@ -40,7 +40,6 @@ class Siemens840dPrinter final : public GcodePrinter {
   bool lathe() const { return program_.machine == MachineKind::turning; }
 
   void prologue() override {
-    comment(program_.name);
     line(lathe() ? "G18 G71 G90 G40 DIAMON" : "G17 G71 G90 G40 G94");
     // Tool data, so the control knows each tool's type, length and radius:
     // $TC_DP1 type, $TC_DP3 length, $TC_DP6 radius (seed 000 6).

@@ -111,7 +111,9 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
       Vec3 where{};
       sample_move(m, cell / 2, [&](Vec3 p) {
         map.disc(p, std::max(0.0, radius - cell), [&](int i, int j) {
-          const double depth = map.at(i, j) - p.z;
+          const double h = map.at(i, j);
+          if (h <= map.bottom() + tolerance) return;  // cut through: no material left in this column
+          const double depth = h - p.z;
           if (depth > worst) {
             worst = depth;
             where = p;
@@ -189,43 +191,63 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
   const double z0 = -w.stock_length, z1 = w.stock_front;
   const int n = static_cast<int>(std::ceil((z1 - z0) / bin));
   std::vector<double> r(static_cast<std::size_t>(n), w.stock_radius);
-  auto index = [&](double z) { return static_cast<int>(std::floor((z - z0) / bin)); };
-  double width = 0;  // grooving insert width behind the reference corner
-  bool first_move = true;
+  auto centre_z = [&](int k) { return z0 + (k + 0.5) * bin; };
+  auto index = [&](double z) { return std::clamp(static_cast<int>(std::floor((z - z0) / bin)), 0, n - 1); };
+
+  // An external turning tool occupies the quadrant x' >= x, z' >= z of its
+  // tip (body above the tip and towards the front); a grooving insert only
+  // its width behind the reference corner: x' >= x, z - width <= z' <= z.
+  // For a straight move, the lowest radius the tool reaches at z' is the
+  // smaller x of the part of the move at or below z'.
+  // The lowest x the move reaches over tip positions with z in [lo, hi].
+  auto reach = [](Vec3 a, Vec3 b, double lo, double hi) {
+    if (a.z > b.z) std::swap(a, b);
+    if (hi < a.z || lo > b.z) return std::numeric_limits<double>::infinity();
+    if (b.z - a.z < 1e-12) return std::min(a.x, b.x);
+    auto x_at = [&](double z) { return a.x + (b.x - a.x) * (z - a.z) / (b.z - a.z); };
+    return std::min(x_at(std::max(lo, a.z)), x_at(std::min(hi, b.z)));
+  };
+  double width = 0;
+  bool cuts = true, first_move = true;
   for (const Move& m : expand_motion(program)) {
     if (m.kind == Move::Kind::tool_change) {
       const ToolEntry* entry = program.tool(static_cast<int>(m.value));
       width = entry && entry->tool.kind == ToolKind::grooving_insert ? entry->tool.cutting_width : 0;
+      // Axial drills make the inner hole: not part of the outer profile.
+      cuts = entry && (entry->tool.kind == ToolKind::turning_insert || entry->tool.kind == ToolKind::grooving_insert);
       continue;
     }
     const bool rapid = m.kind == Move::Kind::rapid;
     if (!rapid && m.kind != Move::Kind::feed) continue;
-    if (rapid && first_move) {
+    if (first_move) {
       first_move = false;
-      continue;
+      if (rapid) continue;
     }
-    first_move = false;
-    // Every bin the tool edge covers during the move, with the radius it reaches.
-    sample_move(m, bin / 2, [&](Vec3 p) {
-      const int a = index(p.z - width + 1e-9), b = index(p.z - 1e-9);
-      for (int k = std::max(0, std::min(a, b)); k <= std::min(n - 1, std::max(a, b)); ++k) {
-        double& radius = r[static_cast<std::size_t>(k)];
-        if (rapid) {
-          if (radius - p.x > tolerance && p.x > 1e-6) {
-            if (report.problems.size() < 20)
-              report.problems.push_back(fmt::format("rapid (block {}) at x {:.3f} z {:.3f} meets material of radius {:.3f}",
-                                                    m.block, p.x, p.z, radius));
-          }
-        } else {
-          radius = std::min(radius, std::max(0.0, p.x));
+    if (!cuts) continue;
+    const int lo = index(std::min(m.from.z, m.to.z) - width);
+    const int hi = width > 0 ? index(std::max(m.from.z, m.to.z)) : n - 1;
+    bool collided = false;
+    for (int k = lo; k <= hi; ++k) {
+      const double z = centre_z(k);
+      const double x = width > 0 ? reach(m.from, m.to, z, z + width)
+                                 : reach(m.from, m.to, -std::numeric_limits<double>::infinity(), z);
+      double& radius = r[static_cast<std::size_t>(k)];
+      if (rapid) {
+        if (radius - x > tolerance && !collided) {
+          collided = true;
+          report.problems.push_back(fmt::format("rapid (block {}) reaches radius {:.3f} at z {:.3f}, material up to {:.3f}",
+                                                m.block, x, z, radius));
         }
+      } else {
+        radius = std::min(radius, std::max(0.0, x));
       }
-    });
+    }
     if (rapid) ++report.rapids_checked;
   }
+
   std::map<int, Allowance> allowance;
   last_allowances(project, project.main_workplan, allowance);
-  // z where the target radius jumps: a point tool cuts both sides there.
+  // z where the target radius jumps: either side's value is right there.
   std::vector<double> edges{0, z0, z1};
   for (const Feature& feature : project.features) {
     if (auto* profile = std::get_if<TurningProfile>(&feature.shape))
@@ -235,15 +257,12 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
       edges.push_back(groove->z - groove->width);
     }
   }
-  // Target radius per z: stock, faced to z = 0, then profiles and grooves.
+  // Target radius per z: faced to z = 0, then profiles and grooves; the
+  // stock beyond the last profile point stays.
   for (int k = 0; k < n; ++k) {
-    const double z = z0 + (k + 0.5) * bin;
-    double target = w.stock_radius;
-    bool machined = false;
-    if (z > 0) {
-      target = 0;
-      machined = true;
-    }
+    const double z = centre_z(k);
+    double target = z > 0 ? 0 : w.stock_radius;
+    bool machined = z > 0;
     for (std::size_t f = 0; f < project.features.size(); ++f) {
       const Feature& feature = project.features[f];
       const double extra = allowance.count(static_cast<int>(f)) ? allowance[static_cast<int>(f)].side : 0;
@@ -262,11 +281,11 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
         }
       }
     }
-    const double have = r[static_cast<std::size_t>(k)];
-    ++report.cells_checked;
     const bool near_edge =
         std::any_of(edges.begin(), edges.end(), [&](double e) { return std::abs(z - e) < 2 * bin; });
     if (near_edge) continue;
+    ++report.cells_checked;
+    const double have = r[static_cast<std::size_t>(k)];
     if (machined && have > target + tolerance && report.problems.size() < 20)
       report.problems.push_back(fmt::format("z {:.3f}: radius {:.3f} left, target {:.3f}", z, have, target));
     if (have < target - tolerance && report.problems.size() < 20)

@@ -34,7 +34,7 @@ TEST_CASE("hole cycles in each dialect") {
   const std::string ngc = posted(project, Dialect::rs274ngc);
   CHECK(has_line(ngc, "G99 G82 X130 Y80 Z-2 R2 P0.5 F300"));   // centre drilling with dwell
   CHECK(has_line(ngc, "G99 G83 X130 Y80 Z-20 R2 Q6 F300"));     // peck drilling
-  CHECK(has_line(ngc, "G99 G84 X130 Y80 Z-20 R2 F450"));        // tapping: 1.5 mm x 300 rev/min
+  CHECK(has_line(ngc, "G99 G84 X130 Y80 Z-20 R2 P0 F450"));     // tapping: 1.5 mm x 300 rev/min
   CHECK(has_line(ngc, "G99 G86 X145 Y80 Z-15 R2 P0 F300"));     // boring, spindle stop
   CHECK(has_line(ngc, "G99 G89 X145 Y80 Z-15 R2 P0.2 F300"));   // boring, dwell, feed out
 
@@ -74,22 +74,25 @@ TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is consta
   CHECK(has_line(fanuc, "G71 P1100 Q1107 U1. W0. F0.3"));
   CHECK(has_line(fanuc, "N1100 G0 X32."));
   CHECK(has_line(fanuc, "N1107 G1 X70. Z-120."));
-  CHECK(has_line(fanuc, "G50 S3000."));
-  CHECK(has_line(fanuc, "G96 S200. M03"));
+  CHECK(has_line(fanuc, "G50 S3000"));
+  CHECK(has_line(fanuc, "G96 S200 M03"));
   CHECK(has_line(fanuc, "T0101"));
 }
 
 TEST_CASE("numbers: fixed decimals, trimmed, no negative zero") {
   MachiningProject project = testing::explicit_toolpath(3);
   auto& line = std::get<Polyline>(project.operations[0].toolpaths[0].elements[0]);
-  line.points = {{1.23456, -0.00001, -2}, {10, 0.5, -2}, {-3.1, 2.25, -2.5}};
+  line.points = {{1.23456, 7, -2}, {10, -0.00001, -2}, {-3.1, 2.25, -2.5}};
   std::get<CircularArc>(project.operations[0].toolpaths[0].elements[1]) = {{3.1, -2.25, -2.5}, {0, 0, 0}, true, 0};
   const std::string ngc = posted(project, Dialect::rs274ngc);
-  CHECK(has_line(ngc, "G1 X1.2346 Y0 Z-2"));
-  CHECK(has_line(ngc, "X10 Y0.5"));
+  CHECK(has_line(ngc, "G0 X1.2346 Y7 Z20"));  // above the first point, every axis after the tool change
+  CHECK(has_line(ngc, "G1 Z-2"));
+  CHECK(has_line(ngc, "X10 Y0"));  // -0.00001 is 0, never -0
+  CHECK(has_line(ngc, "X-3.1 Y2.25 Z-2.5"));
   CHECK(has_line(ngc, "G2 X3.1 Y-2.25 I3.1 J-2.25"));
   const std::string fanuc = posted(project, Dialect::fanuc);
-  CHECK(has_line(fanuc, "G1 X1.235 Y0. Z-2."));
+  CHECK(has_line(fanuc, "G0 X1.235 Y7. Z20."));
+  CHECK(has_line(fanuc, "X10. Y0."));
 }
 
 TEST_CASE("the SVG plot draws workpiece, features, feeds and rapids") {

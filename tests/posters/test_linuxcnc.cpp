@@ -56,7 +56,9 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   const fs::path ngc = dir / (name + ".ngc"), table = dir / (name + ".tbl"), out = dir / (name + ".canon"),
                  err = dir / (name + ".err");
   write(ngc, print(program, Dialect::rs274ngc).text);
-  write(table, linuxcnc_tool_table(program));
+  // Zero length offsets: G43 then leaves the programmed coordinates as they
+  // are, which is what our canonical listing holds.
+  write(table, linuxcnc_tool_table(program, false));
   const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' '" + ngc.string() + "' '" +
                               out.string() + "' > /dev/null 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());

@@ -150,9 +150,11 @@ void write_instance(const Instance& const_instance, p21::Writer& writer) {
 }
 
 void write_model(const Model& model, const FileHeader& header, p21::Writer& writer) {
+  // Header lists are LIST [1:?] OF STRING: an empty one is written as ('').
   auto strings = [&](const std::vector<std::string>& list) {
     writer.begin_list();
     for (const std::string& s : list) writer.string(s);
+    if (list.empty()) writer.string("");
     writer.end_list();
   };
   writer.begin_file();

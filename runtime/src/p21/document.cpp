@@ -164,6 +164,7 @@ struct Document::IdTable {
   }
 };
 
+Document::Document() = default;
 Document::Document(Document&&) noexcept = default;
 Document& Document::operator=(Document&&) noexcept = default;
 Document::~Document() = default;

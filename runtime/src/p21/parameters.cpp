@@ -88,17 +88,23 @@ std::optional<Value> Value::Children::at(std::size_t i) const {
 
 // Recursive descent over one record. Nesting is bounded so hostile input
 // cannot exhaust the stack.
+//
+// The text must end with ';' (trailing whitespace aside). That ';' is a
+// sentinel: no token but the record's end contains it, so the scanning
+// loops below stop on it without testing for the end of the buffer.
 class RecordParser {
  public:
   RecordParser(ParamTree& tree, std::string_view text, std::uint64_t base)
       : tree_(tree), begin_(text.data()), p_(text.data()), end_(text.data() + text.size()), base_(base) {}
 
   std::optional<ParseError> run() {
+    while (end_ > begin_ && detail::is_space(end_[-1])) --end_;
+    if (end_ == begin_ || end_[-1] != ';') return fail(end_, "a record must end with ';'");
     skip();
-    if (p_ < end_ && *p_ == '#') {
+    if (*p_ == '#') {
       ++p_;
       const char* digits = p_;
-      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+      while (detail::is_digit(*p_)) ++p_;
       const auto [ptr, ec] = std::from_chars(digits, p_, tree_.id_);
       if (digits == p_ || ec != std::errc() || tree_.id_ == 0)
         return fail(digits, "expected an instance id (a positive integer) after '#'");
@@ -106,22 +112,21 @@ class RecordParser {
       if (!expect('=')) return error_;
       skip();
     }
-    if (p_ < end_ && *p_ == '(') {
+    if (*p_ == '(') {
       tree_.complex_ = true;
       ++p_;
       skip();
-      while (p_ < end_ && *p_ != ')') {
+      while (!error_ && *p_ != ')' && *p_ != ';') {
         if (!parse_part()) return error_;
         skip();
       }
-      if (tree_.parts_.empty()) return fail(p_, "a complex instance needs at least one entity");
+      if (!error_ && tree_.parts_.empty()) return fail(p_, "a complex instance needs at least one entity");
       if (!expect(')')) return error_;
     } else {
       if (!parse_part()) return error_;
     }
     skip();
     if (!expect(';')) return error_;
-    skip();
     if (!error_ && p_ != end_) fail(p_, "unexpected text after ';'");
     return error_;
   }
@@ -139,22 +144,24 @@ class RecordParser {
 
   // Most tokens are not preceded by space: test for that inline.
   void skip() {
-    if (p_ < end_ && (detail::is_space(*p_) || *p_ == '/')) skip_slow();
+    if (detail::is_space(*p_) || *p_ == '/') skip_slow();
   }
-  void skip_slow() {
+  [[gnu::noinline]] void skip_slow() {
     const char* unterminated = nullptr;
     p_ = detail::skip_space(p_, end_, &unterminated);
-    if (unterminated) fail(unterminated, "unterminated comment");
+    if (unterminated) {
+      fail(unterminated, "unterminated comment");
+      p_ = end_ - 1;  // stay on the sentinel; the error stops the parse
+    }
   }
 
   bool expect(char c) {
     if (error_) return false;
-    if (p_ < end_ && *p_ == c) {
+    if (*p_ == c) {
       ++p_;
       return true;
     }
-    fail(p_, p_ < end_ ? describe_unexpected(std::string("expected '") + c + "'")
-                       : std::string("unexpected end of record, expected '") + c + "'");
+    fail(p_, describe_unexpected(std::string("expected '") + c + "'"));
     return false;
   }
 
@@ -166,10 +173,9 @@ class RecordParser {
   }
 
   std::uint32_t add_node(ParamKind kind, const char* start) {
-    ParamNode node;
+    ParamNode& node = tree_.nodes_.emplace_back();
     node.kind = kind;
     node.source_offset = offset_of(start);
-    tree_.nodes_.push_back(node);
     return static_cast<std::uint32_t>(tree_.nodes_.size() - 1);
   }
   void close_node(std::uint32_t index) {
@@ -180,9 +186,9 @@ class RecordParser {
 
   std::string_view keyword() {
     const char* start = p_;
-    if (p_ < end_ && detail::is_keyword_start(*p_)) {
+    if (detail::is_keyword_start(*p_)) {
       ++p_;
-      while (p_ < end_ && detail::is_keyword_char(*p_)) ++p_;
+      while (detail::is_keyword_char(*p_)) ++p_;
     }
     return {start, static_cast<std::size_t>(p_ - start)};
   }
@@ -190,11 +196,11 @@ class RecordParser {
   bool parse_part() {
     const std::string_view name = keyword();
     if (name.empty()) {
-      fail(p_, p_ < end_ ? describe_unexpected("expected an entity name") : "unexpected end of record");
+      fail(p_, describe_unexpected("expected an entity name"));
       return false;
     }
     skip();
-    if (p_ >= end_ || *p_ != '(') return expect('(');
+    if (*p_ != '(') return expect('(');
     const std::uint32_t list = static_cast<std::uint32_t>(tree_.nodes_.size());
     if (!parse_list(0)) return false;
     tree_.parts_.emplace_back(tree_, list, name);
@@ -210,7 +216,7 @@ class RecordParser {
     const std::uint32_t index = add_node(ParamKind::list, p_);
     ++p_;
     skip();
-    if (p_ < end_ && *p_ == ')') {
+    if (*p_ == ')') {
       ++p_;
       close_node(index);
       return !error_;
@@ -218,7 +224,7 @@ class RecordParser {
     for (;;) {
       if (!parse_value(depth)) return false;
       skip();
-      if (p_ < end_ && *p_ == ',') {
+      if (*p_ == ',') {
         ++p_;
         skip();
         continue;
@@ -231,10 +237,6 @@ class RecordParser {
 
   bool parse_value(int depth) {
     if (error_) return false;
-    if (p_ >= end_) {
-      fail(p_, "unexpected end of record, expected a value");
-      return false;
-    }
     const char* start = p_;
     switch (*p_) {
       case '#': return parse_reference();
@@ -256,7 +258,7 @@ class RecordParser {
     const std::uint32_t index = add_node(ParamKind::reference, p_);
     ++p_;
     const char* digits = p_;
-    while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    while (detail::is_digit(*p_)) ++p_;
     std::uint64_t id = 0;
     const auto [ptr, ec] = std::from_chars(digits, p_, id);
     if (digits == p_ || ec != std::errc() || id == 0) {
@@ -270,26 +272,50 @@ class RecordParser {
     return true;
   }
 
+  // Digits are accumulated while scanning. A decimal with at most 19
+  // significant digits, a mantissa below 2^53 and a power of ten up to
+  // 22 is converted with one exact multiply or divide, which IEEE
+  // arithmetic rounds correctly (Clinger's fast path); anything else goes
+  // to std::from_chars.
   bool parse_number() {
+    static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                              1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                              1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
     const char* start = p_;
+    const bool negative = *p_ == '-';
     if (*p_ == '+' || *p_ == '-') ++p_;
-    bool is_real = false;
+    std::uint64_t mantissa = 0;
     const char* digits = p_;
-    while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+    while (detail::is_digit(*p_)) mantissa = mantissa * 10 + static_cast<unsigned>(*p_++ - '0');
     if (p_ == digits) {
       fail(start, "expected digits in number");
       return false;
     }
-    if (p_ < end_ && *p_ == '.') {
+    bool is_real = false;
+    std::size_t fraction_digits = 0;
+    if (*p_ == '.') {
       is_real = true;
-      ++p_;
-      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+      const char* fraction = ++p_;
+      while (detail::is_digit(*p_)) mantissa = mantissa * 10 + static_cast<unsigned>(*p_++ - '0');
+      fraction_digits = static_cast<std::size_t>(p_ - fraction);
     }
-    if (p_ < end_ && (*p_ == 'E' || *p_ == 'e')) {
+    const std::size_t mantissa_digits = static_cast<std::size_t>(p_ - digits) - (is_real ? 1 : 0);
+    long exponent = 0;
+    if (*p_ == 'E' || *p_ == 'e') {
       is_real = true;
       ++p_;
-      if (p_ < end_ && (*p_ == '+' || *p_ == '-')) ++p_;
-      while (p_ < end_ && detail::is_digit(*p_)) ++p_;
+      const bool negative_exponent = *p_ == '-';
+      if (*p_ == '+' || *p_ == '-') ++p_;
+      const char* exponent_digits = p_;
+      while (detail::is_digit(*p_)) {
+        if (exponent < 100000) exponent = exponent * 10 + (*p_ - '0');
+        ++p_;
+      }
+      if (p_ == exponent_digits) {
+        fail(start, "invalid real '" + std::string(start, p_) + "'");
+        return false;
+      }
+      if (negative_exponent) exponent = -exponent;
     }
     const std::string_view spelling(start, static_cast<std::size_t>(p_ - start));
     if (spelling.size() > kMaxNumberLength) {
@@ -298,25 +324,27 @@ class RecordParser {
     }
     const std::uint32_t index = add_node(is_real ? ParamKind::real : ParamKind::integer, start);
     ParamNode& node = tree_.nodes_[index];
-    if (is_real) {
-      // The spelling was checked above; from_chars only needs the '+' gone.
-      const char* first = *start == '+' ? start + 1 : start;
-      const auto [ptr, ec] = std::from_chars(first, p_, node.value.real);
-      if (ec != std::errc() || ptr != p_) {
-        const std::optional<double> value = parse_real(spelling);  // underflow is fine, the rest is not
-        if (!value) {
-          fail(start, "invalid real '" + std::string(spelling) + "'");
-          return false;
-        }
-        node.value.real = *value;
-      }
-    } else {
-      const std::optional<std::int64_t> value = parse_integer(spelling);
-      if (!value) {
+    if (!is_real) {
+      if (mantissa_digits <= 18) {
+        node.value.integer = negative ? -static_cast<std::int64_t>(mantissa) : static_cast<std::int64_t>(mantissa);
+      } else if (const std::optional<std::int64_t> value = parse_integer(spelling)) {
+        node.value.integer = *value;
+      } else {
         fail(start, "integer out of range '" + std::string(spelling) + "'");
         return false;
       }
-      node.value.integer = *value;
+    } else {
+      const long power = exponent - static_cast<long>(fraction_digits);
+      if (mantissa_digits <= 19 && mantissa <= (std::uint64_t{1} << 53) && power >= -22 && power <= 22) {
+        double value = static_cast<double>(mantissa);
+        value = power < 0 ? value / kPowersOfTen[-power] : value * kPowersOfTen[power];
+        node.value.real = negative ? -value : value;
+      } else if (const std::optional<double> value = parse_real(spelling)) {
+        node.value.real = *value;
+      } else {
+        fail(start, "invalid real '" + std::string(spelling) + "'");
+        return false;
+      }
     }
     close_node(index);
     return true;
@@ -363,9 +391,9 @@ class RecordParser {
     const std::uint32_t index = add_node(ParamKind::binary, p_);
     ++p_;
     const char* digits = p_;
-    while (p_ < end_ && detail::is_hex_digit(*p_)) ++p_;
-    if (p_ >= end_ || *p_ != '"') {
-      fail(p_, p_ < end_ ? "binary values hold only hex digits" : "unterminated binary");
+    while (detail::is_hex_digit(*p_)) ++p_;
+    if (*p_ != '"') {
+      fail(p_, p_ == end_ - 1 ? "unterminated binary" : "binary values hold only hex digits");
       return false;
     }
     if (digits == p_ || *digits < '0' || *digits > '3') {
@@ -382,7 +410,7 @@ class RecordParser {
     const char* start = p_;
     ++p_;
     const std::string_view item = keyword();
-    if (item.empty() || p_ >= end_ || *p_ != '.') {
+    if (item.empty() || *p_ != '.') {
       fail(start, "malformed enumeration or logical (expected .NAME.)");
       return false;
     }

@@ -32,7 +32,9 @@ PrintedProgram print(const Program& program, Dialect dialect);
 // operation and feature (#id and name).
 std::string trace_json(const Program& program, const PrintedProgram& printed);
 
-// The LinuxCNC tool table for a program (T, P, D, Z) in mm.
-std::string linuxcnc_tool_table(const Program& program);
+// The LinuxCNC tool table for a program (T, P, D and, when asked, the
+// model's assembly length as Z offset). Real machines measure lengths;
+// leave them out (Z0) to check motion in program coordinates.
+std::string linuxcnc_tool_table(const Program& program, bool with_lengths = true);
 
 }  // namespace stepnc::post

@@ -86,7 +86,7 @@ static_assert(sizeof(RecordEntry) == 24);
 
 class Document {
  public:
-  Document() = default;
+  Document();
   Document(Document&&) noexcept;
   Document& operator=(Document&&) noexcept;
   ~Document();

@@ -1,0 +1,43 @@
+// stepnc query FILE PATH: evaluate a path query (see stepnc/query/path_query.h).
+#include <fmt/format.h>
+
+#include "command.h"
+#include "load.h"
+#include "stepnc/query/path_query.h"
+#include "summary.h"
+
+namespace stepnc::cli {
+namespace {
+
+struct QueryOptions {
+  std::string file;
+  std::string path;
+};
+
+int run_query(const QueryOptions& options) {
+  const auto file = load(options.file);
+  if (!file) return exit_invalid_input;
+  const query::QueryResult result = query::evaluate(options.path, file->model, iso14649_registry());
+  if (!result.ok()) {
+    fmt::print(stderr, "{}\n{:>{}}\nerror: {}\n", options.path, "^", result.error->column,
+               result.error->to_string());
+    return exit_failure;
+  }
+  for (const query::Node& node : result.nodes) {
+    fmt::print("{}\n", node.instance != nullptr ? describe(*node.instance) : node.to_string());
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+void add_query_command(CLI::App& app, Action& action) {
+  auto options = std::make_shared<QueryOptions>();
+  CLI::App* command = app.add_subcommand(
+      "query", "Evaluate a path such as /project/its_workpieces[0]/its_material/standard_identifier");
+  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  command->add_option("PATH", options->path, "The path query")->required();
+  command->callback([&action, options] { action = [options] { return run_query(*options); }; });
+}
+
+}  // namespace stepnc::cli

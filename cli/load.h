@@ -1,0 +1,24 @@
+// Reading a Part 21 file into the ISO 14649 typed model for a subcommand,
+// with every diagnostic printed to stderr.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "stepnc/exchange/model_file.h"
+#include "stepnc/meta/registry.h"
+
+namespace stepnc::cli {
+
+// The registry of the ISO 14649 bindings in generated/.
+const meta::Registry& iso14649_registry();
+
+struct LoadOptions {
+  bool strict = true;
+  bool print_warnings = true;
+};
+
+// The file, or null after printing why it could not be read.
+std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path, const LoadOptions& options = {});
+
+}  // namespace stepnc::cli

@@ -1,0 +1,204 @@
+#include "stepnc/exchange/model_file.h"
+
+#include <algorithm>
+#include <limits>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "stepnc/meta/io.h"
+#include "stepnc/p21/parameters.h"
+#include "stepnc/p21/writer.h"
+
+namespace stepnc::exchange {
+namespace {
+
+// Reads the records of one document into typed instances.
+class ModelBuilder final : public meta::FillContext {
+ public:
+  ModelBuilder(ModelFile& file, const meta::Registry& registry, p21::Diagnostics& diagnostics)
+      : file_(file), registry_(registry), diagnostics_(diagnostics) {}
+
+  void run() {
+    const auto records = file_.document.records();
+    instances_.assign(records.size(), nullptr);
+    resolve_entity_names();
+    for (std::size_t i = 0; i < records.size() && !diagnostics_.limit_reached(); ++i) create(i);
+    for (std::size_t i = 0; i < records.size() && !diagnostics_.limit_reached(); ++i) fill(i);
+  }
+
+  meta::Instance* resolve(std::uint64_t id) override {
+    const p21::RecordEntry* record = file_.document.find(id);
+    if (record == nullptr) return nullptr;
+    return instances_[static_cast<std::size_t>(record - file_.document.records().data())];
+  }
+
+  void error(std::uint64_t offset, std::string message) override {
+    report(p21::Severity::error, offset, current_id_, std::move(message));
+  }
+
+ private:
+  // Entity names repeat across a file; look each distinct one up once.
+  void resolve_entity_names() {
+    for (std::string_view name : file_.document.entity_names()) entities_.push_back(registry_.find_entity(name));
+  }
+
+  void create(std::size_t index) {
+    const p21::RecordEntry& record = file_.document.records()[index];
+    current_id_ = record.id;
+    const meta::EntityInfo* entity = nullptr;
+    std::string display_name;
+    if (record.entity == p21::RecordEntry::complex_entity) {
+      if (auto problem = file_.document.parse(record, tree_)) {
+        report_parse_error(*problem, record.id);
+        return;
+      }
+      std::vector<std::string_view> parts;
+      for (const p21::EntityPart& part : tree_.parts()) parts.push_back(part.entity());
+      entity = registry_.find_complex(parts);
+      display_name = fmt::format("({})", fmt::join(parts, " "));
+      if (entity == nullptr) {
+        keep_generic(record, fmt::format("no schema defines the combination {}; kept as a generic record",
+                                         display_name));
+        return;
+      }
+    } else {
+      entity = entities_[record.entity];
+      display_name = std::string(file_.document.entity_name(record));
+      if (entity == nullptr) {
+        keep_generic(record, fmt::format("unknown entity {}; kept as a generic record", display_name));
+        return;
+      }
+    }
+    if (entity->abstract) {
+      report(p21::Severity::error, record.offset, record.id,
+             fmt::format("{} is ABSTRACT and cannot be instantiated", display_name));
+      return;
+    }
+    if (record.id > std::numeric_limits<std::uint32_t>::max()) {
+      report(p21::Severity::error, record.offset, record.id,
+             fmt::format("instance id #{} exceeds the typed model's limit of {}", record.id,
+                         std::numeric_limits<std::uint32_t>::max()));
+      return;
+    }
+    instances_[index] = file_.model.create(*entity, static_cast<std::uint32_t>(record.id));
+  }
+
+  void fill(std::size_t index) {
+    meta::Instance* instance = instances_[index];
+    if (instance == nullptr) return;
+    const p21::RecordEntry& record = file_.document.records()[index];
+    current_id_ = record.id;
+    if (auto problem = file_.document.parse(record, tree_)) {
+      report_parse_error(*problem, record.id);
+      return;
+    }
+    meta::fill_instance(*instance, tree_, *this);
+  }
+
+  void keep_generic(const p21::RecordEntry& record, std::string message) {
+    file_.generic_records.push_back(&record);
+    report(p21::Severity::warning, record.offset, record.id, std::move(message));
+  }
+
+  void report_parse_error(const p21::ParseError& problem, std::uint64_t id) {
+    diagnostics_.add(file_.document.diagnostic(problem, id));
+  }
+
+  void report(p21::Severity severity, std::uint64_t offset, std::uint64_t id, std::string message) {
+    diagnostics_.add(p21::Diagnostic{severity, file_.document.file_name(), file_.document.location(offset), id,
+                                     std::move(message)});
+  }
+
+  ModelFile& file_;
+  const meta::Registry& registry_;
+  p21::Diagnostics& diagnostics_;
+  std::vector<const meta::EntityInfo*> entities_;  // per Document::entity_names() index
+  std::vector<meta::Instance*> instances_;         // per record index; null: not typed
+  p21::ParamTree tree_;
+  std::uint64_t current_id_ = 0;
+};
+
+ModelReadResult build(p21::ReadResult read, const meta::Registry& registry, const ModelReadOptions& options) {
+  ModelReadResult result;
+  result.diagnostics = std::move(read.diagnostics);
+  if (!read.document) return result;
+  auto file = std::make_unique<ModelFile>();
+  file->document = std::move(*read.document);
+  ModelBuilder(*file, registry, result.diagnostics).run();
+  if (!(options.strict && result.diagnostics.has_errors())) result.file = std::move(file);
+  return result;
+}
+
+p21::ReadOptions syntax_options(const ModelReadOptions& options) {
+  p21::ReadOptions read;
+  read.strict = options.strict;
+  read.error_limit = options.error_limit;
+  read.validate_parameters = false;  // the builder parses every record itself
+  return read;
+}
+
+}  // namespace
+
+ModelReadResult read_model_file(const std::filesystem::path& path, const meta::Registry& registry,
+                                const ModelReadOptions& options) {
+  return build(p21::read_file(path, syntax_options(options)), registry, options);
+}
+
+ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
+                                const ModelReadOptions& options) {
+  return build(p21::read_text(std::move(text), std::move(file_name), syntax_options(options)), registry,
+               options);
+}
+
+namespace {
+
+void write(const ModelFile& file, p21::Writer& writer) {
+  writer.begin_file();
+  for (const p21::HeaderEntity& entity : file.document.header().entities) writer.raw_record(entity.text);
+  writer.end_header();
+  writer.begin_data();
+
+  std::vector<const meta::Instance*> typed(file.model.instances().begin(), file.model.instances().end());
+  std::sort(typed.begin(), typed.end(), [](auto* a, auto* b) { return a->id() < b->id(); });
+  std::vector<const p21::RecordEntry*> generic = file.generic_records;
+  std::sort(generic.begin(), generic.end(), [](auto* a, auto* b) { return a->id < b->id; });
+
+  // Merge the two id-ordered sequences.
+  std::string normalised;
+  auto next_generic = generic.begin();
+  auto write_generic_before = [&](std::uint64_t id) {
+    for (; next_generic != generic.end() && (*next_generic)->id < id; ++next_generic) {
+      normalised.clear();
+      p21::append_normalised(file.document.text(**next_generic), normalised);
+      writer.raw_record(normalised);
+    }
+  };
+  for (const meta::Instance* instance : typed) {
+    write_generic_before(instance->id());
+    meta::write_instance(*instance, writer);
+  }
+  write_generic_before(std::numeric_limits<std::uint64_t>::max());
+
+  writer.end_data();
+  writer.end_file();
+}
+
+}  // namespace
+
+std::string to_text(const ModelFile& file) {
+  p21::Writer writer;
+  write(file, writer);
+  return writer.take();
+}
+
+std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path) {
+  p21::AtomicFile out;
+  if (auto error = out.open(path)) return error;
+  p21::Writer writer(out);
+  write(file, writer);
+  if (auto error = writer.finish()) return error;
+  return out.commit();
+}
+
+}  // namespace stepnc::exchange
