@@ -14,13 +14,6 @@
 # the schemas at configure time. All SCHEMAS are compiled together, as one
 # closed set (a subtype in one schema is listed in its supertype's table).
 
-# The emitter's sources belong to expressc_core. Until expressc's own
-# CMakeLists adds emit/cpp, add it from here (the folder sets the property).
-get_property(_stepnc_cpp_emitter_added GLOBAL PROPERTY STEPNC_CPP_EMITTER_ADDED)
-if(TARGET expressc_core AND NOT _stepnc_cpp_emitter_added)
-  add_subdirectory("${PROJECT_SOURCE_DIR}/expressc/emit/cpp" "${PROJECT_BINARY_DIR}/expressc/emit/cpp")
-endif()
-
 function(stepnc_generate)
   cmake_parse_arguments(ARG "" "TARGET;OUT_DIR" "SCHEMAS" ${ARGN})
   if(NOT ARG_TARGET OR NOT ARG_SCHEMAS)

@@ -61,7 +61,7 @@ constexpr TypeInfo list_2_n_of_cartesian_point{
     .lower = 2,
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cartesian_point*>>};
-// ARRAY [0:?] OF cartesian_point
+// ARRAY [0:upper_index_on_control_points] OF cartesian_point
 constexpr TypeInfo array_0_n_of_cartesian_point{
     .kind = TypeKind::Array,
     .underlying = &machining_schema::type_info::cartesian_point,
@@ -75,7 +75,7 @@ constexpr TypeInfo list_2_n_of_list_2_n_of_cartesian_point{
     .lower = 2,
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<machining_schema::cartesian_point*>>>};
-// ARRAY [0:?] OF ARRAY [0:?] OF cartesian_point
+// ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF cartesian_point
 constexpr TypeInfo array_0_n_of_array_0_n_of_cartesian_point{
     .kind = TypeKind::Array,
     .underlying = &meta_tables::array_0_n_of_cartesian_point,
@@ -124,7 +124,7 @@ constexpr TypeInfo list_2_n_of_real{
     .lower = 2,
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<double>>};
-// ARRAY [0:?] OF REAL
+// ARRAY [0:upper_index_on_control_points] OF REAL
 constexpr TypeInfo array_0_n_of_real{
     .kind = TypeKind::Array,
     .underlying = &stepnc::meta::real_type,
@@ -138,7 +138,7 @@ constexpr TypeInfo list_2_n_of_list_2_n_of_real{
     .lower = 2,
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<double>>>};
-// ARRAY [0:?] OF ARRAY [0:?] OF REAL
+// ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF REAL
 constexpr TypeInfo array_0_n_of_array_0_n_of_real{
     .kind = TypeKind::Array,
     .underlying = &meta_tables::array_0_n_of_real,
@@ -513,7 +513,7 @@ constexpr const EntityInfo* geometric_representation_item_subtypes[] = {
     &machining_schema::vertex_point::meta_entity,
 };
 constexpr AttributeInfo geometric_representation_item_derived[] = {
-    {.name = "dim", .owner = &machining_schema::geometric_representation_item::meta_entity, .type = &machining_schema::type_info::dimension_count, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "dim", .owner = &machining_schema::geometric_representation_item::meta_entity, .type = &machining_schema::type_info::dimension_count, .kind = AttributeKind::Derived},
 };
 constexpr Upcast geometric_representation_item_upcasts[] = {
     {&machining_schema::geometric_representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::geometric_representation_item, machining_schema::geometric_representation_item>},
@@ -594,8 +594,9 @@ constexpr AttributeInfo composite_curve_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::composite_curve, &machining_schema::composite_curve::self_intersect>},
 };
 constexpr AttributeInfo composite_curve_derived[] = {
-    {.name = "n_segments", .owner = &machining_schema::composite_curve::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "closed_curve", .owner = &machining_schema::composite_curve::meta_entity, .type = &stepnc::meta::logical_type, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "n_segments", .owner = &machining_schema::composite_curve::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::composite_curve, &machining_schema::composite_curve::n_segments>},
+    {.name = "closed_curve", .owner = &machining_schema::composite_curve::meta_entity, .type = &stepnc::meta::logical_type, .kind = AttributeKind::Derived},
 };
 constexpr Upcast composite_curve_upcasts[] = {
     {&machining_schema::composite_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::composite_curve, machining_schema::composite_curve>},
@@ -655,7 +656,7 @@ constexpr AttributeInfo axis1_placement_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::axis1_placement, &machining_schema::axis1_placement::axis>},
 };
 constexpr AttributeInfo axis1_placement_derived[] = {
-    {.name = "z", .owner = &machining_schema::axis1_placement::meta_entity, .type = &machining_schema::type_info::direction, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "z", .owner = &machining_schema::axis1_placement::meta_entity, .type = &machining_schema::type_info::direction, .kind = AttributeKind::Derived},
 };
 constexpr Upcast axis1_placement_upcasts[] = {
     {&machining_schema::axis1_placement::meta_entity, &stepnc::meta::upcast_to<machining_schema::axis1_placement, machining_schema::axis1_placement>},
@@ -679,7 +680,7 @@ constexpr AttributeInfo axis2_placement_3d_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::axis2_placement_3d, &machining_schema::axis2_placement_3d::ref_direction>},
 };
 constexpr AttributeInfo axis2_placement_3d_derived[] = {
-    {.name = "p", .owner = &machining_schema::axis2_placement_3d::meta_entity, .type = &meta_tables::list_3_3_of_direction, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "p", .owner = &machining_schema::axis2_placement_3d::meta_entity, .type = &meta_tables::list_3_3_of_direction, .kind = AttributeKind::Derived},
 };
 constexpr Upcast axis2_placement_3d_upcasts[] = {
     {&machining_schema::axis2_placement_3d::meta_entity, &stepnc::meta::upcast_to<machining_schema::axis2_placement_3d, machining_schema::axis2_placement_3d>},
@@ -714,8 +715,9 @@ constexpr AttributeInfo b_spline_curve_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
 };
 constexpr AttributeInfo b_spline_curve_derived[] = {
-    {.name = "upper_index_on_control_points", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "control_points", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::array_0_n_of_cartesian_point, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "upper_index_on_control_points", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::upper_index_on_control_points>},
+    {.name = "control_points", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::array_0_n_of_cartesian_point, .kind = AttributeKind::Derived},
 };
 constexpr Upcast b_spline_curve_upcasts[] = {
     {&machining_schema::b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_curve, machining_schema::b_spline_curve>},
@@ -820,9 +822,10 @@ constexpr AttributeInfo b_spline_surface_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
 };
 constexpr AttributeInfo b_spline_surface_derived[] = {
-    {.name = "u_upper", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "v_upper", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "control_points", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::array_0_n_of_array_0_n_of_cartesian_point, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "u_upper", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_upper>},
+    {.name = "v_upper", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived},
+    {.name = "control_points", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::array_0_n_of_array_0_n_of_cartesian_point, .kind = AttributeKind::Derived},
 };
 constexpr Upcast b_spline_surface_upcasts[] = {
     {&machining_schema::b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_surface, machining_schema::b_spline_surface>},
@@ -930,7 +933,8 @@ constexpr AttributeInfo b_spline_curve_with_knots_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::knot_spec>},
 };
 constexpr AttributeInfo b_spline_curve_with_knots_derived[] = {
-    {.name = "upper_index_on_knots", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "upper_index_on_knots", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::upper_index_on_knots>},
 };
 constexpr Upcast b_spline_curve_with_knots_upcasts[] = {
     {&machining_schema::b_spline_curve_with_knots::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_curve_with_knots, machining_schema::b_spline_curve_with_knots>},
@@ -974,8 +978,10 @@ constexpr AttributeInfo b_spline_surface_with_knots_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::knot_spec>},
 };
 constexpr AttributeInfo b_spline_surface_with_knots_derived[] = {
-    {.name = "knot_u_upper", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "knot_v_upper", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "knot_u_upper", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::knot_u_upper>},
+    {.name = "knot_v_upper", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived,
+     .derive = &stepnc::meta::derived<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::knot_v_upper>},
 };
 constexpr Upcast b_spline_surface_with_knots_upcasts[] = {
     {&machining_schema::b_spline_surface_with_knots::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_surface_with_knots, machining_schema::b_spline_surface_with_knots>},
@@ -1371,7 +1377,7 @@ constexpr AttributeInfo rational_b_spline_curve_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
 constexpr AttributeInfo rational_b_spline_curve_derived[] = {
-    {.name = "weights", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::array_0_n_of_real, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "weights", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::array_0_n_of_real, .kind = AttributeKind::Derived},
 };
 constexpr Upcast rational_b_spline_curve_upcasts[] = {
     {&machining_schema::rational_b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::rational_b_spline_curve, machining_schema::rational_b_spline_curve>},
@@ -1407,7 +1413,7 @@ constexpr AttributeInfo rational_b_spline_surface_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
 constexpr AttributeInfo rational_b_spline_surface_derived[] = {
-    {.name = "weights", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::array_0_n_of_array_0_n_of_real, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "weights", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::array_0_n_of_array_0_n_of_real, .kind = AttributeKind::Derived},
 };
 constexpr Upcast rational_b_spline_surface_upcasts[] = {
     {&machining_schema::rational_b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::rational_b_spline_surface, machining_schema::rational_b_spline_surface>},
@@ -1492,7 +1498,7 @@ constexpr AttributeInfo surface_of_revolution_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::surface_of_revolution, &machining_schema::surface_of_revolution::axis_position>},
 };
 constexpr AttributeInfo surface_of_revolution_derived[] = {
-    {.name = "axis_line", .owner = &machining_schema::surface_of_revolution::meta_entity, .type = &machining_schema::type_info::line, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "axis_line", .owner = &machining_schema::surface_of_revolution::meta_entity, .type = &machining_schema::type_info::line, .kind = AttributeKind::Derived},
 };
 constexpr Upcast surface_of_revolution_upcasts[] = {
     {&machining_schema::surface_of_revolution::meta_entity, &stepnc::meta::upcast_to<machining_schema::surface_of_revolution, machining_schema::surface_of_revolution>},
@@ -1730,7 +1736,7 @@ constexpr AttributeInfo edge_loop_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::edge_list>},
 };
 constexpr AttributeInfo edge_loop_derived[] = {
-    {.name = "ne", .owner = &machining_schema::edge_loop::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "ne", .owner = &machining_schema::edge_loop::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived},
 };
 constexpr Upcast edge_loop_upcasts[] = {
     {&machining_schema::edge_loop::meta_entity, &stepnc::meta::upcast_to<machining_schema::edge_loop, machining_schema::edge_loop>},
@@ -1861,7 +1867,7 @@ constexpr AttributeInfo oriented_closed_shell_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::oriented_closed_shell, &machining_schema::oriented_closed_shell::orientation>},
 };
 constexpr AttributeInfo oriented_closed_shell_derived[] = {
-    {.name = "cfs_faces", .owner = &machining_schema::oriented_closed_shell::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "cfs_faces", .owner = &machining_schema::oriented_closed_shell::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived},
 };
 constexpr Upcast oriented_closed_shell_upcasts[] = {
     {&machining_schema::oriented_closed_shell::meta_entity, &stepnc::meta::upcast_to<machining_schema::oriented_closed_shell, machining_schema::oriented_closed_shell>},
@@ -1886,8 +1892,8 @@ constexpr AttributeInfo oriented_edge_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::oriented_edge, &machining_schema::oriented_edge::orientation>},
 };
 constexpr AttributeInfo oriented_edge_derived[] = {
-    {.name = "edge_start", .owner = &machining_schema::oriented_edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived, .derivable = false},
-    {.name = "edge_end", .owner = &machining_schema::oriented_edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "edge_start", .owner = &machining_schema::oriented_edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived},
+    {.name = "edge_end", .owner = &machining_schema::oriented_edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived},
 };
 constexpr Upcast oriented_edge_upcasts[] = {
     {&machining_schema::oriented_edge::meta_entity, &stepnc::meta::upcast_to<machining_schema::oriented_edge, machining_schema::oriented_edge>},
@@ -1910,7 +1916,7 @@ constexpr AttributeInfo oriented_face_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::oriented_face, &machining_schema::oriented_face::orientation>},
 };
 constexpr AttributeInfo oriented_face_derived[] = {
-    {.name = "bounds", .owner = &machining_schema::oriented_face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "bounds", .owner = &machining_schema::oriented_face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound, .kind = AttributeKind::Derived},
 };
 constexpr Upcast oriented_face_upcasts[] = {
     {&machining_schema::oriented_face::meta_entity, &stepnc::meta::upcast_to<machining_schema::oriented_face, machining_schema::oriented_face>},
@@ -1933,7 +1939,7 @@ constexpr AttributeInfo oriented_open_shell_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::oriented_open_shell, &machining_schema::oriented_open_shell::orientation>},
 };
 constexpr AttributeInfo oriented_open_shell_derived[] = {
-    {.name = "cfs_faces", .owner = &machining_schema::oriented_open_shell::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "cfs_faces", .owner = &machining_schema::oriented_open_shell::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived},
 };
 constexpr Upcast oriented_open_shell_upcasts[] = {
     {&machining_schema::oriented_open_shell::meta_entity, &stepnc::meta::upcast_to<machining_schema::oriented_open_shell, machining_schema::oriented_open_shell>},
@@ -1957,7 +1963,7 @@ constexpr AttributeInfo oriented_path_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::oriented_path, &machining_schema::oriented_path::orientation>},
 };
 constexpr AttributeInfo oriented_path_derived[] = {
-    {.name = "edge_list", .owner = &machining_schema::oriented_path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge, .kind = AttributeKind::Derived, .derivable = false},
+    {.name = "edge_list", .owner = &machining_schema::oriented_path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge, .kind = AttributeKind::Derived},
 };
 constexpr Upcast oriented_path_upcasts[] = {
     {&machining_schema::oriented_path::meta_entity, &stepnc::meta::upcast_to<machining_schema::oriented_path, machining_schema::oriented_path>},

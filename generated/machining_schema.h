@@ -1048,7 +1048,8 @@ class geometric_representation_item : public virtual machining_schema::represent
   static constexpr bool meta_entity_is_abstract = false;
   const stepnc::meta::EntityInfo& entity_info() const noexcept override;
 
-  // DERIVE dim : dimension_count -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE dim : dimension_count := dimension_of(SELF)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY curve SUBTYPE OF (geometric_representation_item)
@@ -1093,8 +1094,10 @@ class composite_curve : public virtual machining_schema::bounded_curve {
   std::vector<machining_schema::composite_curve_segment*> segments{};  // LIST [1:?] OF composite_curve_segment
   stepnc::meta::Logical self_intersect{};  // LOGICAL
 
-  // DERIVE n_segments : INTEGER -- not yet derivable (listed in meta_entity.derived).
-  // DERIVE closed_curve : LOGICAL -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE n_segments : INTEGER := SIZEOF(segments)
+  std::int64_t n_segments() const { return static_cast<std::int64_t>(segments.size()); }
+  // DERIVE closed_curve : LOGICAL := (segments[n_segments].transition <> discontinuous)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY composite_curve_segment
@@ -1131,7 +1134,8 @@ class axis1_placement : public machining_schema::placement {
 
   machining_schema::direction* axis{};  // OPTIONAL direction
 
-  // DERIVE z : direction -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE z : direction := NVL(normalise(axis), (dummy_gri || direction([0.0, 0.0, 1.0])))
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY axis2_placement_3d SUBTYPE OF (placement)
@@ -1144,7 +1148,8 @@ class axis2_placement_3d : public machining_schema::placement {
   machining_schema::direction* axis{};  // OPTIONAL direction
   machining_schema::direction* ref_direction{};  // OPTIONAL direction
 
-  // DERIVE p : LIST [3:3] OF direction -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE p : LIST [3:3] OF direction := build_axes(axis, ref_direction)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY b_spline_curve SUBTYPE OF (bounded_curve)
@@ -1161,8 +1166,10 @@ class b_spline_curve : public virtual machining_schema::bounded_curve {
   stepnc::meta::Logical closed_curve{};  // LOGICAL
   stepnc::meta::Logical self_intersect{};  // LOGICAL
 
-  // DERIVE upper_index_on_control_points : INTEGER -- not yet derivable (listed in meta_entity.derived).
-  // DERIVE control_points : ARRAY [0:?] OF cartesian_point -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE upper_index_on_control_points : INTEGER := (SIZEOF(control_points_list) - 1)
+  std::int64_t upper_index_on_control_points() const { return (static_cast<std::int64_t>(control_points_list.size()) - 1); }
+  // DERIVE control_points : ARRAY [0:upper_index_on_control_points] OF cartesian_point := list_to_array(control_points_list, 0, upper_index_on_control_points)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY bezier_curve SUBTYPE OF (b_spline_curve)
@@ -1206,9 +1213,12 @@ class b_spline_surface : public virtual machining_schema::bounded_surface {
   stepnc::meta::Logical v_closed{};  // LOGICAL
   stepnc::meta::Logical self_intersect{};  // LOGICAL
 
-  // DERIVE u_upper : INTEGER -- not yet derivable (listed in meta_entity.derived).
-  // DERIVE v_upper : INTEGER -- not yet derivable (listed in meta_entity.derived).
-  // DERIVE control_points : ARRAY [0:?] OF ARRAY [0:?] OF cartesian_point -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE u_upper : INTEGER := (SIZEOF(control_points_list) - 1)
+  std::int64_t u_upper() const { return (static_cast<std::int64_t>(control_points_list.size()) - 1); }
+  // DERIVE v_upper : INTEGER := (SIZEOF(control_points_list[1]) - 1)
+  //   not yet derivable (listed in meta_entity.derived).
+  // DERIVE control_points : ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF cartesian_point := make_array_of_array(control_points_list, 0, u_upper, 0, v_upper)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY bezier_surface SUBTYPE OF (b_spline_surface)
@@ -1251,7 +1261,8 @@ class b_spline_curve_with_knots : public virtual machining_schema::b_spline_curv
   std::vector<machining_schema::parameter_value> knots{};  // LIST [2:?] OF parameter_value
   machining_schema::knot_type knot_spec{};  // knot_type
 
-  // DERIVE upper_index_on_knots : INTEGER -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE upper_index_on_knots : INTEGER := SIZEOF(knots)
+  std::int64_t upper_index_on_knots() const { return static_cast<std::int64_t>(knots.size()); }
 };
 
 // ENTITY b_spline_surface_with_knots SUBTYPE OF (b_spline_surface)
@@ -1267,8 +1278,10 @@ class b_spline_surface_with_knots : public virtual machining_schema::b_spline_su
   std::vector<machining_schema::parameter_value> v_knots{};  // LIST [2:?] OF parameter_value
   machining_schema::knot_type knot_spec{};  // knot_type
 
-  // DERIVE knot_u_upper : INTEGER -- not yet derivable (listed in meta_entity.derived).
-  // DERIVE knot_v_upper : INTEGER -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE knot_u_upper : INTEGER := SIZEOF(u_knots)
+  std::int64_t knot_u_upper() const { return static_cast<std::int64_t>(u_knots.size()); }
+  // DERIVE knot_v_upper : INTEGER := SIZEOF(v_knots)
+  std::int64_t knot_v_upper() const { return static_cast<std::int64_t>(v_knots.size()); }
 };
 
 // ENTITY point SUBTYPE OF (geometric_representation_item)
@@ -1467,7 +1480,8 @@ class rational_b_spline_curve : public virtual machining_schema::b_spline_curve 
 
   std::vector<double> weights_data{};  // LIST [2:?] OF REAL
 
-  // DERIVE weights : ARRAY [0:?] OF REAL -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE weights : ARRAY [0:upper_index_on_control_points] OF REAL := list_to_array(weights_data, 0, upper_index_on_control_points)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY rational_b_spline_surface SUBTYPE OF (b_spline_surface)
@@ -1479,7 +1493,8 @@ class rational_b_spline_surface : public virtual machining_schema::b_spline_surf
 
   std::vector<std::vector<double>> weights_data{};  // LIST [2:?] OF LIST [2:?] OF REAL
 
-  // DERIVE weights : ARRAY [0:?] OF ARRAY [0:?] OF REAL -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE weights : ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF REAL := make_array_of_array(weights_data, 0, u_upper, 0, v_upper)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY spherical_surface SUBTYPE OF (elementary_surface)
@@ -1521,7 +1536,8 @@ class surface_of_revolution : public machining_schema::swept_surface {
 
   machining_schema::axis1_placement* axis_position{};  // axis1_placement
 
-  // DERIVE axis_line : line -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE axis_line : line := ((dummy_gri || curve()) || line(axis_position.location, (dummy_gri || vector(axis_position.z, 1.0))))
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY uniform_curve SUBTYPE OF (b_spline_curve)
@@ -1628,7 +1644,8 @@ class edge_loop : public machining_schema::loop, public machining_schema::path {
   static constexpr bool meta_entity_is_abstract = false;
   const stepnc::meta::EntityInfo& entity_info() const noexcept override;
 
-  // DERIVE ne : INTEGER -- not yet derivable (listed in meta_entity.derived).
+  // DERIVE ne : INTEGER := SIZEOF(SELF\path.edge_list)
+  //   not yet derivable (listed in meta_entity.derived).
 };
 
 // ENTITY face SUBTYPE OF (topological_representation_item)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry.h"
+#include "stepnc/post/roughness.h"
 #include "regions.h"
 #include "siemens_cycles.h"
 
@@ -145,34 +146,34 @@ class Generator {
 
   void visit(const Executable& executable);
   void workingstep(const Executable& executable);
-  bool prepare(const Executable& executable, Job& step);
-  void start_operation(const Job& step);
+  bool prepare(const Executable& executable, Job& job);
+  void start_operation(const Job& job);
 
   // Milling
-  void planar_face(const Job& step, const PlanarFace& face);
-  void area_clearing(const Job& step, const Region& region, Vec2 offset);
-  void slot(const Job& step, const Slot& slot);
-  void hole(const Job& step, const RoundHole& hole);
-  void explicit_toolpaths(const Job& step);
-  std::optional<std::size_t> begin_feature_cycle(const Job& step);
+  void planar_face(const Job& job, const PlanarFace& face);
+  void area_clearing(const Job& job, const Region& region, Vec2 offset);
+  void slot(const Job& job, const Slot& slot);
+  void hole(const Job& job, const RoundHole& hole);
+  void explicit_toolpaths(const Job& job);
+  std::optional<std::size_t> begin_feature_cycle(const Job& job);
   void end_feature_cycle(std::optional<std::size_t> index);
 
   // Turning
-  void turning_step(const Job& step);
-  void facing(const Job& step);
-  void rough_profile(const Job& step, const TurningProfile& profile);
-  void finish_profile(const Job& step, const TurningProfile& profile, double allowance);
-  void grooving(const Job& step, const Groove& groove);
-  void axial_drilling(const Job& step, double depth);
+  void turning_step(const Job& job);
+  void facing(const Job& job);
+  void rough_profile(const Job& job, const TurningProfile& profile);
+  void finish_profile(const Job& job, const TurningProfile& profile, double allowance);
+  void grooving(const Job& job, const Groove& groove);
+  void axial_drilling(const Job& job, double depth);
 
   // Emission
   void emit(Statement statement);
   void rapid(Vec3 to);
   void feed(Vec3 to);
-  void path_at(const Job& step, const Path& path, double z);
-  void move_to_start(const Job& step, Vec2 local, double approach_z, double cut_z, Vec2 offset);
-  Vec3 global(const Job& step, Vec2 local, double z, Vec2 offset = {}) const;
-  void go_clear(Vec2 xy);
+  void path_at(const Job& job, const Path& path, double z);
+  void move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset);
+  Vec3 global(const Job& job, Vec2 local, double z, Vec2 offset = {}) const;
+  void go_clear(Vec2 xy, double clear);
   void spindle(const SpindleOn& on);
   void coolant(const MachineFunctions& functions);
   void feedrate(const FeedRate& rate);
@@ -180,8 +181,8 @@ class Generator {
   void warning(const Source& where, std::string message);
 
   std::optional<ResolvedTechnology> resolve_technology(const Operation& op, const Tool& tool);
-  double tool_radius(const Job& step) const { return step.tool->diameter / 2; }
-  double stepover(const Job& step) const;
+  double tool_radius(const Job& job) const { return job.tool->diameter / 2; }
+  double stepover(const Job& job) const;
   bool turning() const { return project_.machine == MachineKind::turning; }
   Vec3 turning_safe() const {
     return {project_.workpiece.stock_radius + 2 * options_.safety_distance, 0,
@@ -242,24 +243,23 @@ void Generator::coolant(const MachineFunctions& functions) {
   emit(wanted);
 }
 
-Vec3 Generator::global(const Job& step, Vec2 local, double z, Vec2 offset) const {
-  Vec3 p = step.feature->placement.to_global(local + offset);
+Vec3 Generator::global(const Job& job, Vec2 local, double z, Vec2 offset) const {
+  Vec3 p = job.feature->placement.to_global(local + offset);
   p.z = z;
   return p;
 }
 
 // Up to the security plane, then across: the only way between features.
-void Generator::go_clear(Vec2 xy) {
-  const double clear = program_.clear_z;
+void Generator::go_clear(Vec2 xy, double clear) {
   if (pos_.z < clear - eps) rapid({pos_.x, pos_.y, clear});
   rapid({xy.x, xy.y, std::max(pos_.z, clear)});
 }
 
-void Generator::path_at(const Job& step, const Path& path, double z) {
+void Generator::path_at(const Job& job, const Path& path, double z) {
   for (const auto& segment : path.segments) {
-    const Vec3 to = global(step, segment.to, z);
+    const Vec3 to = global(job, segment.to, z);
     if (segment.arc) {
-      const Vec3 centre = global(step, segment.centre, z);
+      const Vec3 centre = global(job, segment.centre, z);
       emit(Arc{ArcPlane::xy, to, centre, segment.clockwise, 0});
     } else {
       feed(to);
@@ -270,19 +270,19 @@ void Generator::path_at(const Job& step, const Path& path, double z) {
 // From anywhere above the feature to a cut start: up to the retract plane
 // unless already straight above it, across, rapid down to `approach_z`,
 // feed down to `cut_z`.
-void Generator::move_to_start(const Job& step, Vec2 local, double approach_z, double cut_z, Vec2 offset) {
-  const Vec3 target = global(step, local, cut_z, offset);
+void Generator::move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset) {
+  const Vec3 target = global(job, local, cut_z, offset);
   const bool above = std::abs(pos_.x - target.x) < eps && std::abs(pos_.y - target.y) < eps;
   if (!above) {
-    if (pos_.z < step.retract - eps) rapid({pos_.x, pos_.y, step.retract});
-    rapid({target.x, target.y, std::max(pos_.z, step.retract)});
+    if (pos_.z < job.retract - eps) rapid({pos_.x, pos_.y, job.retract});
+    rapid({target.x, target.y, std::max(pos_.z, job.retract)});
   }
   if (pos_.z > approach_z + eps) rapid({target.x, target.y, approach_z});
   feed(target);
 }
 
-double Generator::stepover(const Job& step) const {
-  const double r = tool_radius(step);
+double Generator::stepover(const Job& job) const {
+  const double r = tool_radius(job);
   std::optional<double> given;
   std::visit(
       [&](const auto& s) {
@@ -291,8 +291,8 @@ double Generator::stepover(const Job& step) const {
                       std::is_same_v<S, ContourBidirectional> || std::is_same_v<S, ContourParallel>)
           given = s.stepover;
       },
-      step.op->strategy);
-  if (!given) given = step.op->radial_cutting_depth;
+      job.op->strategy);
+  if (!given) given = job.op->radial_cutting_depth;
   // Default half the diameter; never more than r*sqrt(2), beyond which laps
   // with sharp corners leave islands between them.
   const double s = given.value_or(r);
@@ -406,43 +406,43 @@ void Generator::visit(const Executable& executable) {
   }
 }
 
-bool Generator::prepare(const Executable& executable, Job& step) {
+bool Generator::prepare(const Executable& executable, Job& job) {
   const Workingstep& ws = executable.step;
   if (ws.feature < 0 || ws.feature >= static_cast<int>(project_.features.size()) || ws.operation < 0 ||
       ws.operation >= static_cast<int>(project_.operations.size())) {
     error(executable.source, "workingstep without a feature or an operation");
     return false;
   }
-  step.feature = &project_.features[static_cast<std::size_t>(ws.feature)];
-  step.op = &project_.operations[static_cast<std::size_t>(ws.operation)];
-  const Operation& op = *step.op;
+  job.feature = &project_.features[static_cast<std::size_t>(ws.feature)];
+  job.op = &project_.operations[static_cast<std::size_t>(ws.operation)];
+  const Operation& op = *job.op;
   if (op.tool < 0 || op.tool >= static_cast<int>(project_.tools.size())) {
     error(op.source, "operation without a tool");
     return false;
   }
-  step.tool = &project_.tools[static_cast<std::size_t>(op.tool)];
+  job.tool = &project_.tools[static_cast<std::size_t>(op.tool)];
   if (auto* unknown = std::get_if<UnknownStrategy>(&op.strategy)) {
     error(op.source, fmt::format("unknown machining strategy '{}'", unknown->entity_name));
     return false;
   }
-  auto tech = resolve_technology(op, *step.tool);
+  auto tech = resolve_technology(op, *job.tool);
   if (!tech) return false;
-  step.tech = *tech;
+  job.tech = *tech;
   int& number = tool_numbers_[static_cast<std::size_t>(op.tool)];
   if (number == 0) number = *std::max_element(tool_numbers_.begin(), tool_numbers_.end()) + 1;
-  step.tool_number = number;
-  step.clear = ws.security_plane.value_or(program_.clear_z);
-  step.top = step.feature->placement.location.z;
-  step.retract = step.top + op.retract_plane.value_or(options_.safety_distance);
-  if (!turning() && step.retract > step.clear + eps) {
-    error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", step.retract, step.clear));
+  job.tool_number = number;
+  job.clear = ws.security_plane.value_or(program_.clear_z);
+  job.top = job.feature->placement.location.z;
+  job.retract = job.top + op.retract_plane.value_or(options_.safety_distance);
+  if (!turning() && job.retract > job.clear + eps) {
+    error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", job.retract, job.clear));
     return false;
   }
   return true;
 }
 
-void Generator::start_operation(const Job& step) {
-  if (current_tool_ != step.tool_number) {
+void Generator::start_operation(const Job& job) {
+  if (current_tool_ != job.tool_number) {
     if (spindle_) {
       emit(SpindleOff{});
       spindle_.reset();
@@ -452,69 +452,69 @@ void Generator::start_operation(const Job& step) {
       rapid(turning_safe());
     else if (pos_.z < program_.clear_z - eps)
       rapid({pos_.x, pos_.y, program_.clear_z});
-    if (!program_.tool(step.tool_number)) program_.tools.push_back({step.tool_number, *step.tool});
-    emit(ToolChange{step.tool_number});
-    current_tool_ = step.tool_number;
+    if (!program_.tool(job.tool_number)) program_.tools.push_back({job.tool_number, *job.tool});
+    emit(ToolChange{job.tool_number});
+    current_tool_ = job.tool_number;
   }
-  emit(Tolerance{program_.tolerance, is_rough(step.op->kind)});
-  spindle(step.tech.spindle);
-  coolant(step.op->machine_functions);
-  feedrate(step.tech.feed);
+  emit(Tolerance{program_.tolerance, is_rough(job.op->kind)});
+  spindle(job.tech.spindle);
+  coolant(job.op->machine_functions);
+  feedrate(job.tech.feed);
 }
 
 void Generator::workingstep(const Executable& executable) {
-  Job step;
-  if (!prepare(executable, step)) return;
+  Job job;
+  if (!prepare(executable, job)) return;
   ++workingstep_count_;
-  program_.provenance.push_back({executable.source, step.op->source, step.feature->source});
+  program_.provenance.push_back({executable.source, job.op->source, job.feature->source});
   provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
   emit(Comment{fmt::format("WS({}) {} #{}: {} #{} on {} #{}", workingstep_count_, executable.source.name,
-                           executable.source.id, to_string(step.op->kind), step.op->source.id,
-                           step.feature->source.name, step.feature->source.id)});
-  start_operation(step);
+                           executable.source.id, to_string(job.op->kind), job.op->source.id,
+                           job.feature->source.name, job.feature->source.id)});
+  start_operation(job);
   const std::size_t blocks_before = program_.blocks.size();
 
-  if (step.op->kind == OperationKind::freeform) {
-    explicit_toolpaths(step);
+  if (job.op->kind == OperationKind::freeform) {
+    explicit_toolpaths(job);
   } else if (turning()) {
-    turning_step(step);
+    turning_step(job);
   } else {
-    const OperationKind kind = step.op->kind;
+    const OperationKind kind = job.op->kind;
     const bool plane = kind == OperationKind::plane_rough_milling || kind == OperationKind::plane_finish_milling;
     const bool bottom_side = kind == OperationKind::bottom_and_side_rough_milling ||
                              kind == OperationKind::bottom_and_side_finish_milling;
-    const auto& shape = step.feature->shape;
+    const auto& shape = job.feature->shape;
     if (auto* face = std::get_if<PlanarFace>(&shape); face && plane) {
-      planar_face(step, *face);
+      planar_face(job, *face);
     } else if (auto* hole_shape = std::get_if<RoundHole>(&shape); hole_shape && is_hole_making(kind)) {
-      hole(step, *hole_shape);
+      hole(job, *hole_shape);
     } else if (auto* slot_shape = std::get_if<Slot>(&shape); slot_shape && bottom_side) {
-      slot(step, *slot_shape);
+      slot(job, *slot_shape);
     } else if (bottom_side && (std::holds_alternative<ClosedPocket>(shape) || std::holds_alternative<OpenPocket>(shape) ||
                                std::holds_alternative<Step>(shape))) {
       std::string problem;
-      const auto region = milling_region(*step.feature, tool_radius(step) + options_.approach_clearance, problem);
+      const auto region = milling_region(*job.feature, tool_radius(job) + options_.approach_clearance, problem);
       if (!region) {
-        error(step.feature->source, problem);
+        error(job.feature->source, problem);
       } else {
-        area_clearing(step, region->region, region->offset);
+        area_clearing(job, region->region, region->offset);
       }
     } else {
-      error(step.op->source, fmt::format("{} cannot machine feature '{}' (#{})", to_string(kind),
-                                         step.feature->source.name, step.feature->source.id));
+      error(job.op->source, fmt::format("{} cannot machine feature '{}' (#{})", to_string(kind),
+                                         job.feature->source.name, job.feature->source.id));
     }
   }
   if (program_.blocks.size() == blocks_before) return;
-  if (!turning()) go_clear({pos_.x, pos_.y});
+  if (!turning()) go_clear({pos_.x, pos_.y}, job.clear);
 }
 
 // ------------------------------------------------------------- milling --
 
-void Generator::planar_face(const Job& step, const PlanarFace& face) {
-  const Operation& op = *step.op;
-  const double r = tool_radius(step);
+void Generator::planar_face(const Job& job, const PlanarFace& face) {
+  const Operation& op = *job.op;
+  const double r = tool_radius(job);
   const bool rough = is_rough(op.kind);
-  const double bottom = step.top - step.feature->depth + (rough ? op.allowance_bottom : 0);
+  const double bottom = job.top - job.feature->depth + (rough ? op.allowance_bottom : 0);
   const bool unidirectional = std::holds_alternative<UnidirectionalMilling>(op.strategy);
   if (!std::holds_alternative<std::monostate>(op.strategy) && !unidirectional &&
       !std::holds_alternative<BidirectionalMilling>(op.strategy)) {
@@ -524,12 +524,12 @@ void Generator::planar_face(const Job& step, const PlanarFace& face) {
   // Tool centre lines keep the tool inside the face across its width and
   // run off both ends of the course of travel.
   const double y0 = std::min(r, face.width / 2), y1 = std::max(face.width - r, face.width / 2);
-  const int lines = std::max(1, static_cast<int>(std::ceil((y1 - y0) / stepover(step) - 1e-9))) + (y1 - y0 > eps ? 1 : 0);
+  const int lines = std::max(1, static_cast<int>(std::ceil((y1 - y0) / stepover(job) - 1e-9))) + (y1 - y0 > eps ? 1 : 0);
   const double run_in = r + options_.approach_clearance;
   const double x_start = -run_in, x_end = face.length + run_in;
-  const auto levels = depth_levels(step.top, bottom, op.axial_cutting_depth);
-  const auto cycle = begin_feature_cycle(step);
-  double last_level = step.top;
+  const auto levels = depth_levels(job.top, bottom, op.axial_cutting_depth);
+  const auto cycle = begin_feature_cycle(job);
+  double last_level = job.top;
   for (const double z : levels) {
     for (int i = 0; i < lines; ++i) {
       const double y = lines == 1 ? (y0 + y1) / 2 : y0 + (y1 - y0) * i / (lines - 1);
@@ -537,35 +537,35 @@ void Generator::planar_face(const Job& step, const PlanarFace& face) {
       const Vec2 from{forward ? x_start : x_end, y}, to{forward ? x_end : x_start, y};
       if (i == 0 || unidirectional) {
         // Start outside the face: safe to come down beside it.
-        move_to_start(step, from, last_level + options_.safety_distance, z, {});
+        move_to_start(job, from, last_level + options_.safety_distance, z, {});
       } else {
-        feed(global(step, from, z));  // step over outside the face
+        feed(global(job, from, z));  // step over outside the face
       }
-      feed(global(step, to, z));
+      feed(global(job, to, z));
     }
     last_level = z;
-    rapid({pos_.x, pos_.y, step.retract});
+    rapid({pos_.x, pos_.y, job.retract});
   }
   end_feature_cycle(cycle);
 }
 
-void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset) {
-  const Operation& op = *step.op;
-  const double r = tool_radius(step);
+void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset) {
+  const Operation& op = *job.op;
+  const double r = tool_radius(job);
   const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
   const double side = rough ? op.allowance_side : 0;
   const double d_final = r + side;
   const double m = geom::inradius(region);
   if (m < d_final - eps) {
-    error(step.feature->source, fmt::format("tool '{}' (diameter {}) plus side allowance {} does not fit the "
+    error(job.feature->source, fmt::format("tool '{}' (diameter {}) plus side allowance {} does not fit the "
                                             "feature (largest inscribed radius {})",
-                                            step.tool->source.name, step.tool->diameter, side, m));
+                                            job.tool->source.name, job.tool->diameter, side, m));
     return;
   }
   if (const auto* rect = std::get_if<geom::RoundedRect>(&region)) {
     for (const double corner : rect->radius) {
       if (corner > eps && r > corner + side + eps) {
-        error(step.feature->source, fmt::format("tool radius {} is larger than the pocket corner radius {}; "
+        error(job.feature->source, fmt::format("tool radius {} is larger than the pocket corner radius {}; "
                                                 "the tool cannot reach the corners",
                                                 r, corner));
         return;
@@ -583,18 +583,18 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
                      "bidirectional_milling strategies");
     return;
   }
-  if (auto* pocket = std::get_if<ClosedPocket>(&step.feature->shape);
-      pocket && step.tool->corner_radius > pocket->planar_radius + eps)
-    warning(step.feature->source, fmt::format("pocket floor fillet (planar_radius {}) is smaller than the "
+  if (auto* pocket = std::get_if<ClosedPocket>(&job.feature->shape);
+      pocket && job.tool->corner_radius > pocket->planar_radius + eps)
+    warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {}) is smaller than the "
                                               "tool's corner radius {}",
-                                              pocket->planar_radius, step.tool->corner_radius));
+                                              pocket->planar_radius, job.tool->corner_radius));
   if (auto* polygon = std::get_if<geom::Polygon>(&region); polygon && contour && !geom::is_convex(*polygon)) {
     error(op.source, "contour_parallel on a non-convex general profile is not supported; use bidirectional_milling");
     return;
   }
   const auto final_lap = geom::offset_lap(region, d_final);
   if (!final_lap) {
-    error(step.feature->source, "the profile is too narrow for the tool: the tool centre path collapses");
+    error(job.feature->source, "the profile is too narrow for the tool: the tool centre path collapses");
     return;
   }
   // Lap direction: the strategy's rotation, else from cut mode (climb
@@ -605,7 +605,7 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
     if (cp->rotation != Rotation::unspecified)
       clockwise = cp->rotation == Rotation::clockwise;
     else
-      clockwise = (cp->cutmode == CutMode::climb) != step.tech.spindle.clockwise;
+      clockwise = (cp->cutmode == CutMode::climb) != job.tech.spindle.clockwise;
   }
   // Paths in the feature frame: oriented, and moved by the region's offset.
   auto placed = [&](Path p) {
@@ -618,7 +618,7 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
     return p;
   };
 
-  const double s = stepover(step);
+  const double s = stepover(job);
   std::vector<Path> laps;  // from the inside out, sharing one start ray
   const int n = std::max(0, static_cast<int>(std::ceil((m - d_final) / s - 1e-9)));
   // The innermost lap sits at the inradius (a line or point for rectangles
@@ -648,7 +648,7 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
         // region; otherwise lift over the material.
         bool linked = false;
         if (!first) {
-          const Vec2 prev = step.feature->placement.to_local({pos_.x, pos_.y}) - offset;
+          const Vec2 prev = job.feature->placement.to_local({pos_.x, pos_.y}) - offset;
           linked = true;
           for (int k = 0; k <= 20 && linked; ++k) {
             const Vec2 p = prev + (from - prev) * (k / 20.0);
@@ -656,52 +656,52 @@ void Generator::area_clearing(const Job& step, const Region& region, Vec2 offset
           }
         }
         if (linked)
-          feed(global(step, from, z, offset));
+          feed(global(job, from, z, offset));
         else
-          move_to_start(step, from + offset, approach_z, z, {});
+          move_to_start(job, from + offset, approach_z, z, {});
         first = false;
-        feed(global(step, to, z, offset));
+        feed(global(job, to, z, offset));
       }
       forward = !forward;
     }
   };
 
-  const auto levels = depth_levels(step.top, step.top - step.feature->depth + (rough ? op.allowance_bottom : 0),
+  const auto levels = depth_levels(job.top, job.top - job.feature->depth + (rough ? op.allowance_bottom : 0),
                                    op.axial_cutting_depth);
-  const auto cycle = begin_feature_cycle(step);
-  double last_level = step.top;
+  const auto cycle = begin_feature_cycle(job);
+  double last_level = job.top;
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const double z = levels[k];
     // Roughing clears each level completely, so the next plunge can start
     // just above it; finishing levels cut the walls only and always plunge
     // from above the feature.
-    const double approach_z = (rough ? last_level : step.top) + options_.safety_distance;
+    const double approach_z = (rough ? last_level : job.top) + options_.safety_distance;
     const bool floor = k + 1 == levels.size();
     if (!rough && !floor) {
       // Finishing: the walls layer by layer with the boundary lap only.
-      move_to_start(step, boundary_lap.start, approach_z, z, {});
-      path_at(step, boundary_lap, z);
+      move_to_start(job, boundary_lap.start, approach_z, z, {});
+      path_at(job, boundary_lap, z);
     } else if (contour) {
       // Plunge at the inner lap, then outwards lap by lap along the start ray.
-      move_to_start(step, laps.front().start, approach_z, z, {});
+      move_to_start(job, laps.front().start, approach_z, z, {});
       for (const Path& lap : laps) {
-        feed(global(step, lap.start, z));
-        path_at(step, lap, z);
+        feed(global(job, lap.start, z));
+        path_at(job, lap, z);
       }
     } else {
       zigzag(z, approach_z);
-      move_to_start(step, boundary_lap.start, approach_z, z, {});
-      path_at(step, boundary_lap, z);
+      move_to_start(job, boundary_lap.start, approach_z, z, {});
+      path_at(job, boundary_lap, z);
     }
     last_level = z;
   }
-  rapid({pos_.x, pos_.y, step.retract});
+  rapid({pos_.x, pos_.y, job.retract});
   end_feature_cycle(cycle);
 }
 
-std::optional<std::size_t> Generator::begin_feature_cycle(const Job& step) {
-  CycleInput input{*step.feature, *step.op, *step.tool, step.tech.spindle, step.tech.feed,
-                   step.top, step.retract, options_.safety_distance};
+std::optional<std::size_t> Generator::begin_feature_cycle(const Job& job) {
+  CycleInput input{*job.feature, *job.op, *job.tool, job.tech.spindle, job.tech.feed,
+                   job.top, job.retract, options_.safety_distance};
   auto cycle = siemens_feature_cycle(input);
   if (!cycle) return std::nullopt;
   emit(std::move(*cycle));
@@ -713,50 +713,50 @@ void Generator::end_feature_cycle(std::optional<std::size_t> index) {
   std::get<FeatureCycle>(program_.blocks[*index].statement).replaces = program_.blocks.size() - *index - 1;
 }
 
-void Generator::slot(const Job& step, const Slot& slot_shape) {
-  const Operation& op = *step.op;
-  const double r = tool_radius(step);
+void Generator::slot(const Job& job, const Slot& slot_shape) {
+  const Operation& op = *job.op;
+  const double r = tool_radius(job);
   const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
   const double side = rough ? op.allowance_side : 0;
   if (2 * (r + side) > slot_shape.width + eps) {
-    error(step.feature->source, fmt::format("tool diameter {} plus allowances does not fit the slot width {}",
-                                            step.tool->diameter, slot_shape.width));
+    error(job.feature->source, fmt::format("tool diameter {} plus allowances does not fit the slot width {}",
+                                            job.tool->diameter, slot_shape.width));
     return;
   }
   if (std::abs(2 * (r + side) - slot_shape.width) > 1e-6) {
     std::string problem;
-    const auto region = milling_region(*step.feature, r + options_.approach_clearance, problem);
-    area_clearing(step, region->region, region->offset);
+    const auto region = milling_region(*job.feature, r + options_.approach_clearance, problem);
+    area_clearing(job, region->region, region->offset);
     return;
   }
   // Tool as wide as the slot: centre-line passes, alternating direction.
   const double extra = slot_shape.rounded_ends ? 0 : r + options_.approach_clearance;
   const Vec2 a{-extra, 0}, b{slot_shape.length + extra, 0};
-  const auto levels = depth_levels(step.top, step.top - step.feature->depth + (rough ? op.allowance_bottom : 0),
+  const auto levels = depth_levels(job.top, job.top - job.feature->depth + (rough ? op.allowance_bottom : 0),
                                    op.axial_cutting_depth);
-  const auto cycle = begin_feature_cycle(step);
-  move_to_start(step, a, step.top + options_.safety_distance, levels.front(), {});
+  const auto cycle = begin_feature_cycle(job);
+  move_to_start(job, a, job.top + options_.safety_distance, levels.front(), {});
   for (std::size_t k = 0; k < levels.size(); ++k) {
-    if (k > 0) feed(global(step, k % 2 ? b : a, levels[k]));
-    feed(global(step, k % 2 ? a : b, levels[k]));
+    if (k > 0) feed(global(job, k % 2 ? b : a, levels[k]));
+    feed(global(job, k % 2 ? a : b, levels[k]));
   }
-  rapid({pos_.x, pos_.y, step.retract});
+  rapid({pos_.x, pos_.y, job.retract});
   end_feature_cycle(cycle);
 }
 
-void Generator::hole(const Job& step, const RoundHole& hole_shape) {
-  const Operation& op = *step.op;
-  const Tool& tool = *step.tool;
+void Generator::hole(const Job& job, const RoundHole& hole_shape) {
+  const Operation& op = *job.op;
+  const Tool& tool = *job.tool;
   // A tap is as wide as the thread, wider than the hole drilled for it.
   if (op.kind != OperationKind::tapping && tool.diameter > hole_shape.diameter + eps) {
     error(op.source, fmt::format("tool '{}' (diameter {}) is larger than hole '{}' (diameter {})", tool.source.name,
-                                 tool.diameter, step.feature->source.name, hole_shape.diameter));
+                                 tool.diameter, job.feature->source.name, hole_shape.diameter));
     return;
   }
   if (op.kind == OperationKind::reaming && std::abs(tool.diameter - hole_shape.diameter) > 1e-3)
     warning(op.source, fmt::format("reamer diameter {} differs from hole diameter {}", tool.diameter,
                                    hole_shape.diameter));
-  double depth = op.cutting_depth.value_or(step.feature->depth);
+  double depth = op.cutting_depth.value_or(job.feature->depth);
   if (hole_shape.bottom == HoleBottom::through && !op.cutting_depth && op.kind != OperationKind::center_drilling) {
     // Break through: the drill's point plus 1 mm.
     const bool pointed = tool.kind == ToolKind::twist_drill;
@@ -764,15 +764,15 @@ void Generator::hole(const Job& step, const RoundHole& hole_shape) {
     depth += 1 + (pointed ? tool.diameter / 2 / std::tan(half_angle) : 0);
   }
   DrillCycle cycle;
-  const Vec3 centre = step.feature->placement.location;
+  const Vec3 centre = job.feature->placement.location;
   cycle.x = centre.x;
   cycle.y = centre.y;
-  cycle.top = step.top;
-  cycle.r = step.top + options_.safety_distance;
-  cycle.clear = step.retract;
-  cycle.bottom = step.top - depth;
+  cycle.top = job.top;
+  cycle.r = job.top + options_.safety_distance;
+  cycle.clear = job.retract;
+  cycle.bottom = job.top - depth;
   cycle.dwell = op.dwell_time_bottom;
-  cycle.feed = step.tech.feed.value;
+  cycle.feed = job.tech.feed.value;
   switch (op.kind) {
     case OperationKind::multistep_drilling:
       if (!op.depth_of_step || *op.depth_of_step <= eps) {
@@ -790,28 +790,28 @@ void Generator::hole(const Job& step, const RoundHole& hole_shape) {
       cycle.retract_feed = cycle.feed;
       break;
     case OperationKind::tapping:
-      if (tool.thread_pitch <= eps || step.tech.spindle.rpm <= eps) {
+      if (tool.thread_pitch <= eps || job.tech.spindle.rpm <= eps) {
         error(op.source, "tapping needs the tap's thread pitch and a spindle speed");
         return;
       }
       cycle.kind = DrillKind::tap;
       cycle.pitch = tool.thread_pitch;
-      cycle.feed = tool.thread_pitch * step.tech.spindle.rpm;
+      cycle.feed = tool.thread_pitch * job.tech.spindle.rpm;
       break;
     default:
       cycle.kind = DrillKind::drill;
       break;
   }
   if (cycle.r >= cycle.clear - eps) cycle.clear = cycle.r;
-  go_clear({cycle.x, cycle.y});
+  go_clear({cycle.x, cycle.y}, job.clear);
   rapid({cycle.x, cycle.y, cycle.clear});
   feedrate({cycle.feed, false});
   emit(cycle);
   rapid({cycle.x, cycle.y, cycle.clear});
 }
 
-void Generator::explicit_toolpaths(const Job& step) {
-  const Operation& op = *step.op;
+void Generator::explicit_toolpaths(const Job& job) {
+  const Operation& op = *job.op;
   if (op.toolpaths.empty()) {
     error(op.source, "freeform operation without toolpaths");
     return;
@@ -831,7 +831,7 @@ void Generator::explicit_toolpaths(const Job& step) {
             if (turning()) {
               rapid({turning_safe().x, 0, p.z});
             } else {
-              go_clear({p.x, p.y});
+              go_clear({p.x, p.y}, job.clear);
             }
             first = false;
           }
@@ -855,37 +855,37 @@ void Generator::explicit_toolpaths(const Job& step) {
 
 // ------------------------------------------------------------- turning --
 
-void Generator::turning_step(const Job& step) {
-  const auto& shape = step.feature->shape;
-  const OperationKind kind = step.op->kind;
+void Generator::turning_step(const Job& job) {
+  const auto& shape = job.feature->shape;
+  const OperationKind kind = job.op->kind;
   if ((kind == OperationKind::facing_rough || kind == OperationKind::facing_finish) &&
       std::holds_alternative<TurningFace>(shape)) {
-    facing(step);
+    facing(job);
   } else if (auto* profile = std::get_if<TurningProfile>(&shape);
              profile && (kind == OperationKind::contouring_rough || kind == OperationKind::contouring_finish)) {
     if (profile->points.size() < 2) {
-      error(step.feature->source, "turning profile needs at least two points");
+      error(job.feature->source, "turning profile needs at least two points");
       return;
     }
     if (kind == OperationKind::contouring_rough)
-      rough_profile(step, *profile);
+      rough_profile(job, *profile);
     else
-      finish_profile(step, *profile, 0);
+      finish_profile(job, *profile, 0);
   } else if (auto* groove = std::get_if<Groove>(&shape); groove && kind == OperationKind::grooving) {
-    grooving(step, *groove);
+    grooving(job, *groove);
   } else if (auto* hole_shape = std::get_if<CentreHole>(&shape);
              hole_shape && (kind == OperationKind::lathe_drilling || is_hole_making(kind))) {
-    axial_drilling(step, step.op->cutting_depth.value_or(hole_shape->depth));
+    axial_drilling(job, job.op->cutting_depth.value_or(hole_shape->depth));
   } else {
-    error(step.op->source, fmt::format("{} cannot machine turning feature '{}' (#{})", to_string(kind),
-                                       step.feature->source.name, step.feature->source.id));
+    error(job.op->source, fmt::format("{} cannot machine turning feature '{}' (#{})", to_string(kind),
+                                       job.feature->source.name, job.feature->source.id));
     return;
   }
   rapid(turning_safe());
 }
 
-void Generator::facing(const Job& step) {
-  const Operation& op = *step.op;
+void Generator::facing(const Job& job) {
+  const Operation& op = *job.op;
   const double front = project_.workpiece.stock_front;
   const bool rough = op.kind == OperationKind::facing_rough;
   const double target = rough ? op.allowance : 0;
@@ -906,21 +906,21 @@ void Generator::facing(const Job& step) {
   }
 }
 
-void Generator::rough_profile(const Job& step, const TurningProfile& profile) {
-  const Operation& op = *step.op;
+void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
+  const Operation& op = *job.op;
   const double stock = project_.workpiece.stock_radius;
   const double allowance = op.allowance;
   const auto& pts = profile.points;
   for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
     if (pts[i + 1].x > pts[i].x + eps) {
-      error(step.feature->source, "turning profile points must run from the front (largest z) backwards");
+      error(job.feature->source, "turning profile points must run from the front (largest z) backwards");
       return;
     }
   }
   double min_radius = stock;
   for (const Vec2 p : pts) min_radius = std::min(min_radius, p.y + allowance);
   if (min_radius >= stock - eps) {
-    finish_profile(step, profile, allowance);
+    finish_profile(job, profile, allowance);
     return;
   }
   const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
@@ -952,7 +952,7 @@ void Generator::rough_profile(const Job& step, const TurningProfile& profile) {
     // radius never falls going back (no undercuts).
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
       if (pts[i + 1].y < pts[i].y - eps) {
-        error(step.feature->source, "unidirectional_turning needs a profile without undercuts "
+        error(job.feature->source, "unidirectional_turning needs a profile without undercuts "
                                     "(radius must not decrease towards the chuck)");
         return;
       }
@@ -966,7 +966,7 @@ void Generator::rough_profile(const Job& step, const TurningProfile& profile) {
           {"depth", depths.front(), "its_machining_strategy/cutting_depth"},
           {"retract", lift, "its_machining_strategy/lift_height"},
           {"allowance", allowance, "\"TurningOp\"/allowance"},
-          {"feed", step.tech.feed.value, "\"TurningOp\"/its_technology/feedrate"},
+          {"feed", job.tech.feed.value, "\"TurningOp\"/its_technology/feedrate"},
       };
       g71.start = {turning_safe().x, 0, z_start};
       for (const Vec2 p : pts) g71.profile.push_back({p.y, 0, p.x});
@@ -1018,28 +1018,34 @@ void Generator::rough_profile(const Job& step, const TurningProfile& profile) {
     }
   }
   // Seed 001 5.2: a final contour pass leaves exactly the allowance.
-  finish_profile(step, profile, allowance);
+  finish_profile(job, profile, allowance);
   end_feature_cycle(cycle);
 }
 
-void Generator::finish_profile(const Job& step, const TurningProfile& profile, double allowance) {
+void Generator::finish_profile(const Job& job, const TurningProfile& profile, double allowance) {
   const auto& pts = profile.points;
+  if (allowance == 0 && job.tech.feed.per_revolution && job.tool->kind == ToolKind::turning_insert) {
+    // Note the roughness the finish pass leaves (seed 001, eqs. 1-3).
+    const double h = residual_height({job.tool->nose_radius, job.tech.feed.value,
+                                      job.tool->side_cutting_edge_angle_deg, job.tool->end_cutting_edge_angle_deg});
+    emit(Comment{fmt::format("residual height {:.5f} mm (nose radius {}, feed {} mm/rev)", h,
+                             job.tool->nose_radius, job.tech.feed.value)});
+  }
   const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
   rapid({turning_safe().x, 0, z_start});
   rapid({pts.front().y + allowance, 0, z_start});
   for (const Vec2 p : pts) feed({p.y + allowance, 0, p.x});
   rapid({turning_safe().x, 0, pos_.z});
-  (void)step;
 }
 
-void Generator::grooving(const Job& step, const Groove& groove) {
-  const double w = step.tool->cutting_width;
+void Generator::grooving(const Job& job, const Groove& groove) {
+  const double w = job.tool->cutting_width;
   if (w <= eps) {
-    error(step.tool->source, "grooving insert without a cutting width");
+    error(job.tool->source, "grooving insert without a cutting width");
     return;
   }
   if (w > groove.width + eps) {
-    error(step.op->source, fmt::format("grooving insert width {} is wider than the groove ({})", w, groove.width));
+    error(job.op->source, fmt::format("grooving insert width {} is wider than the groove ({})", w, groove.width));
     return;
   }
   // The insert's reference corner is on its front (+z) side; plunges step
@@ -1051,13 +1057,13 @@ void Generator::grooving(const Job& step, const Groove& groove) {
     const double z = groove.z - (plunges == 1 ? 0 : travel * i / (plunges - 1));
     rapid({outside, 0, z});
     feed({groove.bottom_radius, 0, z});
-    if (step.op->dwell_time_bottom > 0) emit(Dwell{step.op->dwell_time_bottom});
+    if (job.op->dwell_time_bottom > 0) emit(Dwell{job.op->dwell_time_bottom});
     rapid({outside, 0, z});
   }
 }
 
-void Generator::axial_drilling(const Job& step, double depth) {
-  const Operation& op = *step.op;
+void Generator::axial_drilling(const Job& job, double depth) {
+  const Operation& op = *job.op;
   const double start = std::max(project_.workpiece.stock_front, 0.0) + options_.safety_distance;
   const double bottom = -depth;
   rapid({0, 0, start});

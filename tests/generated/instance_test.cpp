@@ -112,3 +112,28 @@ TEST_CASE("instance_cast follows the EXPRESS hierarchy", "[generated][types]") {
   CHECK(meta::instance_cast<closed_pocket>(hole) == nullptr);
   CHECK(meta::instance_cast<cartesian_point>(static_cast<meta::Instance*>(nullptr)) == nullptr);
 }
+
+TEST_CASE("translatable DERIVE attributes are methods, the rest are listed", "[generated][types]") {
+  meta::Model model;
+  auto& curve = model.create<b_spline_curve_with_knots>();
+  for (int i = 0; i < 4; ++i) curve.control_points_list.push_back(&model.create<cartesian_point>());
+  curve.knots = {0.0, 0.5, 1.0};
+  // upper_index_on_control_points := SIZEOF(control_points_list) - 1
+  CHECK(curve.upper_index_on_control_points() == 3);
+  CHECK(curve.upper_index_on_knots() == 3);
+
+  // The same through reflection.
+  const meta::AttributeInfo* upper = b_spline_curve::meta_entity.find_attribute("upper_index_on_control_points");
+  REQUIRE(upper != nullptr);
+  CHECK(upper->kind == meta::AttributeKind::Derived);
+  REQUIRE(upper->derivable());
+  std::int64_t value = 0;
+  upper->derive(curve, &value);
+  CHECK(value == 3);
+
+  // A function call is not translated: listed, not faked.
+  const meta::AttributeInfo* dim = geometric_representation_item::meta_entity.find_attribute("dim");
+  REQUIRE(dim != nullptr);
+  CHECK(dim->kind == meta::AttributeKind::Derived);
+  CHECK_FALSE(dim->derivable());
+}

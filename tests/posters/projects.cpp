@@ -2,6 +2,13 @@
 
 #include <cmath>
 
+#include "machining_schema.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+#include "stepnc/exchange/model_file.h"
+#include "turning_machine_tool_schema.h"
+#include "turning_schema.h"
+
 namespace stepnc::post::testing {
 
 namespace {
@@ -302,6 +309,21 @@ MachiningProject explicit_toolpath(std::size_t points) {
   p.main_workplan.source = {8, "MAIN"};
   p.main_workplan.children = {workingstep(9, "WS FREEFORM", 0, 0)};
   return p;
+}
+
+DescribeResult describe_sample(const std::string& relative_path) {
+  static const meta::Registry registry{&machining_schema::meta_schema, &milling_schema::meta_schema,
+                                       &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,
+                                       &turning_machine_tool_schema::meta_schema};
+  auto read = exchange::read_model_file(std::string(STEPNC_SOURCE_DIR) + "/samples/" + relative_path, registry);
+  if (!read.ok()) {
+    DescribeResult failed;
+    Diagnostic d;
+    d.message = read.diagnostics.to_string();
+    failed.diagnostics.push_back(std::move(d));
+    return failed;
+  }
+  return describe_project(read.file->model);
 }
 
 }  // namespace stepnc::post::testing

@@ -2,6 +2,7 @@
 // typed-model adapter will fill them from Part 21 files.
 #pragma once
 
+#include "stepnc/post/iso14649.h"
 #include "stepnc/post/machining.h"
 
 namespace stepnc::post::testing {
@@ -22,5 +23,9 @@ MachiningProject shaft();
 
 // A freeform operation whose explicit toolpath is a polyline plus an arc.
 MachiningProject explicit_toolpath(std::size_t points);
+
+// A Part 21 file under samples/, read into the typed ISO 14649 model and
+// described by the adapter. Empty project and a diagnostic if unreadable.
+DescribeResult describe_sample(const std::string& relative_path);
 
 }  // namespace stepnc::post::testing

@@ -1,10 +1,12 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "projects.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/generate.h"
+#include "stepnc/post/roughness.h"
 
 using namespace stepnc::post;
 
@@ -229,4 +231,17 @@ TEST_CASE("traceability: every posted line of a workingstep maps back to it") {
       ++untraced_motion;
   }
   CHECK(untraced_motion == 0);
+}
+
+TEST_CASE("residual height follows seed 001 eqs. 1-3") {
+  // The worked example: r = 1.0 mm, K'r = 10 deg, f = 0.3 mm/rev -> 0.01125 mm.
+  CHECK(residual_height({1.0, 0.3, 90, 10}) == Approx(0.01125));
+  // From f = 2 r sin K'r on, eq. 2; there F = 2 sin^2 K'r and h = r (1 - cos K'r),
+  // within 1% of eq. 1's parabola approximation.
+  const double minor = 10 * 3.14159265358979 / 180;
+  const double boundary = 2 * 1.0 * std::sin(minor) * (1 + 1e-12);  // just past it
+  CHECK(residual_height({1.0, boundary, 90, 10}) == Approx(1.0 * (1 - std::cos(minor))));
+  CHECK(residual_height({1.0, boundary, 90, 10}) == Approx(boundary * boundary / 8).epsilon(0.01));
+  // Sharp tool (eq. 3): f / (cot Kr + cot K'r).
+  CHECK(residual_height({0, 0.2, 45, 45}) == Approx(0.1));
 }

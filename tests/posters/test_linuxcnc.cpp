@@ -95,3 +95,10 @@ TEST_CASE("LinuxCNC runs the lathe program (diameter mode, CSS) and agrees move 
 TEST_CASE("LinuxCNC runs a program with an explicit toolpath and a helix") {
   check_with_linuxcnc("explicit", testing::explicit_toolpath(2000));
 }
+
+TEST_CASE("LinuxCNC runs Example 1 as read from samples/milling/example1.stp") {
+  const auto described = testing::describe_sample("milling/example1.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  check_with_linuxcnc("example1_sample", described.project);
+}

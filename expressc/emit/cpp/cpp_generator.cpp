@@ -8,7 +8,10 @@
 #include <sstream>
 #include <system_error>
 
+#include "ast/ast.h"
 #include "emit/cpp/analysis.h"
+#include "emit/cpp/derived.h"
+#include "emit/cpp/names.h"
 #include "emit/cpp/printer.h"
 #include "emit/output.h"
 
@@ -23,37 +26,6 @@ using model::Schema;
 using model::TypeRef;
 
 // ---------------------------------------------------------------- names
-
-// C++ keywords and alternative tokens that are valid EXPRESS identifiers.
-const std::set<std::string_view> kCppKeywords = {
-    "alignas", "alignof", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-    "char", "char8_t", "char16_t", "char32_t", "class", "co_await", "co_return", "co_yield",
-    "compl", "concept", "const", "const_cast", "consteval", "constexpr", "constinit", "continue",
-    "decltype", "default", "delete", "do", "double", "dynamic_cast", "explicit", "export",
-    "extern", "float", "friend", "goto", "inline", "int", "long", "mutable", "namespace", "new",
-    "noexcept", "not_eq", "nullptr", "operator", "or_eq", "private", "protected", "public",
-    "register", "reinterpret_cast", "requires", "short", "signed", "sizeof", "static",
-    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
-    "throw", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual",
-    "void", "volatile", "wchar_t", "while", "xor_eq", "and_eq", "int8_t", "int16_t", "int32_t",
-    "int64_t", "uint8_t", "uint16_t", "uint32_t", "uint64_t", "size_t", "std", "stepnc"};
-
-// Names every generated entity class already has (from meta::Instance or
-// the generator); an attribute with one of these names gets a trailing _.
-const std::set<std::string_view> kReservedMembers = {"id", "object", "entity_info", "meta_entity",
-                                                     "meta_entity_is_abstract"};
-
-std::string identifier(std::string_view name) {
-  std::string id(name);
-  if (kCppKeywords.count(id) != 0) id += '_';
-  return id;
-}
-
-std::string member_identifier(std::string_view name) {
-  std::string id = identifier(name);
-  if (kReservedMembers.count(id) != 0) id += '_';
-  return id;
-}
 
 // Concatenation without `"literal" + std::string` temporaries, which make
 // GCC 12 report a false -Wrestrict.
@@ -205,7 +177,10 @@ std::string_view aggregate_kind_cpp(model::AggregateKind kind) {
   return "";
 }
 
-std::string bound_text(const model::Bound& b) { return b.value ? std::to_string(*b.value) : "?"; }
+std::string bound_text(const model::Bound& b) {
+  if (b.value) return std::to_string(*b.value);
+  return b.expression != nullptr ? ast::to_string(*b.expression) : "?";
+}
 
 // The C++ storage type (see runtime/include/stepnc/meta/info.h).
 std::string cpp_type(const TypeRef& t) {
@@ -593,8 +568,15 @@ void SchemaEmitter::print_entity_class(Printer& p, const Entity& entity) {
               {{"name", a->name}, {"owner", a->redeclares->owner->name},
                {"kind", a->kind == Attribute::Kind::Derived ? "DERIVE " : ""}, {"express", express_text(a->type)}});
     } else if (a->kind == Attribute::Kind::Derived) {
-      p.print("// DERIVE $name$ : $express$ -- not yet derivable (listed in meta_entity.derived).\n",
-              {{"name", a->name}, {"express", express_text(a->type)}});
+      const std::string derivation = a->derivation != nullptr ? ast::to_string(*a->derivation) : "?";
+      if (auto body = translate_derived(*a)) {
+        p.print("// DERIVE $name$ : $express$ := $derivation$\n$type$ $member$() const { return $body$; }\n",
+                {{"name", a->name}, {"express", express_text(a->type)}, {"derivation", derivation},
+                 {"type", cpp_type(a->type)}, {"member", member_identifier(a->name)}, {"body", *body}});
+      } else {
+        p.print("// DERIVE $name$ : $express$ := $derivation$\n//   not yet derivable (listed in meta_entity.derived).\n",
+                {{"name", a->name}, {"express", express_text(a->type)}, {"derivation", derivation}});
+      }
     } else if (a->kind == Attribute::Kind::Inverse) {
       p.print("// INVERSE $name$ : $express$ FOR $attribute$ -- found through the model's references, not stored.\n",
               {{"name", a->name}, {"express", express_text(a->type)},
@@ -749,7 +731,11 @@ void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name,
     for (const auto& a : entity->attributes) {
       if (a->kind == Attribute::Kind::Derived) {
         derived += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
-                   type_info_ref(a->type) + ", .kind = AttributeKind::Derived, .derivable = false},\n";
+                   type_info_ref(a->type) + ", .kind = AttributeKind::Derived";
+        if (translate_derived(*a))
+          derived += concat({",\n     .derive = &stepnc::meta::derived<", cpp_name, ", &", cpp_name, "::",
+                             member_identifier(a->name), ">"});
+        derived += "},\n";
       } else if (a->kind == Attribute::Kind::Inverse) {
         inverses += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
                     type_info_ref(a->type) + ", .kind = AttributeKind::Inverse,\n     .inverse_entity = &" +

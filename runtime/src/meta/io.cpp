@@ -179,10 +179,17 @@ void write_model(const Model& model, const FileHeader& header, p21::Writer& writ
   writer.end_header();
 
   writer.begin_data();
-  std::vector<const Instance*> ordered(model.instances().begin(), model.instances().end());
-  std::sort(ordered.begin(), ordered.end(),
-            [](const Instance* a, const Instance* b) { return a->id() < b->id(); });
-  for (const Instance* instance : ordered) write_instance(*instance, writer);
+  // Models built in code or read from a file are usually in id order
+  // already; sort a copy of the list only when they are not.
+  const auto by_id = [](const Instance* a, const Instance* b) { return a->id() < b->id(); };
+  const auto instances = model.instances();
+  if (std::is_sorted(instances.begin(), instances.end(), by_id)) {
+    for (const Instance* instance : instances) write_instance(*instance, writer);
+  } else {
+    std::vector<const Instance*> ordered(instances.begin(), instances.end());
+    std::sort(ordered.begin(), ordered.end(), by_id);
+    for (const Instance* instance : ordered) write_instance(*instance, writer);
+  }
   writer.end_data();
   writer.end_file();
 }

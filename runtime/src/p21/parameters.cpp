@@ -104,10 +104,8 @@ class RecordParser {
     if (*p_ == '#') {
       ++p_;
       const char* digits = p_;
-      while (detail::is_digit(*p_)) ++p_;
-      const auto [ptr, ec] = std::from_chars(digits, p_, tree_.id_);
-      if (digits == p_ || ec != std::errc() || tree_.id_ == 0)
-        return fail(digits, "expected an instance id (a positive integer) after '#'");
+      tree_.id_ = detail::parse_id(p_, end_);
+      if (tree_.id_ == 0) return fail(digits, detail::bad_id_message(digits, p_));
       skip();
       if (!expect('=')) return error_;
       skip();
@@ -258,13 +256,9 @@ class RecordParser {
     const std::uint32_t index = add_node(ParamKind::reference, p_);
     ++p_;
     const char* digits = p_;
-    while (detail::is_digit(*p_)) ++p_;
-    std::uint64_t id = 0;
-    const auto [ptr, ec] = std::from_chars(digits, p_, id);
-    if (digits == p_ || ec != std::errc() || id == 0) {
-      fail(digits, ec == std::errc::result_out_of_range ? "instance id too large"
-                   : digits != p_                        ? "instance id 0 is not allowed (ids start at 1)"
-                                                         : "expected an instance id after '#'");
+    const std::uint64_t id = detail::parse_id(p_, end_);
+    if (id == 0) {
+      fail(digits, detail::bad_id_message(digits, p_));
       return false;
     }
     tree_.nodes_[index].value.reference = id;

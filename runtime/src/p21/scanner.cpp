@@ -124,7 +124,7 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
     const char* problem = nullptr;
     const char* problem_message = nullptr;
     while (p < end) {
-      while (p < end && !kStatementStops.stop[static_cast<unsigned char>(*p)]) ++p;
+      p = find_statement_stop(p, end);
       if (p >= end || *p == ';') break;
       if (*p == '\'') {
         const char* close = find_string_end(p + 1, end);
@@ -363,13 +363,8 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
 
   const char* p = begin + 1;
   const char* digits = p;
-  while (p < end && is_digit(*p)) ++p;
-  std::uint64_t id = 0;
-  const auto [ptr, ec] = std::from_chars(digits, p, id);
-  if (digits == p || ec != std::errc() || id == 0)
-    return fail_at(offset_of(digits), ec == std::errc::result_out_of_range ? "instance id too large"
-                                      : digits != p ? "instance id 0 is not allowed (ids start at 1)"
-                                                    : "expected an instance id (a positive integer) after '#'");
+  const std::uint64_t id = parse_id(p, end);
+  if (id == 0) return fail_at(offset_of(digits), bad_id_message(digits, p));
   const char* unterminated = nullptr;
   p = skip_space(p, end, &unterminated);
   if (*p != '=') return fail_at(offset_of(p), "expected '=' after the instance id", id);

@@ -109,6 +109,7 @@ G50 S3000
 G96 S250 M03
 M08
 G99 F0.1
+(residual height 0.00297 mm [nose radius 0.4, feed 0.1 mm/rev])
 G0 X83. Z4.
 X32.
 G1 Z0.

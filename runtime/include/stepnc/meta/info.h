@@ -41,6 +41,7 @@
 #include <span>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 namespace stepnc::meta {
 
@@ -164,9 +165,10 @@ struct AttributeInfo {
   void* (*locate)(Instance& instance) = nullptr;
   const OptionalOps* optional_storage = nullptr;  // set when stored as std::optional
 
-  // Derived attributes: true when the entity class has a method computing
-  // it; false when the generator could not translate the expression yet.
-  bool derivable = false;
+  // Derived attributes the generator could translate: the entity class has
+  // a method computing the value, and this writes it into `*result`, a
+  // value of the storage type of `type`. Null when not yet derivable.
+  void (*derive)(Instance& instance, void* result) = nullptr;
 
   // Inverse attributes: `name : SET [0:?] OF inverse_entity FOR inverse_attribute`.
   const EntityInfo* inverse_entity = nullptr;
@@ -175,6 +177,7 @@ struct AttributeInfo {
   // An explicit attribute redeclared as derived in a subtype keeps its Part
   // 21 slot, written as `*`.
   bool stored() const noexcept { return locate != nullptr; }
+  bool derivable() const noexcept { return derive != nullptr; }
 };
 
 // ---------------------------------------------------------------- entities
@@ -251,6 +254,12 @@ Object& object_of(Instance& instance) noexcept {
 template <class Object, auto Member>
 void* field(Instance& instance) noexcept {
   return &(object_of<Object>(instance).*Member);
+}
+
+template <class Object, auto Method>
+void derived(Instance& instance, void* result) {
+  using Result = decltype((std::declval<const Object&>().*Method)());
+  *static_cast<Result*>(result) = (object_of<Object>(instance).*Method)();
 }
 
 template <class Object, class Ancestor>

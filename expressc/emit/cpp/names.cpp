@@ -1,0 +1,42 @@
+#include "emit/cpp/names.h"
+
+#include <set>
+
+namespace expressc::emit::cpp {
+
+namespace {
+
+// C++ keywords and alternative tokens that are valid EXPRESS identifiers.
+const std::set<std::string_view> kCppKeywords = {
+    "alignas", "alignof", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+    "char", "char8_t", "char16_t", "char32_t", "class", "co_await", "co_return", "co_yield",
+    "compl", "concept", "const", "const_cast", "consteval", "constexpr", "constinit", "continue",
+    "decltype", "default", "delete", "do", "double", "dynamic_cast", "explicit", "export",
+    "extern", "float", "friend", "goto", "inline", "int", "long", "mutable", "namespace", "new",
+    "noexcept", "not_eq", "nullptr", "operator", "or_eq", "private", "protected", "public",
+    "register", "reinterpret_cast", "requires", "short", "signed", "sizeof", "static",
+    "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
+    "throw", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual",
+    "void", "volatile", "wchar_t", "while", "xor_eq", "and_eq", "int8_t", "int16_t", "int32_t",
+    "int64_t", "uint8_t", "uint16_t", "uint32_t", "uint64_t", "size_t", "std", "stepnc"};
+
+// Names every generated entity class already has (from meta::Instance or
+// the generator); an attribute with one of these names gets a trailing _.
+const std::set<std::string_view> kReservedMembers = {"id", "object", "entity_info", "meta_entity",
+                                                     "meta_entity_is_abstract"};
+
+}  // namespace
+
+std::string identifier(std::string_view name) {
+  std::string id(name);
+  if (kCppKeywords.count(id) != 0) id += '_';
+  return id;
+}
+
+std::string member_identifier(std::string_view name) {
+  std::string id = identifier(name);
+  if (kReservedMembers.count(id) != 0) id += '_';
+  return id;
+}
+
+}  // namespace expressc::emit::cpp

@@ -1,0 +1,16 @@
+// C++ names for EXPRESS identifiers: the EXPRESS spelling, with a trailing
+// underscore where it would clash with C++ or with the runtime.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace expressc::emit::cpp {
+
+// A type, namespace or enumerator name (C++ keywords get a trailing _).
+std::string identifier(std::string_view name);
+// A member name of a generated entity class: also avoids the members every
+// class has (id, object, entity_info, meta_entity...).
+std::string member_identifier(std::string_view name);
+
+}  // namespace expressc::emit::cpp

@@ -1,0 +1,409 @@
+#include "stepnc/post/iso14649.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "machining_schema.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+#include "stepnc/post/feature_geometry.h"
+
+namespace stepnc::post {
+
+bool DescribeResult::ok() const {
+  return std::none_of(diagnostics.begin(), diagnostics.end(),
+                      [](const Diagnostic& d) { return d.severity == Diagnostic::Severity::error; });
+}
+
+namespace {
+
+namespace ms = machining_schema;
+namespace mi = milling_schema;
+namespace mt = milling_machine_tool_schema;
+
+// ISO 14649 units to NC units.
+constexpr double mm_per_min_per_m_per_s = 60000;
+constexpr double rpm_per_rev_per_s = 60;
+constexpr double m_per_min_per_m_per_s = 60;
+
+template <class T, class U>
+const T* as(const U* p) {
+  return dynamic_cast<const T*>(p);
+}
+
+class Describer {
+ public:
+  explicit Describer(const meta::Model& model) : model_(model) {}
+
+  DescribeResult run() {
+    const ms::project* project = nullptr;
+    for (const meta::Instance* instance : model_.instances()) {
+      if (auto* p = as<ms::project>(instance)) {
+        if (project) {
+          error(*p, "", "more than one project in the file");
+          return std::move(out_);
+        }
+        project = p;
+      }
+    }
+    if (!project) {
+      Diagnostic missing;
+      missing.message = "the file has no project";
+      out_.diagnostics.push_back(std::move(missing));
+      return std::move(out_);
+    }
+    describe(*project);
+    return std::move(out_);
+  }
+
+ private:
+  void error(const meta::Instance& where, std::string_view name, std::string message) {
+    out_.diagnostics.push_back({Diagnostic::Severity::error, {where.id(), std::string(name)}, std::move(message)});
+  }
+  void warning(const meta::Instance& where, std::string_view name, std::string message) {
+    out_.diagnostics.push_back({Diagnostic::Severity::warning, {where.id(), std::string(name)}, std::move(message)});
+  }
+  void unsupported(const meta::Instance& where, std::string_view name, std::string_view what) {
+    error(where, name, fmt::format("{} {} is not supported by the posters' adapter", what, where.entity_info().name));
+  }
+
+  static Vec3 point(const ms::cartesian_point* p) {
+    Vec3 v;
+    if (!p) return v;
+    if (p->coordinates.size() > 0) v.x = p->coordinates[0];
+    if (p->coordinates.size() > 1) v.y = p->coordinates[1];
+    if (p->coordinates.size() > 2) v.z = p->coordinates[2];
+    return v;
+  }
+  static double size(const ms::toleranced_length_measure* m) { return m ? m->theoretical_size : 0; }
+
+  // A feature placement: location and the angle of ref_direction; the axis
+  // must be +Z (2.5D milling on the setup's XY plane).
+  std::optional<Placement> placement(const ms::axis2_placement_3d* p, const meta::Instance& owner,
+                                     std::string_view name) {
+    if (!p) {
+      error(owner, name, "missing placement");
+      return std::nullopt;
+    }
+    if (p->axis && p->axis->direction_ratios.size() == 3) {
+      const auto& a = p->axis->direction_ratios;
+      if (std::abs(a[0]) > 1e-9 || std::abs(a[1]) > 1e-9 || a[2] <= 0) {
+        error(*p, "", "placement axis is not +Z: only 2.5D milling along the setup's Z axis is supported");
+        return std::nullopt;
+      }
+    }
+    double dx = 1, dy = 0;
+    if (p->ref_direction && p->ref_direction->direction_ratios.size() >= 2) {
+      dx = p->ref_direction->direction_ratios[0];
+      dy = p->ref_direction->direction_ratios[1];
+    }
+    return Placement::from_ref_direction(point(p->location), dx, dy);
+  }
+
+  static std::optional<double> plane_z(const ms::elementary_surface* s) {
+    if (!s || !s->position) return std::nullopt;
+    return point(s->position->location).z;
+  }
+
+  void describe(const ms::project& p) {
+    MachiningProject& out = out_.project;
+    out.source = {p.id(), std::string(p.its_id.view())};
+    out.machine = MachineKind::milling;
+    if (!p.main_workplan) {
+      error(p, p.its_id, "project without a main workplan");
+      return;
+    }
+    if (!p.its_workpieces.empty() && p.its_workpieces.front()) {
+      const ms::workpiece& w = *p.its_workpieces.front();
+      out.workpiece.source = {w.id(), std::string(w.its_id.view())};
+      if (w.global_tolerance) out.workpiece.global_tolerance = *w.global_tolerance;
+    }
+    if (p.main_workplan->its_setup) {
+      if (auto z = plane_z(p.main_workplan->its_setup->its_secplane)) out.security_plane = *z;
+    }
+    out.main_workplan = executable(*p.main_workplan);
+    workpiece_block();
+  }
+
+  // The block: the workpiece's bounding block when given, else the extent
+  // of the features (top = highest feature top, bottom = deepest bottom).
+  void workpiece_block() {
+    Workpiece& w = out_.project.workpiece;
+    double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300, top = -1e300, bottom = 1e300;
+    for (const Feature& f : out_.project.features) {
+      for (const Vec2 v : feature_outline(f)) {
+        lo_x = std::min(lo_x, v.x);
+        lo_y = std::min(lo_y, v.y);
+        hi_x = std::max(hi_x, v.x);
+        hi_y = std::max(hi_y, v.y);
+      }
+      top = std::max(top, f.placement.location.z);
+      bottom = std::min(bottom, f.placement.location.z - f.depth);
+    }
+    if (lo_x > hi_x) return;
+    w.block_min = {lo_x, lo_y, bottom};
+    w.block_max = {hi_x, hi_y, top};
+  }
+
+  Executable executable(const ms::executable& e) {
+    Executable out;
+    out.source = {e.id(), std::string(e.its_id.view())};
+    auto children = [&](const std::vector<ms::executable*>& list) {
+      for (const ms::executable* child : list)
+        if (child) out.children.push_back(executable(*child));
+    };
+    if (auto* ws = as<ms::machining_workingstep>(&e)) {
+      out.kind = ExecutableKind::workingstep;
+      if (!ws->its_feature || !ws->its_operation) {
+        error(e, e.its_id, "workingstep without a feature or an operation");
+        return out;
+      }
+      out.step.feature = feature(*ws->its_feature);
+      out.step.operation = operation(*ws->its_operation);
+      out.step.security_plane = plane_z(ws->its_secplane);
+    } else if (auto* plan = as<ms::workplan>(&e)) {
+      out.kind = ExecutableKind::workplan;
+      children(plan->its_elements);
+    } else if (auto* par = as<ms::parallel>(&e)) {
+      out.kind = ExecutableKind::parallel;
+      children(par->branches);
+    } else if (auto* sel = as<ms::selective>(&e)) {
+      out.kind = ExecutableKind::selective;
+      children(sel->its_elements);
+    } else if (auto* seq = as<ms::non_sequential>(&e)) {
+      out.kind = ExecutableKind::non_sequential;
+      children(seq->its_elements);
+    } else if (as<ms::program_stop>(&e)) {
+      out.kind = ExecutableKind::program_stop;
+    } else if (as<ms::optional_stop>(&e)) {
+      out.kind = ExecutableKind::optional_stop;
+    } else {
+      out.kind = ExecutableKind::unsupported;
+      out.entity_name = std::string(e.entity_info().name);
+    }
+    return out;
+  }
+
+  int feature(const ms::manufacturing_feature& f) {
+    if (auto it = features_.find(&f); it != features_.end()) return it->second;
+    Feature out;
+    out.source = {f.id(), std::string(f.its_id.view())};
+    const auto* mf = as<ms::machining_feature>(&f);
+    if (!mf) {
+      unsupported(f, f.its_id, "feature");
+    } else if (auto p = placement(mf->feature_placement, f, f.its_id)) {
+      out.placement = *p;
+      // The depth plane is placed relative to the feature.
+      if (auto z = plane_z(mf->depth)) out.depth = -*z;
+      if (auto* face = as<ms::planar_face>(&f)) {
+        planar_face(*face, out);
+      } else if (auto* hole = as<ms::round_hole>(&f)) {
+        RoundHole shape{size(hole->diameter), HoleBottom::flat};
+        if (as<ms::through_bottom_condition>(hole->bottom_condition)) shape.bottom = HoleBottom::through;
+        if (as<ms::conical_hole_bottom>(hole->bottom_condition)) shape.bottom = HoleBottom::conical;
+        if (!hole->change_in_diameter.empty()) error(f, f.its_id, "tapered holes are not supported");
+        out.shape = shape;
+      } else if (auto* pocket = as<ms::closed_pocket>(&f)) {
+        closed_pocket(*pocket, out);
+      } else {
+        unsupported(f, f.its_id, "feature");
+      }
+    }
+    out_.project.features.push_back(std::move(out));
+    const int index = static_cast<int>(out_.project.features.size() - 1);
+    features_[&f] = index;
+    return index;
+  }
+
+  // planar_face: local x along the course of travel; the removal boundary
+  // (its length is the face's width) lies to the right of the travel
+  // direction, as in ISO 14649-11 Example 1 (travel +Y from the origin,
+  // face over x 0..100).
+  void planar_face(const ms::planar_face& face, Feature& out) {
+    if (!face.course_of_travel || !face.course_of_travel->its_direction || !face.removal_boundary ||
+        !face.removal_boundary->profile_length) {
+      error(face, face.its_id, "planar face without a course of travel and removal boundary");
+      return;
+    }
+    if (!face.its_boss.empty()) error(face, face.its_id, "bosses on a planar face are not supported");
+    const auto& d = face.course_of_travel->its_direction->direction_ratios;
+    const double length = size(face.course_of_travel->distance);
+    const double width = face.removal_boundary->profile_length->its_parameter_value;
+    const double angle = std::atan2(d.size() > 1 ? d[1] : 0, d.size() > 0 ? d[0] : 1);
+    const Vec3 origin = out.placement.location;
+    const Vec2 right{std::sin(angle), -std::cos(angle)};
+    out.placement = Placement{{origin.x + right.x * width, origin.y + right.y * width, origin.z},
+                              angle * 180 / 3.14159265358979323846};
+    out.shape = PlanarFace{length, width};
+  }
+
+  void closed_pocket(const ms::closed_pocket& pocket, Feature& out) {
+    if (!pocket.its_boss.empty()) error(pocket, pocket.its_id, "pockets with bosses (islands) are not supported");
+    const double corner = size(pocket.orthogonal_radius);
+    ClosedPocket shape;
+    shape.planar_radius = size(pocket.planar_radius);
+    if (auto* rect = as<ms::rectangular_closed_profile>(pocket.feature_boundary)) {
+      shape.profile = RectangularProfile{size(rect->profile_length), size(rect->profile_width), corner};
+    } else if (auto* circle = as<ms::circular_closed_profile>(pocket.feature_boundary)) {
+      shape.profile = CircularProfile{size(circle->diameter)};
+    } else if (auto* general = as<ms::general_closed_profile>(pocket.feature_boundary);
+               general && as<ms::polyline>(general->closed_profile_shape)) {
+      PolygonProfile polygon;
+      polygon.corner_radius = corner;
+      for (const ms::cartesian_point* p : as<ms::polyline>(general->closed_profile_shape)->points) {
+        const Vec3 v = point(p);
+        polygon.vertices.push_back({v.x, v.y});
+      }
+      if (polygon.vertices.size() > 1) {
+        const Vec2 a = polygon.vertices.front(), b = polygon.vertices.back();
+        if (std::hypot(a.x - b.x, a.y - b.y) < 1e-9) polygon.vertices.pop_back();  // closed polyline
+      }
+      shape.profile = std::move(polygon);
+    } else {
+      error(pocket, pocket.its_id, "pocket outline must be a rectangular, circular or polyline profile");
+    }
+    out.shape = std::move(shape);
+  }
+
+  int tool(const ms::machining_tool& t) {
+    if (auto it = tools_.find(&t); it != tools_.end()) return it->second;
+    Tool out;
+    out.source = {t.id(), std::string(t.its_id.view())};
+    const auto* cutting = as<ms::cutting_tool>(&t);
+    const auto* body = cutting ? as<mt::milling_machine_tool_body>(cutting->its_tool_body) : nullptr;
+    if (!body || !body->dimension) {
+      unsupported(t, t.its_id, "tool");
+    } else {
+      const mt::milling_tool_dimension& dim = *body->dimension;
+      out.diameter = dim.diameter;
+      out.corner_radius = dim.edge_radius.value_or(0);
+      if (dim.tool_tip_half_angle) out.tip_angle_deg = 2 * *dim.tool_tip_half_angle;
+      out.flutes = static_cast<int>(body->number_of_teeth.value_or(0));
+      if (cutting->overall_assembly_length)
+        out.length = *cutting->overall_assembly_length;
+      else if (!cutting->its_cutting_edge.empty() && cutting->its_cutting_edge.front())
+        out.length = cutting->its_cutting_edge.front()->tool_offset_length;
+      if (as<mt::twist_drill>(body))
+        out.kind = ToolKind::twist_drill;
+      else if (as<mt::centerdrill>(body))
+        out.kind = ToolKind::center_drill;
+      else if (as<mt::reamer>(body))
+        out.kind = ToolKind::reamer;
+      else if (as<mt::tap>(body))
+        out.kind = ToolKind::tap;
+      else if (as<mt::ball_endmill>(body))
+        out.kind = ToolKind::ball_end_mill;
+      else if (as<mt::facemill>(body))
+        out.kind = ToolKind::facemill;
+      else if (as<mt::endmill>(body))
+        out.kind = out.corner_radius > 0 ? ToolKind::bull_nose_end_mill : ToolKind::flat_end_mill;
+      else
+        unsupported(*body, t.its_id, "tool body");
+    }
+    out_.project.tools.push_back(out);
+    const int index = static_cast<int>(out_.project.tools.size() - 1);
+    tools_[&t] = index;
+    return index;
+  }
+
+  std::optional<Technology> technology(const ms::technology* t) {
+    auto* milling = as<mi::milling_technology>(t);
+    if (!milling) {
+      if (t) unsupported(*t, "", "technology");
+      return std::nullopt;
+    }
+    Technology out;
+    out.source = {t->id(), ""};
+    if (t->feedrate) out.feedrate = *t->feedrate * mm_per_min_per_m_per_s;
+    if (milling->spindle) out.spindle_rpm = *milling->spindle * rpm_per_rev_per_s;
+    if (milling->cutspeed) out.cutting_speed = *milling->cutspeed * m_per_min_per_m_per_s;
+    out.feed_per_tooth = milling->feedrate_per_tooth;
+    return out;
+  }
+
+  Strategy strategy(const mi::two5d_milling_strategy* s, double tool_diameter) {
+    if (!s) return std::monostate{};
+    // overlap: the share of the tool diameter two passes have in common.
+    std::optional<double> stepover;
+    if (s->overlap) stepover = tool_diameter * (1 - *s->overlap);
+    if (as<mi::bidirectional_milling>(s)) return BidirectionalMilling{stepover};
+    if (as<mi::unidirectional_milling>(s)) return UnidirectionalMilling{stepover};
+    if (as<mi::contour_bidirectional>(s)) return ContourBidirectional{stepover};
+    if (auto* cp = as<mi::contour_parallel>(s)) {
+      ContourParallel out{stepover, Rotation::unspecified, CutMode::unspecified};
+      if (cp->rotation_direction)
+        out.rotation = *cp->rotation_direction == ms::rot_direction::cw ? Rotation::clockwise : Rotation::counter_clockwise;
+      if (cp->cutmode) out.cutmode = *cp->cutmode == mi::cutmode_type::climb ? CutMode::climb : CutMode::conventional;
+      return out;
+    }
+    return UnknownStrategy{std::string(s->entity_info().name)};
+  }
+
+  int operation(const ms::machining_operation& o) {
+    if (auto it = operations_.find(&o); it != operations_.end()) return it->second;
+    Operation out;
+    out.source = {o.id(), std::string(o.its_id.view())};
+    out.retract_plane = o.retract_plane;
+    if (o.its_tool) out.tool = tool(*o.its_tool);
+    out.technology = technology(o.its_technology);
+    if (auto* mf = as<mi::milling_machine_functions>(o.its_machine_functions)) {
+      out.machine_functions = {{mf->id(), ""}, mf->coolant, mf->mist.value_or(false)};
+    }
+    const double diameter = out.tool >= 0 ? out_.project.tools[static_cast<std::size_t>(out.tool)].diameter : 0;
+    if (auto* plane = as<mi::plane_milling>(&o)) {
+      out.kind = as<mi::plane_rough_milling>(&o) ? OperationKind::plane_rough_milling : OperationKind::plane_finish_milling;
+      out.axial_cutting_depth = plane->axial_cutting_depth;
+      out.allowance_bottom = plane->allowance_bottom.value_or(0);
+      out.strategy = strategy(plane->its_machining_strategy, diameter);
+    } else if (auto* bs = as<mi::bottom_and_side_milling>(&o)) {
+      out.kind = as<mi::bottom_and_side_rough_milling>(&o) ? OperationKind::bottom_and_side_rough_milling
+                                                           : OperationKind::bottom_and_side_finish_milling;
+      out.axial_cutting_depth = bs->axial_cutting_depth;
+      out.radial_cutting_depth = bs->radial_cutting_depth;
+      out.allowance_side = bs->allowance_side.value_or(0);
+      out.allowance_bottom = bs->allowance_bottom.value_or(0);
+      out.strategy = strategy(bs->its_machining_strategy, diameter);
+    } else if (auto* drilling = as<mi::drilling_type_operation>(&o)) {
+      out.cutting_depth = drilling->cutting_depth;
+      out.dwell_time_bottom = drilling->dwell_time_bottom.value_or(0);
+      out.feed_on_retract = drilling->feed_on_retract.value_or(0);
+      if (auto* multi = as<mi::multistep_drilling>(&o)) {
+        out.kind = OperationKind::multistep_drilling;
+        out.depth_of_step = multi->depth_of_step;
+        out.first_depth = multi->first_depth;
+      } else if (as<mi::center_drilling>(&o)) {
+        out.kind = OperationKind::center_drilling;
+      } else if (as<mi::drilling>(&o)) {
+        out.kind = OperationKind::drilling;
+      } else if (auto* bore = as<mi::boring_operation>(&o)) {
+        out.kind = as<mi::reaming>(&o) ? OperationKind::reaming : OperationKind::boring;
+        out.spindle_stop_at_bottom = bore->spindle_stop_at_bottom;
+      } else if (as<mi::tapping>(&o)) {
+        out.kind = OperationKind::tapping;
+      } else {
+        unsupported(o, o.its_id, "operation");
+      }
+    } else {
+      unsupported(o, o.its_id, "operation");
+    }
+    out_.project.operations.push_back(std::move(out));
+    const int index = static_cast<int>(out_.project.operations.size() - 1);
+    operations_[&o] = index;
+    return index;
+  }
+
+  const meta::Model& model_;
+  DescribeResult out_;
+  std::map<const ms::manufacturing_feature*, int> features_;
+  std::map<const ms::machining_operation*, int> operations_;
+  std::map<const ms::machining_tool*, int> tools_;
+};
+
+}  // namespace
+
+DescribeResult describe_project(const meta::Model& model) { return Describer(model).run(); }
+
+}  // namespace stepnc::post

@@ -1,0 +1,134 @@
+// The stepnc command-line tool, run as a user runs it: exit codes, output,
+// error messages, and no partial output files.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+Run stepnc(const std::string& arguments) {
+  const std::string command = std::string(STEPNC_CLI) + " " + arguments + " 2>&1";
+  Run run;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buffer{};
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string sample(const std::string& relative) {
+  return (fs::path(STEPNC_SOURCE_DIR) / "samples" / relative).string();
+}
+
+fs::path write_temp(const std::string& name, const std::string& text) {
+  const fs::path path = fs::temp_directory_path() / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+const std::string bad_file_text =
+    "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+    "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n"
+    "#1=CARTESIAN_POINT('',(1.,2.));\n#2=VENDOR_THING(#1);\n#3=DIRECTION('',(1.,'0'));\n"
+    "ENDSEC;\nEND-ISO-10303-21;\n";
+
+}  // namespace
+
+TEST_CASE("stepnc: help and usage errors", "[cli]") {
+  const Run help = stepnc("--help");
+  CHECK(help.exit_code == 0);
+  for (const char* command : {"info", "validate", "format", "query", "dump"}) CHECK_THAT(help.out, Catch::Contains(command));
+
+  CHECK(stepnc("").exit_code == 2);
+  CHECK(stepnc("frobnicate").exit_code == 2);
+  const Run missing = stepnc("info /nonexistent/file.stp");
+  CHECK(missing.exit_code == 2);
+  CHECK_THAT(missing.out, Catch::Contains("/nonexistent/file.stp"));
+}
+
+TEST_CASE("stepnc info summarises Example 1", "[cli]") {
+  const Run run = stepnc("info " + sample("milling/example1.stp"));
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.out, Catch::Contains("schemas: MACHINING_SCHEMA, MILLING_SCHEMA, MILLING_MACHINE_TOOL_SCHEMA"));
+  CHECK_THAT(run.out, Catch::Contains("instances: 108 typed, 0 generic"));
+  CHECK_THAT(run.out, Catch::Contains("project: #1 project 'EXECUTE EXAMPLE1'"));
+  CHECK_THAT(run.out, Catch::Contains("main workplan: #2 workplan 'MAIN WORKPLAN'"));
+  CHECK_THAT(run.out, Catch::Contains("  #13 machining_workingstep 'WS ROUGH POCKET1'"));
+  CHECK_THAT(run.out, Catch::Contains("features (3):\n  #16 planar_face 'PLANAR FACE1'\n  #17 round_hole 'HOLE1 D=22MM'\n"
+                                      "  #18 closed_pocket 'POCKET1'\n"));
+  CHECK_THAT(run.out, Catch::Contains("tools (3):"));
+}
+
+TEST_CASE("stepnc validate reports every problem with file:line:col and #id", "[cli]") {
+  const Run good = stepnc("validate " + sample("turning/shaft.stp"));
+  CHECK(good.exit_code == 0);
+  CHECK_THAT(good.out, Catch::Contains("valid (0 errors, 0 warnings"));
+
+  const fs::path bad = write_temp("stepnc-cli-bad.stp", bad_file_text);
+  const Run run = stepnc("validate " + bad.string());
+  CHECK(run.exit_code == 1);
+  CHECK_THAT(run.out, Catch::Contains(bad.string() + ":9:1: warning: #2: unknown entity VENDOR_THING"));
+  CHECK_THAT(run.out, Catch::Contains(bad.string() + ":10:21: error: #3:"));
+  CHECK_THAT(run.out, Catch::Contains("invalid (1 errors, 1 warnings"));
+
+  // Without the error, the unknown entity alone is a warning; --strict fails on it.
+  std::string only_warning = bad_file_text;
+  only_warning.replace(only_warning.find("(1.,'0')"), 8, "(1.,0.)");
+  const fs::path warn = write_temp("stepnc-cli-warn.stp", only_warning);
+  CHECK(stepnc("validate " + warn.string()).exit_code == 0);
+  CHECK(stepnc("validate --strict " + warn.string()).exit_code == 1);
+  fs::remove(bad);
+  fs::remove(warn);
+}
+
+TEST_CASE("stepnc query and dump", "[cli]") {
+  const std::string example1 = sample("milling/example1.stp");
+  const Run material = stepnc("query " + example1 + " /project/its_workpieces[0]/its_material/standard_identifier");
+  CHECK(material.exit_code == 0);
+  CHECK(material.out == "'ST-50'\n");
+
+  const Run bad_path = stepnc("query " + example1 + " /project/its_bogus");
+  CHECK(bad_path.exit_code == 3);
+  CHECK_THAT(bad_path.out, Catch::Contains("error: column 10: no attribute 'its_bogus' in project"));
+
+  const Run dump = stepnc("dump " + example1 + " '#18'");
+  CHECK(dump.exit_code == 0);
+  CHECK_THAT(dump.out, Catch::StartsWith("#18=closed_pocket (machining_schema)\n  its_id: 'POCKET1'\n"));
+  CHECK_THAT(dump.out, Catch::Contains("  feature_boundary: #28\n"));
+  CHECK(stepnc("dump " + example1 + " '#9999'").exit_code == 3);
+  CHECK(stepnc("dump " + example1 + " x12").exit_code == 2);
+}
+
+TEST_CASE("stepnc format rewrites losslessly and never leaves partial output", "[cli]") {
+  const fs::path out = fs::temp_directory_path() / "stepnc-cli-format.stp";
+  fs::remove(out);
+  const Run run = stepnc("format " + sample("milling/example1.stp") + " -o " + out.string());
+  REQUIRE(run.exit_code == 0);
+  const fs::path again = fs::temp_directory_path() / "stepnc-cli-format-again.stp";
+  REQUIRE(stepnc("format " + out.string() + " -o " + again.string()).exit_code == 0);
+  std::ifstream a(out, std::ios::binary), b(again, std::ios::binary);
+  const std::string first((std::istreambuf_iterator<char>(a)), {}), second((std::istreambuf_iterator<char>(b)), {});
+  CHECK(first == second);
+  CHECK_THAT(first, Catch::Contains("#4=WORKPIECE('SIMPLE WORKPIECE',#6,0.010,$,$,$,(#66,#67,#68,#69));"));
+
+  const fs::path truncated = write_temp("stepnc-cli-truncated.stp", bad_file_text.substr(0, 150));
+  const fs::path target = fs::temp_directory_path() / "stepnc-cli-never-written.stp";
+  fs::remove(target);
+  const Run failed = stepnc("format " + truncated.string() + " -o " + target.string());
+  CHECK(failed.exit_code == 1);
+  CHECK_FALSE(fs::exists(target));
+  for (const auto& p : {out, again, truncated}) fs::remove(p);
+}

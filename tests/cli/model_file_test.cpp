@@ -1,0 +1,165 @@
+// Reading Part 21 files into the typed model, and writing them back.
+#include <catch2/catch.hpp>
+
+#include "machining_schema.h"
+#include "stepnc/exchange/model_file.h"
+#include "support.h"
+
+using stepnc::exchange::read_model_text;
+using stepnc_test::registry;
+
+namespace {
+
+std::string file_with(const std::string& data) {
+  return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('t','',(''),(''),'','','');\n"
+         "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n" +
+         data + "ENDSEC;\nEND-ISO-10303-21;\n";
+}
+
+std::vector<std::string> messages(const stepnc::p21::Diagnostics& diagnostics) {
+  std::vector<std::string> out;
+  for (const auto& d : diagnostics.items()) out.push_back(d.to_string());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every sample reads into the typed model and round-trips", "[exchange]") {
+  for (const char* name : {"milling/example1.stp", "milling/facing_toolpath.stp", "turning/shaft.stp"}) {
+    DYNAMIC_SECTION(name) {
+      const auto first = stepnc_test::read_valid(stepnc_test::sample(name));
+      CHECK(first->generic_records.empty());
+      CHECK(first->model.size() == first->document.records().size());
+
+      // read -> write -> read gives an equal model (compared through reflection)
+      const std::string written = stepnc::exchange::to_text(*first);
+      auto second = read_model_text(written, "written.stp", registry());
+      INFO(second.diagnostics.to_string());
+      REQUIRE(second.ok());
+      CHECK(stepnc_test::dump_all(second.file->model) == stepnc_test::dump_all(first->model));
+
+      // write -> read -> write is byte-identical
+      CHECK(stepnc::exchange::to_text(*second.file) == written);
+    }
+  }
+}
+
+TEST_CASE("references are bound to typed objects, forward references included", "[exchange]") {
+  auto result = read_model_text(file_with("#1=AXIS2_PLACEMENT_3D('origin',#2,#3,$);\n"
+                                          "#2=CARTESIAN_POINT('',(1.,2.,3.));\n"
+                                          "#3=DIRECTION('',(0.,0.,1.));\n"),
+                                "forward.stp", registry());
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  const auto instances = result.file->model.instances();
+  REQUIRE(instances.size() == 3);
+  auto* placement = stepnc::meta::instance_cast<machining_schema::axis2_placement_3d>(instances[0]);
+  REQUIRE(placement != nullptr);
+  CHECK(placement->name == "origin");
+  REQUIRE(placement->location != nullptr);
+  CHECK(placement->location->id() == 2);
+  CHECK(placement->location->coordinates.size() == 3);
+  CHECK(placement->location->coordinates[2] == 3.0);
+  REQUIRE(placement->axis != nullptr);
+  CHECK(placement->axis->id() == 3);
+  CHECK(placement->ref_direction == nullptr);
+}
+
+TEST_CASE("an unknown entity is kept as a generic record, with a warning, and written back", "[exchange]") {
+  auto result = read_model_text(file_with("#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                                          "#2=VENDOR_THING(#1, 10.000 ,'x');\n"
+                                          "#3=DIRECTION('',(1.,0.,0.));\n"),
+                                "unknown.stp", registry());
+  REQUIRE(result.ok());
+  CHECK(messages(result.diagnostics) ==
+        std::vector<std::string>{"unknown.stp:9:1: warning: #2: unknown entity VENDOR_THING; kept as a generic record"});
+  REQUIRE(result.file->generic_records.size() == 1);
+  const std::string written = stepnc::exchange::to_text(*result.file);
+  CHECK_THAT(written, Catch::Contains("#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                                      "#2=VENDOR_THING(#1,10.000,'x');\n"
+                                      "#3=DIRECTION('',(1.,0.,0.));\n"));
+}
+
+TEST_CASE("conformance problems are reported with line:col and #id", "[exchange]") {
+  SECTION("an abstract entity instantiated") {
+    auto result = read_model_text(file_with("#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=MANUFACTURING_FEATURE('f',$,());\n"), "abstract.stp",
+                                  registry());
+    CHECK_FALSE(result.ok());
+    CHECK(messages(result.diagnostics) ==
+          std::vector<std::string>{"abstract.stp:9:1: error: #2: MANUFACTURING_FEATURE is ABSTRACT and cannot be instantiated"});
+  }
+  SECTION("a reference to a missing instance") {
+    auto result = read_model_text(file_with("#1=AXIS2_PLACEMENT_3D('',#7,$,$);\n"), "missing.stp", registry());
+    CHECK_FALSE(result.ok());
+    REQUIRE(result.diagnostics.items().size() == 1);
+    const auto& d = result.diagnostics.items()[0];
+    CHECK(d.location.line == 8);
+    CHECK(d.location.column == 26);
+    CHECK(d.instance_id == 1);
+    CHECK_THAT(d.message, Catch::Contains("#7"));
+  }
+  SECTION("a reference to an instance of the wrong type") {
+    auto result = read_model_text(file_with("#1=AXIS2_PLACEMENT_3D('',#2,$,$);\n#2=DIRECTION('',(1.,0.,0.));\n"),
+                                  "wrongtype.stp", registry());
+    CHECK_FALSE(result.ok());
+    REQUIRE(result.diagnostics.items().size() == 1);
+    const auto& d = result.diagnostics.items()[0];
+    CHECK(d.location.line == 8);
+    CHECK(d.location.column == 26);
+    CHECK(d.instance_id == 1);
+    CHECK_THAT(d.message, Catch::Contains("direction"));
+  }
+  SECTION("an id beyond the typed model's 32-bit ids") {
+    auto result = read_model_text(file_with("#4294967296=DIRECTION('',(1.,0.,0.));\n"), "bigid.stp", registry());
+    CHECK_FALSE(result.ok());
+    CHECK(messages(result.diagnostics) ==
+          std::vector<std::string>{"bigid.stp:8:1: error: #4294967296: instance id #4294967296 exceeds the typed "
+                                   "model's limit of 4294967295"});
+  }
+  SECTION("large ids within the limit are fine") {
+    auto result = read_model_text(file_with("#4000000000=DIRECTION('',(1.,0.,0.));\n#100000=DIRECTION('',(0.,1.,0.));\n"),
+                                  "largeid.stp", registry());
+    REQUIRE(result.ok());
+    CHECK(result.file->model.size() == 2);
+  }
+}
+
+TEST_CASE("strict reading fails on any error; lenient reading keeps the rest", "[exchange]") {
+  const std::string text = file_with("#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                                     "#2=DIRECTION('',('x',0.,0.));\n"
+                                     "#3=DIRECTION('',(0.,0.,1.));\n");
+  auto strict = read_model_text(text, "mixed.stp", registry());
+  CHECK(strict.file == nullptr);
+  CHECK(strict.diagnostics.error_count() == 1);
+
+  stepnc::exchange::ModelReadOptions lenient;
+  lenient.strict = false;
+  auto kept = read_model_text(text, "mixed.stp", registry(), lenient);
+  REQUIRE(kept.file != nullptr);
+  CHECK(kept.diagnostics.error_count() == 1);
+  CHECK(kept.file->model.size() == 3);
+}
+
+TEST_CASE("a complex instance of a combination no schema defines is kept as a generic record", "[exchange]") {
+  auto result = read_model_text(file_with("#1=(CARTESIAN_POINT('',(0.,0.,0.))VENDOR_MIXIN(3));\n"), "complex.stp",
+                                registry());
+  REQUIRE(result.ok());
+  CHECK(result.file->generic_records.size() == 1);
+  REQUIRE(result.diagnostics.items().size() == 1);
+  CHECK_THAT(result.diagnostics.items()[0].message, Catch::Contains("CARTESIAN_POINT VENDOR_MIXIN"));
+  CHECK_THAT(stepnc::exchange::to_text(*result.file),
+             Catch::Contains("#1=(CARTESIAN_POINT('',(0.,0.,0.))VENDOR_MIXIN(3));"));
+}
+
+TEST_CASE("writing a file is atomic: a failed write leaves nothing behind", "[exchange]") {
+  const auto file = stepnc_test::read_valid(stepnc_test::sample("milling/example1.stp"));
+  const auto missing_dir = std::filesystem::temp_directory_path() / "stepnc-no-such-dir" / "out.stp";
+  CHECK(stepnc::exchange::write_model_file(*file, missing_dir).has_value());
+  CHECK_FALSE(std::filesystem::exists(missing_dir));
+
+  const auto out = std::filesystem::temp_directory_path() / "stepnc-model-file-test.stp";
+  REQUIRE_FALSE(stepnc::exchange::write_model_file(*file, out).has_value());
+  auto again = stepnc::exchange::read_model_file(out, registry());
+  CHECK(again.ok());
+  std::filesystem::remove(out);
+}
