@@ -417,19 +417,22 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
     context.error(offset, std::move(message));
   };
 
+  // Fills the attributes `owner` declares (all of them when null) from one
+  // part of the record, walking the table without allocating.
   auto fill_part = [&](const p21::EntityPart& part, const EntityInfo* owner) {
-    std::vector<const AttributeInfo*> attributes;
-    for (const AttributeInfo& a : entity.attributes)
-      if (owner == nullptr || a.owner == owner) attributes.push_back(&a);
+    const auto belongs = [&](const AttributeInfo& a) { return owner == nullptr || a.owner == owner; };
+    const auto expected = static_cast<std::size_t>(
+        std::count_if(entity.attributes.begin(), entity.attributes.end(), belongs));
     const std::size_t count = part.list().size();
-    if (count != attributes.size()) {
-      report(part.list().offset(), fmt::format("{} has {} attributes, found {}", UpperName(part.entity()).operator std::string_view(),
-                                               attributes.size(), count));
+    if (count != expected) {
+      report(part.list().offset(),
+             fmt::format("{} has {} attributes, found {}", std::string_view(UpperName(part.entity())), expected, count));
     }
-    std::size_t i = 0;
+    auto next = entity.attributes.begin();
     for (p21::Value v : part.attributes()) {
-      if (i == attributes.size()) break;
-      const AttributeInfo& a = *attributes[i++];
+      while (next != entity.attributes.end() && !belongs(*next)) ++next;
+      if (next == entity.attributes.end()) break;
+      const AttributeInfo& a = *next++;
       Filler filler(context, a);
       if (!a.stored()) {
         if (!v.is(p21::ParamKind::derived)) filler.fail(v, "derived here; expected `*`");

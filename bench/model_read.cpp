@@ -1,0 +1,56 @@
+// Full typed read of the 64 MB benchmark file: parse every record, create
+// every typed instance, bind every reference; then write it back.
+//
+//   model_read_bench [FILE.stp]
+//
+// Figures are printed with their ratio to a trivial scan (read the file
+// and count newlines) measured in the same run.
+#include <filesystem>
+
+#include "machining_schema.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+#include "stepnc/exchange/model_file.h"
+#include "support.h"
+
+namespace exchange = stepnc::exchange;
+using namespace stepnc_bench;
+
+int main(int argc, char** argv) {
+  const std::string path = big_input(argc, argv, STEPNC_SHARED_DIR);
+  if (path.empty()) return 1;
+  const double megabytes = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
+  const stepnc::meta::Registry registry{&machining_schema::meta_schema, &milling_schema::meta_schema,
+                                        &milling_machine_tool_schema::meta_schema};
+  constexpr int runs = 3;
+
+  // Peak memory of one typed read, from the process's state before it.
+  reset_peak_rss();
+  const std::size_t rss_before = peak_rss();
+  exchange::ModelReadResult result = exchange::read_model_file(path, registry);
+  if (!result.ok()) {
+    fmt::print(stderr, "{}", result.diagnostics.to_string());
+    return 1;
+  }
+  const std::size_t rss_read = peak_rss() - rss_before;
+  const std::size_t instances = result.file->model.size();
+
+  const double baseline = newline_scan_seconds(path, runs);
+  const double read = best_time(runs, [&] {
+    auto again = exchange::read_model_file(path, registry);
+    if (!again.ok()) std::abort();
+  });
+  std::string text;
+  const double write = best_time(runs, [&] { text = exchange::to_text(*result.file); });
+  const double written_megabytes = static_cast<double>(text.size()) / 1e6;
+
+  fmt::print("input: {} ({:.1f} MB, {} instances)\n", path, megabytes, instances);
+  fmt::print("baseline newline scan : {:8.1f} MB/s\n", megabytes / baseline);
+  fmt::print("typed read            : {:8.1f} MB/s  {:6.2f} M instances/s  {:5.2f}x baseline time\n",
+             megabytes / read, static_cast<double>(instances) / read / 1e6, read / baseline);
+  fmt::print("typed read peak RSS   : {:8.1f} MB  = {:.2f}x file size, {:.0f} bytes/instance\n", rss_read / 1e6,
+             static_cast<double>(rss_read) / (megabytes * 1e6), static_cast<double>(rss_read) / instances);
+  fmt::print("typed write (memory)  : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write,
+             write / baseline);
+  return 0;
+}
