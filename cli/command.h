@@ -23,5 +23,7 @@ void add_validate_command(CLI::App& app, Action& action);
 void add_format_command(CLI::App& app, Action& action);
 void add_query_command(CLI::App& app, Action& action);
 void add_dump_command(CLI::App& app, Action& action);
+void add_post_command(CLI::App& app, Action& action);
+void add_plot_command(CLI::App& app, Action& action);
 
 }  // namespace stepnc::cli

@@ -14,7 +14,7 @@ namespace {
 class FanucPrinter final : public GcodePrinter {
  public:
   explicit FanucPrinter(const Program& program)
-      : GcodePrinter(program, Style{3, true, '(', 0, program.machine == MachineKind::turning}) {}
+      : GcodePrinter(program, Style{3, true, '(', 0, program.machine == MachineKind::turning, false}) {}
 
  private:
   bool lathe() const { return program_.machine == MachineKind::turning; }
@@ -91,7 +91,6 @@ class FanucPrinter final : public GcodePrinter {
     word(milliseconds(d.seconds));
     finish_line();
   }
-  void turns(int) override {}  // helices are posted one turn per block
   void drill_cycle(const DrillCycle& c) override {
     start_line();
     word("G99");

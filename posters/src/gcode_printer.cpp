@@ -82,26 +82,7 @@ void GcodePrinter::statement(const Statement& s, std::size_t index) {
         } else if constexpr (std::is_same_v<S, Linear>) {
           motion("G1", st.to, false);
         } else if constexpr (std::is_same_v<S, Arc>) {
-          const bool xy = st.plane == ArcPlane::xy;
-          start_line();
-          word(st.clockwise ? "G2" : "G3");
-          motion_mode_ = st.clockwise ? "G2" : "G3";
-          if (xy) {
-            word('X', st.to.x);
-            word('Y', st.to.y);
-            if (std::abs(st.to.z - last_.z) > 1e-9) word('Z', st.to.z);
-            word('I', st.centre.x - last_.x);
-            word('J', st.centre.y - last_.y);
-          } else {
-            x_word(st.to.x);
-            word('Z', st.to.z);
-            word('I', st.centre.x - last_.x);
-            word('K', st.centre.z - last_.z);
-          }
-          if (st.extra_turns > 0) turns(st.extra_turns);
-          finish_line();
-          last_ = st.to;
-          known_ = true;
+          arc(st);
         } else if constexpr (std::is_same_v<S, Dwell>) {
           dwell(st);
         } else if constexpr (std::is_same_v<S, DrillCycle>) {
@@ -131,6 +112,50 @@ void GcodePrinter::statement(const Statement& s, std::size_t index) {
         }
       },
       s);
+}
+
+void GcodePrinter::arc(const Arc& a) {
+  if (a.extra_turns == 0 || style_.multi_turn_arcs || a.plane != ArcPlane::xy) return arc_block(a);
+  // One block per full turn, climbing in proportion to the angle, then the
+  // remaining arc: for controls without a turn count on G2/G3.
+  constexpr double two_pi = 6.283185307179586;
+  const double a0 = std::atan2(last_.y - a.centre.y, last_.x - a.centre.x);
+  const double a1 = std::atan2(a.to.y - a.centre.y, a.to.x - a.centre.x);
+  double rest = a.clockwise ? a0 - a1 : a1 - a0;
+  while (rest <= 1e-12) rest += two_pi;
+  const double total = rest + two_pi * a.extra_turns;
+  const Vec3 start = last_;
+  for (int turn = 1; turn <= a.extra_turns; ++turn) {
+    Arc full = a;
+    full.extra_turns = 0;
+    full.to = {start.x, start.y, start.z + (a.to.z - start.z) * (two_pi * turn / total)};
+    arc_block(full);
+  }
+  Arc last = a;
+  last.extra_turns = 0;
+  arc_block(last);
+}
+
+void GcodePrinter::arc_block(const Arc& a) {
+  start_line();
+  word(a.clockwise ? "G2" : "G3");
+  motion_mode_ = a.clockwise ? "G2" : "G3";
+  if (a.plane == ArcPlane::xy) {
+    word('X', a.to.x);
+    word('Y', a.to.y);
+    if (std::abs(a.to.z - last_.z) > 1e-9) word('Z', a.to.z);
+    word('I', a.centre.x - last_.x);
+    word('J', a.centre.y - last_.y);
+  } else {
+    x_word(a.to.x);
+    word('Z', a.to.z);
+    word('I', a.centre.x - last_.x);
+    word('K', a.centre.z - last_.z);
+  }
+  if (a.extra_turns > 0) turns(a.extra_turns);
+  finish_line();
+  last_ = a.to;
+  known_ = true;
 }
 
 void GcodePrinter::coolant(const Coolant& c) {

@@ -21,6 +21,7 @@ struct Style {
   char comment_open = '(';   // ';' for comments to the end of the line
   int block_number_step = 0;  // N10, N20, ... when > 0
   bool diameter_mode = false;  // lathe: X words are diameters
+  bool multi_turn_arcs = true;  // G2/G3 take a turn count (helices); else one block per turn
 };
 
 class GcodePrinter {
@@ -59,6 +60,8 @@ class GcodePrinter {
   void line(std::string_view text);
   void comment(std::string_view text);
   void motion(std::string_view g, Vec3 to, bool force_all);
+  void arc(const Arc& a);
+  void arc_block(const Arc& a);
   void forget_motion_mode() { motion_mode_.clear(); }
   void forget_position() { known_ = false; }
 

@@ -147,6 +147,7 @@ class Generator {
   void visit(const Executable& executable);
   void workingstep(const Executable& executable);
   bool prepare(const Executable& executable, Job& job);
+  bool sizes_make_sense(const Job& job);
   void start_operation(const Job& job);
 
   // Milling
@@ -438,6 +439,81 @@ bool Generator::prepare(const Executable& executable, Job& job) {
     error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", job.retract, job.clear));
     return false;
   }
+  return sizes_make_sense(job);
+}
+
+// The bounding size of a pocket outline.
+Vec2 pocket_extent(const ClosedProfile& profile) {
+  if (auto* rect = std::get_if<RectangularProfile>(&profile)) return {rect->length, rect->width};
+  if (auto* circle = std::get_if<CircularProfile>(&profile)) return {circle->diameter, circle->diameter};
+  const auto& v = std::get<PolygonProfile>(profile).vertices;
+  if (v.empty()) return {0, 0};
+  double lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
+  for (const Vec2 p : v) {
+    lo_x = std::min(lo_x, p.x);
+    hi_x = std::max(hi_x, p.x);
+    lo_y = std::min(lo_y, p.y);
+    hi_y = std::max(hi_y, p.y);
+  }
+  return {hi_x - lo_x, hi_y - lo_y};
+}
+
+// Sizes that would make a wrong program, or an endless one, are refused
+// here with the instance that holds them.
+bool Generator::sizes_make_sense(const Job& job) {
+  const Operation& op = *job.op;
+  const Feature& f = *job.feature;
+  const bool explicit_motion = op.kind == OperationKind::freeform || !op.toolpaths.empty();
+  auto refuse = [&](const Source& where, std::string message) {
+    error(where, std::move(message));
+    return false;
+  };
+  if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {}", f.depth));
+  if (explicit_motion) return true;
+  if (!turning() && job.tool->diameter <= eps)
+    return refuse(job.tool->source, "milling and drilling tools need a positive diameter");
+  if (op.axial_cutting_depth && *op.axial_cutting_depth <= eps)
+    return refuse(op.source, fmt::format("axial cutting depth {} is not positive", *op.axial_cutting_depth));
+  // At most this many passes, layers or laps: beyond it the input is wrong.
+  constexpr double max_passes = 1e5;
+  const double depth = turning() ? project_.workpiece.stock_radius : f.depth;
+  if (op.axial_cutting_depth && depth / *op.axial_cutting_depth > max_passes)
+    return refuse(op.source, fmt::format("axial cutting depth {} makes more than {} layers", *op.axial_cutting_depth,
+                                         max_passes));
+  if (!turning()) {
+    const double s = stepover(job);
+    if (s <= eps) return refuse(op.source, fmt::format("stepover {} is not positive", s));
+    const Vec2 extent = std::visit(
+        [](const auto& shape) -> Vec2 {
+          using S = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<S, PlanarFace> || std::is_same_v<S, Step> || std::is_same_v<S, Slot>)
+            return {shape.length, shape.width};
+          else if constexpr (std::is_same_v<S, RoundHole>)
+            return {shape.diameter, shape.diameter};
+          else if constexpr (std::is_same_v<S, OpenPocket>)
+            return {shape.profile.length, shape.profile.width};
+          else if constexpr (std::is_same_v<S, ClosedPocket>)
+            return pocket_extent(shape.profile);
+          else
+            return {1, 1};  // turning features: not milled
+        },
+        f.shape);
+    if (extent.x <= 0 || extent.y <= 0)
+      return refuse(f.source, fmt::format("feature size {} x {} is not positive", extent.x, extent.y));
+    if (std::max(extent.x, extent.y) / s > max_passes)
+      return refuse(op.source, fmt::format("stepover {} makes more than {} passes", s, max_passes));
+  } else {
+    if (project_.workpiece.stock_radius <= eps) return refuse(project_.workpiece.source, "bar stock without a radius");
+    const auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy);
+    const auto* contour = std::get_if<ContourTurning>(&op.strategy);
+    const std::vector<double>* depths = uni ? &uni->cutting_depths : contour ? &contour->cutting_depths : nullptr;
+    if (depths && !depths->empty()) {
+      const double smallest = *std::min_element(depths->begin(), depths->end());
+      if (smallest <= eps) return refuse(op.source, "cutting depths must be positive");
+      if (project_.workpiece.stock_radius / depths->back() > max_passes)
+        return refuse(op.source, fmt::format("cutting depth {} makes more than {} passes", depths->back(), max_passes));
+    }
+  }
   return true;
 }
 
@@ -474,7 +550,8 @@ void Generator::workingstep(const Executable& executable) {
   start_operation(job);
   const std::size_t blocks_before = program_.blocks.size();
 
-  if (job.op->kind == OperationKind::freeform) {
+  // An explicit toolpath is what to do, whatever the operation's kind.
+  if (job.op->kind == OperationKind::freeform || !job.op->toolpaths.empty()) {
     explicit_toolpaths(job);
   } else if (turning()) {
     turning_step(job);
@@ -890,12 +967,15 @@ void Generator::facing(const Job& job) {
   const bool rough = op.kind == OperationKind::facing_rough;
   const double target = rough ? op.allowance : 0;
   if (front <= target + eps) return;
-  std::vector<double> cumulative;
-  if (auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy); uni && !uni->cutting_depths.empty())
+  // Roughing steps down by the depth list (or axial depth); finishing is
+  // one pass at the face, after roughing left only its allowance.
+  std::vector<double> cumulative{front - target};
+  if (auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy); rough && uni && !uni->cutting_depths.empty()) {
     cumulative = depth_list_passes(uni->cutting_depths, front - target);
-  else
-    for (const double z : depth_levels(front, target, rough ? op.axial_cutting_depth : std::nullopt))
-      cumulative.push_back(front - z);
+  } else if (rough) {
+    cumulative.clear();
+    for (const double z : depth_levels(front, target, op.axial_cutting_depth)) cumulative.push_back(front - z);
+  }
   const double outside = turning_safe().x;
   for (const double done : cumulative) {
     const double z = front - done;

@@ -9,6 +9,8 @@
 #include "machining_schema.h"
 #include "milling_machine_tool_schema.h"
 #include "milling_schema.h"
+#include "turning_machine_tool_schema.h"
+#include "turning_schema.h"
 #include "stepnc/post/feature_geometry.h"
 
 namespace stepnc::post {
@@ -23,6 +25,8 @@ namespace {
 namespace ms = machining_schema;
 namespace mi = milling_schema;
 namespace mt = milling_machine_tool_schema;
+namespace ts = turning_schema;
+namespace tt = turning_machine_tool_schema;
 
 // ISO 14649 units to NC units.
 constexpr double mm_per_min_per_m_per_s = 60000;
@@ -125,7 +129,49 @@ class Describer {
       if (auto z = plane_z(p.main_workplan->its_setup->its_secplane)) out.security_plane = *z;
     }
     out.main_workplan = executable(*p.main_workplan);
-    workpiece_block();
+    if (turning_ && milling_) error(p, p.its_id, "a project mixing milling and turning operations is not supported");
+    if (turning_) {
+      out.machine = MachineKind::turning;
+      if (!p.its_workpieces.empty() && p.its_workpieces.front()) bar_stock(*p.its_workpieces.front());
+      groove_outer_radii();
+    } else {
+      workpiece_block();
+    }
+  }
+
+  // Turning stock: the raw piece's cylinder along Z (ISO 14649-12 keeps Z
+  // on the spindle axis, z = 0 at the finished front face).
+  void bar_stock(const ms::workpiece& w) {
+    const ms::workpiece* raw = w.its_rawpiece ? w.its_rawpiece : &w;
+    const auto* cylinder = raw->its_bounding_geometry.as_right_circular_cylinder();
+    if (!cylinder || !cylinder->position) {
+      error(*raw, raw->its_id, "turning needs the raw piece as a right_circular_cylinder along Z");
+      return;
+    }
+    const double back = point(cylinder->position->location).z;
+    Workpiece& out = out_.project.workpiece;
+    out.stock_radius = cylinder->radius;
+    out.stock_length = -back;
+    out.stock_front = back + cylinder->height;
+  }
+
+  // A groove's outer radius is where it cuts into: the contour there, or
+  // the bar.
+  void groove_outer_radii() {
+    for (Feature& f : out_.project.features) {
+      auto* groove = std::get_if<Groove>(&f.shape);
+      if (!groove) continue;
+      groove->outer_radius = out_.project.workpiece.stock_radius;
+      for (const Feature& other : out_.project.features) {
+        auto* profile = std::get_if<TurningProfile>(&other.shape);
+        if (!profile) continue;
+        for (std::size_t i = 0; i + 1 < profile->points.size(); ++i) {
+          const Vec2 a = profile->points[i], b = profile->points[i + 1];
+          if (groove->z <= std::max(a.x, b.x) && groove->z >= std::min(a.x, b.x) && std::abs(a.x - b.x) > 1e-9)
+            groove->outer_radius = a.y + (b.y - a.y) * (groove->z - a.x) / (b.x - a.x);
+        }
+      }
+    }
   }
 
   // The block: the workpiece's bounding block when given, else the extent
@@ -161,8 +207,9 @@ class Describer {
         error(e, e.its_id, "workingstep without a feature or an operation");
         return out;
       }
-      out.step.feature = feature(*ws->its_feature);
+      // The operation first: it tells whether the feature is on a lathe.
       out.step.operation = operation(*ws->its_operation);
+      out.step.feature = feature(*ws->its_feature);
       out.step.security_plane = plane_z(ws->its_secplane);
     } else if (auto* plan = as<ms::workplan>(&e)) {
       out.kind = ExecutableKind::workplan;
@@ -192,7 +239,12 @@ class Describer {
     Feature out;
     out.source = {f.id(), std::string(f.its_id.view())};
     const auto* mf = as<ms::machining_feature>(&f);
-    if (!mf) {
+    if (auto* tf = as<ts::turning_feature>(&f)) {
+      turning_feature(*tf, out);
+    } else if (auto* axial = as<ms::round_hole>(&f); axial && turning_) {
+      // A hole on the spindle axis of a lathe part.
+      out.shape = CentreHole{size(axial->diameter), -plane_z(axial->depth).value_or(0)};
+    } else if (!mf) {
       unsupported(f, f.its_id, "feature");
     } else if (auto p = placement(mf->feature_placement, f, f.its_id)) {
       out.placement = *p;
@@ -208,6 +260,8 @@ class Describer {
         out.shape = shape;
       } else if (auto* pocket = as<ms::closed_pocket>(&f)) {
         closed_pocket(*pocket, out);
+      } else if (auto* groove = as<ms::slot>(&f)) {
+        slot(*groove, out);
       } else {
         unsupported(f, f.its_id, "feature");
       }
@@ -216,6 +270,36 @@ class Describer {
     const int index = static_cast<int>(out_.project.features.size() - 1);
     features_[&f] = index;
     return index;
+  }
+
+  void turning_feature(const ts::turning_feature& f, Feature& out) {
+    const double z0 = f.feature_placement ? point(f.feature_placement->location).z : 0;
+    if (as<ts::revolved_flat>(&f)) {
+      if (std::abs(z0) > 1e-9) error(f, f.its_id, "the faced front must be at z = 0");
+      out.shape = TurningFace{};
+    } else if (auto* revolution = as<ts::general_revolution>(&f)) {
+      const auto* profile = revolution->outer_edge_profile;
+      const auto* line = profile ? as<ms::polyline>(profile->its_profile) : nullptr;
+      if (!line) {
+        error(f, f.its_id, "general revolution profile must be a polyline");
+        return;
+      }
+      TurningProfile shape;
+      for (const ms::cartesian_point* p : line->points) {
+        const Vec3 v = point(p);  // x = radius, z along the axis
+        shape.points.push_back({z0 + v.z, v.x});
+      }
+      out.shape = std::move(shape);
+    } else if (auto* groove = as<ts::groove>(&f)) {
+      const auto* u = as<ms::square_u_profile>(groove->sweep);
+      if (!u) {
+        error(f, f.its_id, "groove sweep must be a square_u_profile");
+        return;
+      }
+      out.shape = Groove{z0, size(u->width), size(groove->radius), 0};
+    } else {
+      unsupported(f, f.its_id, "turning feature");
+    }
   }
 
   // planar_face: local x along the course of travel; the removal boundary
@@ -232,12 +316,43 @@ class Describer {
     const auto& d = face.course_of_travel->its_direction->direction_ratios;
     const double length = size(face.course_of_travel->distance);
     const double width = face.removal_boundary->profile_length->its_parameter_value;
-    const double angle = std::atan2(d.size() > 1 ? d[1] : 0, d.size() > 0 ? d[0] : 1);
+    // The travel direction is given in the feature's frame.
+    const double angle = out.placement.angle_deg * 3.14159265358979323846 / 180 +
+                         std::atan2(d.size() > 1 ? d[1] : 0, d.size() > 0 ? d[0] : 1);
     const Vec3 origin = out.placement.location;
     const Vec2 right{std::sin(angle), -std::cos(angle)};
     out.placement = Placement{{origin.x + right.x * width, origin.y + right.y * width, origin.z},
                               angle * 180 / 3.14159265358979323846};
     out.shape = PlanarFace{length, width};
+  }
+
+  // slot: a straight course of travel from the placement (direction in
+  // the feature's frame), a U profile's width, radiused or open ends.
+  void slot(const ms::slot& groove, Feature& out) {
+    const auto* path = as<ms::linear_path>(groove.course_of_travel);
+    if (!path || !path->its_direction) {
+      error(groove, groove.its_id, "only straight slots (linear_path) are supported");
+      return;
+    }
+    const ms::toleranced_length_measure* width = nullptr;
+    if (auto* square = as<ms::square_u_profile>(groove.swept_shape)) width = square->width;
+    if (auto* rounded = as<ms::rounded_u_profile>(groove.swept_shape)) width = rounded->width;
+    if (!width) {
+      error(groove, groove.its_id, "slot profile must be a square or rounded U profile");
+      return;
+    }
+    bool rounded_ends = true;
+    for (const ms::slot_end_type* end : groove.end_conditions) {
+      if (as<ms::open_slot_end_type>(end)) {
+        rounded_ends = false;
+      } else if (!as<ms::radiused_slot_end_type>(end)) {
+        error(groove, groove.its_id, "slot ends must be radiused or open");
+        return;
+      }
+    }
+    const auto& d = path->its_direction->direction_ratios;
+    out.placement.angle_deg += std::atan2(d.size() > 1 ? d[1] : 0, d.size() > 0 ? d[0] : 1) * 180 / 3.14159265358979323846;
+    out.shape = Slot{size(path->distance), size(width), rounded_ends};
   }
 
   void closed_pocket(const ms::closed_pocket& pocket, Feature& out) {
@@ -274,7 +389,22 @@ class Describer {
     out.source = {t.id(), std::string(t.its_id.view())};
     const auto* cutting = as<ms::cutting_tool>(&t);
     const auto* body = cutting ? as<mt::milling_machine_tool_body>(cutting->its_tool_body) : nullptr;
-    if (!body || !body->dimension) {
+    const auto* lathe_body = cutting ? as<tt::turning_machine_tool_body>(cutting->its_tool_body) : nullptr;
+    if (lathe_body && lathe_body->dimension) {
+      const tt::turning_tool_dimension& dim = *lathe_body->dimension;
+      out.length = cutting->overall_assembly_length.value_or(0);
+      out.nose_radius = dim.nose_radius.value_or(0);
+      out.side_cutting_edge_angle_deg = dim.side_cutting_edge_angle.value_or(0);
+      out.end_cutting_edge_angle_deg = dim.end_cutting_edge_angle.value_or(0);
+      if (auto* grooving = as<tt::grooving_tool>(lathe_body)) {
+        out.kind = ToolKind::grooving_insert;
+        out.cutting_width = grooving->cutting_width;
+      } else if (as<tt::general_turning_tool>(lathe_body)) {
+        out.kind = ToolKind::turning_insert;
+      } else {
+        unsupported(*lathe_body, t.its_id, "tool body");
+      }
+    } else if (!body || !body->dimension) {
       unsupported(t, t.its_id, "tool");
     } else {
       const mt::milling_tool_dimension& dim = *body->dimension;
@@ -310,6 +440,20 @@ class Describer {
   }
 
   std::optional<Technology> technology(const ms::technology* t) {
+    if (auto* lathe = as<ts::turning_technology>(t)) {
+      Technology out;
+      out.source = {t->id(), ""};
+      out.feed_per_revolution = lathe->feedrate_per_revolution;
+      if (t->feedrate) out.feedrate = *t->feedrate * mm_per_min_per_m_per_s;
+      if (auto* css = lathe->spindle_speed.as_const_cutting_speed()) {
+        out.constant_surface_speed = true;
+        out.cutting_speed = css->speed * m_per_min_per_m_per_s;
+        if (css->max_speed) out.max_spindle_rpm = *css->max_speed * rpm_per_rev_per_s;
+      } else if (auto* constant = lathe->spindle_speed.as_const_spindle_speed()) {
+        out.spindle_rpm = constant->rot_speed * rpm_per_rev_per_s;
+      }
+      return out;
+    }
     auto* milling = as<mi::milling_technology>(t);
     if (!milling) {
       if (t) unsupported(*t, "", "technology");
@@ -351,14 +495,21 @@ class Describer {
     out.technology = technology(o.its_technology);
     if (auto* mf = as<mi::milling_machine_functions>(o.its_machine_functions)) {
       out.machine_functions = {{mf->id(), ""}, mf->coolant, mf->mist.value_or(false)};
+    } else if (auto* tf = as<ts::turning_machine_functions>(o.its_machine_functions)) {
+      out.machine_functions = {{tf->id(), ""}, tf->coolant, false};
     }
     const double diameter = out.tool >= 0 ? out_.project.tools[static_cast<std::size_t>(out.tool)].diameter : 0;
-    if (auto* plane = as<mi::plane_milling>(&o)) {
+    if (auto* lathe = as<ts::turning_machining_operation>(&o)) {
+      turning_ = true;
+      turning_operation(*lathe, out);
+    } else if (auto* plane = as<mi::plane_milling>(&o)) {
+      milling_ = true;
       out.kind = as<mi::plane_rough_milling>(&o) ? OperationKind::plane_rough_milling : OperationKind::plane_finish_milling;
       out.axial_cutting_depth = plane->axial_cutting_depth;
       out.allowance_bottom = plane->allowance_bottom.value_or(0);
       out.strategy = strategy(plane->its_machining_strategy, diameter);
     } else if (auto* bs = as<mi::bottom_and_side_milling>(&o)) {
+      milling_ = true;
       out.kind = as<mi::bottom_and_side_rough_milling>(&o) ? OperationKind::bottom_and_side_rough_milling
                                                            : OperationKind::bottom_and_side_finish_milling;
       out.axial_cutting_depth = bs->axial_cutting_depth;
@@ -386,17 +537,108 @@ class Describer {
       } else {
         unsupported(o, o.its_id, "operation");
       }
+    } else if (as<mi::freeform_operation>(&o)) {
+      milling_ = true;
+      out.kind = OperationKind::freeform;
     } else {
       unsupported(o, o.its_id, "operation");
     }
+    if (o.its_toolpath) out.toolpaths = toolpaths(*o.its_toolpath);
     out_.project.operations.push_back(std::move(out));
     const int index = static_cast<int>(out_.project.operations.size() - 1);
     operations_[&o] = index;
     return index;
   }
 
+  // Explicit toolpaths: cutter location trajectories over polylines,
+  // composite curves and trimmed circles (arcs in the XY plane); a
+  // non-contact path is a rapid.
+  std::vector<Toolpath> toolpaths(const ms::toolpath_list& list) {
+    std::vector<Toolpath> out;
+    for (const ms::toolpath* path : list.its_list) {
+      if (!path) continue;
+      const auto* cl = as<ms::cutter_location_trajectory>(path);
+      if (!cl || !cl->basiccurve) {
+        unsupported(*path, "", "toolpath");
+        continue;
+      }
+      Toolpath t;
+      t.source = {path->id(), ""};
+      t.rapid = path->its_type == ms::toolpath_type::non_contact;
+      curve(*cl->basiccurve, t.elements);
+      out.push_back(std::move(t));
+    }
+    return out;
+  }
+
+  void curve(const ms::curve& c, std::vector<ToolpathElement>& out) {
+    if (auto* line = as<ms::polyline>(&c)) {
+      Polyline poly;
+      poly.points.reserve(line->points.size());
+      for (const ms::cartesian_point* p : line->points) poly.points.push_back(point(p));
+      out.push_back(std::move(poly));
+    } else if (auto* composite = as<ms::composite_curve>(&c)) {
+      for (const ms::composite_curve_segment* segment : composite->segments)
+        if (segment && segment->parent_curve) curve(*segment->parent_curve, out);
+    } else if (auto* trimmed = as<ms::trimmed_curve>(&c); trimmed && as<ms::circle>(trimmed->basis_curve)) {
+      const auto* circle = as<ms::circle>(trimmed->basis_curve);
+      const ms::cartesian_point* end = nullptr;
+      for (const auto& trim : trimmed->trim_2)
+        if (trim.as_cartesian_point()) end = trim.as_cartesian_point();
+      if (!end || !circle->position) {
+        error(c, "", "trimmed circle needs a cartesian end point and a placement");
+        return;
+      }
+      // The circle runs counter-clockwise about its axis; sense_agreement
+      // keeps that direction.
+      double axis_z = 1;
+      if (circle->position->axis && circle->position->axis->direction_ratios.size() == 3)
+        axis_z = circle->position->axis->direction_ratios[2];
+      const bool counter_clockwise = (axis_z > 0) == trimmed->sense_agreement;
+      out.push_back(CircularArc{point(end), point(circle->position->location), !counter_clockwise, 0});
+    } else {
+      unsupported(c, "", "toolpath curve");
+    }
+  }
+
+  void turning_operation(const ts::turning_machining_operation& o, Operation& out) {
+    const auto* s = o.its_machining_strategy;
+    std::vector<double> depths;
+    if (s && s->cutting_depth) depths = *s->cutting_depth;
+    if (auto* uni = as<ts::unidirectional_turning>(s)) {
+      out.strategy = UnidirectionalTurning{depths, uni->lift_height};
+    } else if (as<ts::contour_turning>(s)) {
+      out.strategy = ContourTurning{depths};
+    } else if (s && !as<ts::grooving_strategy>(s)) {
+      out.strategy = UnknownStrategy{std::string(s->entity_info().name)};
+    }
+    if (auto* face = as<ts::facing>(&o)) {
+      out.kind = as<ts::facing_rough>(&o) ? OperationKind::facing_rough : OperationKind::facing_finish;
+      out.allowance = face->allowance.value_or(0);
+    } else if (auto* contour = as<ts::contouring>(&o)) {
+      out.kind = as<ts::contouring_rough>(&o) ? OperationKind::contouring_rough : OperationKind::contouring_finish;
+      out.allowance = contour->allowance.value_or(0);
+    } else if (auto* groove = as<ts::grooving>(&o)) {
+      out.kind = OperationKind::grooving;
+      out.allowance = groove->allowance.value_or(0);
+      if (auto* time = groove->dwell_type.as_dwell_time()) {
+        out.dwell_time_bottom = time->time;
+      } else if (auto* turns = groove->dwell_type.as_dwell_revolution()) {
+        // Revolutions at the operation's constant spindle speed.
+        const double rpm = out.technology && out.technology->spindle_rpm ? std::abs(*out.technology->spindle_rpm) : 0;
+        if (rpm > 0)
+          out.dwell_time_bottom = turns->revolution * 60 / rpm;
+        else
+          error(o, o.its_id, "a dwell in revolutions needs a constant spindle speed");
+      }
+    } else {
+      unsupported(o, o.its_id, "operation");
+    }
+  }
+
   const meta::Model& model_;
   DescribeResult out_;
+  bool turning_ = false, milling_ = false;
   std::map<const ms::manufacturing_feature*, int> features_;
   std::map<const ms::machining_operation*, int> operations_;
   std::map<const ms::machining_tool*, int> tools_;

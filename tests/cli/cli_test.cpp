@@ -50,7 +50,7 @@ const std::string bad_file_text =
 TEST_CASE("stepnc: help and usage errors", "[cli]") {
   const Run help = stepnc("--help");
   CHECK(help.exit_code == 0);
-  for (const char* command : {"info", "validate", "format", "query", "dump"}) CHECK_THAT(help.out, Catch::Contains(command));
+  for (const char* command : {"info", "validate", "format", "query", "dump", "post", "plot"}) CHECK_THAT(help.out, Catch::Contains(command));
 
   CHECK(stepnc("").exit_code == 2);
   CHECK(stepnc("frobnicate").exit_code == 2);
@@ -131,4 +131,44 @@ TEST_CASE("stepnc format rewrites losslessly and never leaves partial output", "
   CHECK(failed.exit_code == 1);
   CHECK_FALSE(fs::exists(target));
   for (const auto& p : {out, again, truncated}) fs::remove(p);
+}
+
+TEST_CASE("stepnc post writes the program and its trace atomically", "[cli]") {
+  const fs::path program = fs::temp_directory_path() / "stepnc-cli-example1.mpf";
+  const fs::path trace = fs::temp_directory_path() / "stepnc-cli-example1.json";
+  fs::remove(program);
+  fs::remove(trace);
+  const Run run = stepnc("post " + sample("milling/example1.stp") + " --dialect siemens840d -o " + program.string() +
+                         " --trace " + trace.string());
+  CHECK(run.exit_code == 0);
+  std::ifstream p(program), t(trace);
+  const std::string text((std::istreambuf_iterator<char>(p)), {}), map((std::istreambuf_iterator<char>(t)), {});
+  CHECK_THAT(text, Catch::Contains("POCKET1(15,0,2,-30,,50,80,10,70,70,0,2400,2400,2,2,0,2,2,2400,1200)"));
+  CHECK_THAT(text, Catch::Contains("CYCLE832(0.01,102001)"));
+  CHECK_THAT(map, Catch::Contains("POCKET1"));
+
+  const Run to_stdout = stepnc("post " + sample("turning/shaft.stp") + " -d rs274ngc");
+  CHECK(to_stdout.exit_code == 0);
+  CHECK_THAT(to_stdout.out, Catch::Contains("G7"));  // lathe diameter mode
+
+  CHECK(stepnc("post " + sample("milling/example1.stp") + " --dialect heidenhain").exit_code == 2);
+
+  const fs::path bad = write_temp("stepnc-cli-post-bad.stp", bad_file_text);
+  const fs::path never = fs::temp_directory_path() / "stepnc-cli-never.nc";
+  fs::remove(never);
+  const Run failed = stepnc("post " + bad.string() + " -d fanuc -o " + never.string());
+  CHECK(failed.exit_code == 1);
+  CHECK_FALSE(fs::exists(never));
+  for (const auto& f : {program, trace, bad}) fs::remove(f);
+}
+
+TEST_CASE("stepnc plot draws an SVG", "[cli]") {
+  const fs::path svg = fs::temp_directory_path() / "stepnc-cli-shaft.svg";
+  const Run run = stepnc("plot " + sample("turning/shaft.stp") + " -o " + svg.string());
+  CHECK(run.exit_code == 0);
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  CHECK_THAT(text, Catch::StartsWith("<svg xmlns=\"http://www.w3.org/2000/svg\""));
+  CHECK_THAT(text, Catch::Contains("<polyline"));
+  fs::remove(svg);
 }

@@ -137,3 +137,21 @@ TEST_CASE("translatable DERIVE attributes are methods, the rest are listed", "[g
   CHECK(dim->kind == meta::AttributeKind::Derived);
   CHECK_FALSE(dim->derivable());
 }
+
+TEST_CASE("a moved model hands over its instances and stays usable", "[generated][model]") {
+  meta::Model first;
+  auto& point = first.create<cartesian_point>();
+  point.coordinates = {1.0, 2.0, 3.0};
+  meta::Model second(std::move(first));
+  CHECK(second.size() == 1);
+  CHECK(second.instances()[0] == &point);
+  CHECK(first.size() == 0);  // NOLINT(bugprone-use-after-move): moved-from is empty by contract
+  CHECK(first.arena_bytes() == 0);
+  auto& again = first.create<cartesian_point>();  // a fresh arena, not second's
+  CHECK(again.id() == 1);
+  meta::Model third;
+  third.create<direction>();
+  third = std::move(second);
+  CHECK(third.size() == 1);
+  CHECK(meta::instance_cast<cartesian_point>(third.instances()[0])->coordinates[2] == 3.0);
+}

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -107,6 +108,41 @@ TEST_CASE("every double survives format -> parse: random bit patterns and intege
   }
   for (int i = -1000; i <= 1000; ++i) check_round_trip(static_cast<double>(i) * 0.25);
   for (int e = -20; e <= 20; ++e) check_round_trip(std::pow(10.0, e));
+}
+
+// What format_real must produce: std::to_chars' shortest form, respelled
+// for Part 21 (format_real has a faster path for short decimals).
+std::string reference_spelling(double value) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  std::string s(buffer, end);
+  std::string out;
+  const std::size_t e = s.find('e');
+  const std::string mantissa = s.substr(0, e);
+  out += mantissa;
+  if (mantissa.find('.') == std::string::npos) out += '.';
+  if (e != std::string::npos) {
+    std::string exponent = s.substr(e + 1);
+    out += 'E';
+    if (exponent[0] == '-') out += '-';
+    exponent.erase(0, 1);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size() - 1));
+    out += exponent;
+  }
+  return out;
+}
+
+TEST_CASE("the short-decimal fast path spells exactly what to_chars would", "[p21][numbers]") {
+  std::mt19937_64 random(6983);
+  for (int i = 0; i < 300000; ++i) {
+    const int decimals = static_cast<int>(random() % 12);
+    const auto mantissa = static_cast<std::int64_t>(random() % 10000000000000000ull) >> (random() % 50);
+    double value = static_cast<double>(mantissa) / std::pow(10.0, decimals);
+    if (random() % 2) value = -value;
+    REQUIRE(formatted(value) == reference_spelling(value));
+  }
+  for (double value : {1e-4, 1.5e-4, 0.001, 0.0001234, 1e14, 999999999999999.0, 123456789012345.6, 100.0, 1e5, 1e10})
+    CHECK(formatted(value) == reference_spelling(value));
 }
 
 TEST_CASE("reals written by the Writer read back through the reader unchanged", "[p21][numbers]") {

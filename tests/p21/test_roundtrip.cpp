@@ -38,6 +38,9 @@ TEST_CASE("the policy: values as written, whitespace canonical, comments dropped
         "ANCHOR;\n"
         "<origin> = #10;\n"
         "ENDSEC;\n"
+        "REFERENCE;\n"
+        "#500 = <other.stp#1>;\n"
+        "ENDSEC;\n"
         "DATA(('first'),('MACHINING_SCHEMA'));\n"
         "#10=CARTESIAN_POINT('origin',(0.,10.000,-2.5E-3));\n"
         "#11=VALUES(42,-7,+3,1.5E+10,'it''s \\X\\E9t\\X2\\00E9\\X0\\',.MILLING.,.T.,.F.,.U.,\"0FF\",$,*,#10,#99);\n"
@@ -48,7 +51,7 @@ TEST_CASE("the policy: values as written, whitespace canonical, comments dropped
         "ENDSEC;\n"
         "DATA;\n"
         "#100000=SECOND_SECTION('forward reference target',#11);\n"
-        "#99=UNKNOWN_ENTITY_KEPT(#4000000000,'x');\n"
+        "#99=UNKNOWN_ENTITY_KEPT(#4000000000,'x',#500);\n"
         "ENDSEC;\n"
         "END-ISO-10303-21;\n");
 }

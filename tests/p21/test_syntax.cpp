@@ -45,17 +45,19 @@ TEST_CASE("the feature file reads with every value as written", "[p21][syntax]")
     CHECK(header.schema_names() == std::vector<std::string>{"MACHINING_SCHEMA", "MILLING_SCHEMA"});
   }
 
-  SECTION("sections: anchor kept verbatim, two DATA sections with their parameters") {
+  SECTION("sections: anchor and reference kept verbatim, two DATA sections with their parameters") {
     const auto sections = doc.sections();
-    REQUIRE(sections.size() == 3);
+    REQUIRE(sections.size() == 4);
     CHECK(sections[0].kind == SectionKind::anchor);
     CHECK(sections[0].text == "<origin> = #10;");
-    CHECK(sections[1].kind == SectionKind::data);
-    CHECK(sections[1].text == "(('first'),('MACHINING_SCHEMA'))");
-    CHECK(sections[1].record_count == 6);
-    CHECK(sections[2].text.empty());
-    CHECK(sections[2].first_record == 6);
-    CHECK(sections[2].record_count == 2);
+    CHECK(sections[1].kind == SectionKind::reference);
+    CHECK(sections[1].text == "#500 = <other.stp#1>;");  // #99 refers to #500: not missing
+    CHECK(sections[2].kind == SectionKind::data);
+    CHECK(sections[2].text == "(('first'),('MACHINING_SCHEMA'))");
+    CHECK(sections[2].record_count == 6);
+    CHECK(sections[3].text.empty());
+    CHECK(sections[3].first_record == 6);
+    CHECK(sections[3].record_count == 2);
     CHECK(doc.records().size() == 8);
   }
 
@@ -163,8 +165,8 @@ TEST_CASE("the feature file reads with every value as written", "[p21][syntax]")
 
   SECTION("line and column of any offset") {
     const RecordEntry* record = doc.find(11);
-    CHECK(doc.location(record->offset) == SourceLocation{13, 1});
-    CHECK(doc.location(record->offset + 4) == SourceLocation{13, 5});
+    CHECK(doc.location(record->offset) == SourceLocation{16, 1});
+    CHECK(doc.location(record->offset + 4) == SourceLocation{16, 5});
     CHECK(doc.location(0) == SourceLocation{1, 1});
   }
 }

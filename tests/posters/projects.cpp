@@ -311,6 +311,98 @@ MachiningProject explicit_toolpath(std::size_t points) {
   return p;
 }
 
+meta::Model explicit_toolpath_model(std::size_t points) {
+  namespace ms = machining_schema;
+  meta::Model model;
+  auto& up = model.create<ms::direction>();
+  up.direction_ratios = {0.0, 0.0, 1.0};
+  auto at = [&](double x, double y, double z) -> ms::cartesian_point& {
+    auto& p = model.create<ms::cartesian_point>();
+    p.coordinates = {x, y, z};
+    return p;
+  };
+  auto placement = [&](ms::cartesian_point& location) -> ms::axis2_placement_3d& {
+    auto& a = model.create<ms::axis2_placement_3d>();
+    a.location = &location;
+    a.axis = &up;
+    return a;
+  };
+  auto plane = [&](double z) -> ms::plane& {
+    auto& p = model.create<ms::plane>();
+    p.position = &placement(at(0, 0, z));
+    return p;
+  };
+  auto& project = model.create<ms::project>();
+  project.its_id = "EXPLICIT";
+  auto& plan = model.create<ms::workplan>();
+  plan.its_id = "MAIN";
+  project.main_workplan = &plan;
+
+  auto& hole = model.create<ms::round_hole>();
+  hole.its_id = "AREA";
+  hole.feature_placement = &placement(at(0, 0, 0));
+  hole.depth = &plane(-2);
+  auto& diameter = model.create<ms::toleranced_length_measure>();
+  diameter.theoretical_size = 100;
+  hole.diameter = &diameter;
+  hole.bottom_condition = &model.create<ms::flat_hole_bottom>();
+
+  auto& dimension = model.create<milling_machine_tool_schema::milling_tool_dimension>();
+  dimension.diameter = 6;
+  auto& body = model.create<milling_machine_tool_schema::endmill>();
+  body.dimension = &dimension;
+  body.number_of_teeth = 2;
+  auto& tool = model.create<milling_machine_tool_schema::milling_cutting_tool>();
+  tool.its_id = "ENDMILL 6";
+  tool.its_tool_body = &body;
+  tool.overall_assembly_length = 60.0;
+  auto& technology = model.create<milling_schema::milling_technology>();
+  technology.feedrate = 0.05;  // m/s
+  technology.spindle = -100;   // rev/s
+  auto& functions = model.create<milling_schema::milling_machine_functions>();
+
+  // A spiral at z -1 (cutter locations), then half a circle about the origin.
+  auto& line = model.create<ms::polyline>();
+  for (std::size_t i = 0; i < points; ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(points);
+    const double angle = t * 40 * 3.14159265358979, radius = 5 + 40 * t;
+    line.points.push_back(&at(radius * std::cos(angle), radius * std::sin(angle), -1 - 0.5 * t));
+  }
+  auto& spiral = model.create<ms::cutter_location_trajectory>();
+  spiral.its_type = ms::toolpath_type::contact;
+  spiral.basiccurve = &line;
+  const auto* last = line.points.back();
+  auto& circle = model.create<ms::circle>();
+  circle.position = &placement(at(0, 0, -1.5));
+  circle.radius = std::hypot(last->coordinates[0], last->coordinates[1]);
+  auto& arc = model.create<ms::trimmed_curve>();
+  arc.basis_curve = &circle;
+  arc.trim_1 = {ms::trimming_select(const_cast<ms::cartesian_point*>(last))};
+  arc.trim_2 = {ms::trimming_select(&at(-last->coordinates[0], -last->coordinates[1], -1.5))};
+  arc.sense_agreement = true;
+  arc.master_representation = ms::trimming_preference::cartesian;
+  auto& around = model.create<ms::cutter_location_trajectory>();
+  around.its_type = ms::toolpath_type::contact;
+  around.basiccurve = &arc;
+  auto& list = model.create<ms::toolpath_list>();
+  list.its_list = {&spiral, &around};
+
+  auto& op = model.create<milling_schema::freeform_operation>();
+  op.its_id = "FREEFORM";
+  op.retract_plane = 5.0;
+  op.its_tool = &tool;
+  op.its_technology = &technology;
+  op.its_machine_functions = &functions;
+  op.its_toolpath = &list;
+  auto& ws = model.create<ms::machining_workingstep>();
+  ws.its_id = "WS FREEFORM";
+  ws.its_secplane = &plane(20);
+  ws.its_feature = &hole;
+  ws.its_operation = &op;
+  plan.its_elements.push_back(&ws);
+  return model;
+}
+
 DescribeResult describe_sample(const std::string& relative_path) {
   static const meta::Registry registry{&machining_schema::meta_schema, &milling_schema::meta_schema,
                                        &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,

@@ -2,6 +2,7 @@
 // typed-model adapter will fill them from Part 21 files.
 #pragma once
 
+#include "stepnc/meta/model.h"
 #include "stepnc/post/iso14649.h"
 #include "stepnc/post/machining.h"
 
@@ -23,6 +24,10 @@ MachiningProject shaft();
 
 // A freeform operation whose explicit toolpath is a polyline plus an arc.
 MachiningProject explicit_toolpath(std::size_t points);
+
+// The typed ISO 14649 model of a freeform operation whose toolpath list
+// holds a cutter-location polyline of `points` points and a trimmed circle.
+meta::Model explicit_toolpath_model(std::size_t points);
 
 // A Part 21 file under samples/, read into the typed ISO 14649 model and
 // described by the adapter. Empty project and a diagnostic if unreadable.

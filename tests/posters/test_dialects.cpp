@@ -105,3 +105,17 @@ TEST_CASE("the SVG plot draws workpiece, features, feeds and rapids") {
   CHECK(svg.find("#2a9d2a") != std::string::npos);           // feature outlines
   CHECK(svg.find("<title>EXECUTE EXAMPLE1</title>") != std::string::npos);
 }
+
+TEST_CASE("helices: a turn count where the dialect has one, one block per turn on Fanuc") {
+  MachiningProject project = testing::explicit_toolpath(2);
+  auto& line = std::get<Polyline>(project.operations[0].toolpaths[0].elements[0]);
+  line.points = {{0, 0, -1}, {10, 0, -1}};
+  // Two full turns plus a half, climbing from z -1 to z -6 around (0, 0).
+  std::get<CircularArc>(project.operations[0].toolpaths[0].elements[1]) = {{-10, 0, -6}, {0, 0, 0}, false, 2};
+  CHECK(has_line(posted(project, Dialect::rs274ngc), "G3 X-10 Y0 Z-6 I-10 J0 P3"));
+  CHECK(posted(project, Dialect::siemens840d).find(" G3 X-10 Y0 Z-6 I-10 J0 TURN=2\n") != std::string::npos);
+  const std::string fanuc = posted(project, Dialect::fanuc);
+  CHECK(has_line(fanuc, "G3 X10. Y0. Z-3. I-10. J0."));  // 2 pi of 5 pi: 2 mm down
+  CHECK(has_line(fanuc, "G3 X10. Y0. Z-5. I-10. J0."));
+  CHECK(has_line(fanuc, "G3 X-10. Y0. Z-6. I-10. J0."));
+}

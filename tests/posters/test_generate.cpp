@@ -150,6 +150,19 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     project.main_workplan.children.push_back(loop);
     CHECK(mentions(generate(project), "#77 'REPEAT': error: while_statement is not supported"));
   }
+  SECTION("sizes that would make a wrong or endless program") {
+    project.operations[3].radial_cutting_depth = 1e-4;
+    CHECK(mentions(generate(project), "#22 'ROUGH POCKET1': error: stepover 0.0001 makes more than 100000 passes"));
+    project.operations[3].radial_cutting_depth = 5;
+    project.operations[0].axial_cutting_depth = 0;
+    CHECK(mentions(generate(project), "#19 'FINISH PLANAR FACE1': error: axial cutting depth 0 is not positive"));
+    project.operations[0].axial_cutting_depth = 2.5;
+    project.tools[1].diameter = 0;
+    CHECK(mentions(generate(project), "#44 'SPIRAL_DRILL_20MM': error: milling and drilling tools need a positive diameter"));
+    project.tools[1].diameter = 20;
+    project.features[0].depth = -1;
+    CHECK(mentions(generate(project), "#16 'PLANAR FACE1': error: negative depth -1"));
+  }
   SECTION("retract plane above the security plane") {
     project.operations[0].retract_plane = 40;
     CHECK(mentions(generate(project), "#19 'FINISH PLANAR FACE1': error: retract plane z=45 lies above the security plane"));

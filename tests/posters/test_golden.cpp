@@ -34,8 +34,12 @@ void check_golden(const std::string& file, const std::string& text) {
   CHECK(text == expected);
 }
 
-Program posted_program(const MachiningProject& project) {
-  auto result = generate(project);
+// The programs of the sample files, read through the typed model.
+Program posted_program(const std::string& sample) {
+  const auto described = testing::describe_sample(sample);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  auto result = generate(described.project);
   for (const auto& d : result.diagnostics) INFO(d.to_string());
   REQUIRE(result.ok());
   return std::move(result.program);
@@ -43,26 +47,30 @@ Program posted_program(const MachiningProject& project) {
 
 }  // namespace
 
-TEST_CASE("golden: Example 1 for the Siemens 840D") {
-  check_golden("example1.mpf", print(posted_program(testing::example1()), Dialect::siemens840d).text);
+TEST_CASE("golden: Example 1 (samples/milling/example1.stp) for the Siemens 840D") {
+  check_golden("example1.mpf", print(posted_program("milling/example1.stp"), Dialect::siemens840d).text);
 }
 
-TEST_CASE("golden: Example 1 for Fanuc") {
-  check_golden("example1_fanuc.nc", print(posted_program(testing::example1()), Dialect::fanuc).text);
+TEST_CASE("golden: Example 1 (samples/milling/example1.stp) for Fanuc") {
+  check_golden("example1_fanuc.nc", print(posted_program("milling/example1.stp"), Dialect::fanuc).text);
 }
 
-TEST_CASE("golden: the shaft for a Fanuc lathe") {
-  check_golden("shaft_fanuc.nc", print(posted_program(testing::shaft()), Dialect::fanuc).text);
+TEST_CASE("golden: the shaft (samples/turning/shaft.stp) for a Fanuc lathe") {
+  check_golden("shaft_fanuc.nc", print(posted_program("turning/shaft.stp"), Dialect::fanuc).text);
+}
+
+TEST_CASE("golden: the shaft (samples/turning/shaft.stp) for a Siemens 840D lathe") {
+  check_golden("shaft.mpf", print(posted_program("turning/shaft.stp"), Dialect::siemens840d).text);
 }
 
 TEST_CASE("golden: Example 1 traceability sidecar") {
-  const Program program = posted_program(testing::example1());
+  const Program program = posted_program("milling/example1.stp");
   check_golden("example1.mpf.trace.json", trace_json(program, print(program, Dialect::siemens840d)));
 }
 
 // Seed 000 Table 1, row by row, for the finishing POCKET1 of Example 1.
 TEST_CASE("POCKET1 parameters come from the model as in seed 000 Table 1") {
-  const Program program = posted_program(testing::example1());
+  const Program program = posted_program("milling/example1.stp");
   const FeatureCycle* pocket = nullptr;
   for (const auto& block : program.blocks)
     if (auto* c = std::get_if<FeatureCycle>(&block.statement); c && c->name == "POCKET1") pocket = c;

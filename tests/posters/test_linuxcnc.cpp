@@ -102,3 +102,18 @@ TEST_CASE("LinuxCNC runs Example 1 as read from samples/milling/example1.stp") {
   REQUIRE(described.ok());
   check_with_linuxcnc("example1_sample", described.project);
 }
+
+TEST_CASE("LinuxCNC runs the shaft as read from samples/turning/shaft.stp") {
+  const auto described = testing::describe_sample("turning/shaft.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  check_with_linuxcnc("shaft_sample", described.project);
+}
+
+TEST_CASE("LinuxCNC runs explicit toolpaths read from the typed model") {
+  const auto model = testing::explicit_toolpath_model(500);
+  const auto described = describe_project(model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  check_with_linuxcnc("explicit_model", described.project);
+}

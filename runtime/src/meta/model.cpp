@@ -1,6 +1,7 @@
 #include "stepnc/meta/model.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace stepnc::meta {
 
@@ -10,6 +11,32 @@ namespace {
 constexpr std::size_t kFirstBlock = 4096;
 constexpr std::size_t kLargestBlock = std::size_t{1} << 20;
 }  // namespace
+
+Model::Model(Model&& other) noexcept
+    : blocks_(std::move(other.blocks_)),
+      cursor_(std::exchange(other.cursor_, nullptr)),
+      remaining_(std::exchange(other.remaining_, 0)),
+      arena_bytes_(std::exchange(other.arena_bytes_, 0)),
+      instances_(std::move(other.instances_)),
+      last_id_(std::exchange(other.last_id_, 0)) {
+  other.blocks_.clear();
+  other.instances_.clear();
+}
+
+Model& Model::operator=(Model&& other) noexcept {
+  if (this != &other) {
+    Model old(std::move(*this));  // destroys our instances on return
+    blocks_ = std::move(other.blocks_);
+    cursor_ = std::exchange(other.cursor_, nullptr);
+    remaining_ = std::exchange(other.remaining_, 0);
+    arena_bytes_ = std::exchange(other.arena_bytes_, 0);
+    instances_ = std::move(other.instances_);
+    last_id_ = std::exchange(other.last_id_, 0);
+    other.blocks_.clear();
+    other.instances_.clear();
+  }
+  return *this;
+}
 
 Model::~Model() {
   // Reverse creation order: later instances may point at earlier ones,

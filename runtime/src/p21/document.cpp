@@ -214,7 +214,7 @@ class DocumentBuilder final : public RecordHandler {
     // regrows (untouched capacity costs address space, not memory).
     const std::size_t expected = doc_.buffer_->size() / 48;
     doc_.records_.reserve(expected);
-    doc_.ids_ = std::make_unique<Document::IdTable>(std::min<std::size_t>(expected, 1 << 16));
+    doc_.ids_ = std::make_unique<Document::IdTable>(expected);
     detail::Scanner scanner(*doc_.buffer_, doc_.file_name_, options_, diagnostics_,
                             [this](std::uint64_t offset) { return doc_.location(offset); });
     scanner_ = &scanner;
@@ -228,6 +228,7 @@ class DocumentBuilder final : public RecordHandler {
   }
 
   bool on_section(const Section& section, StreamContext&) override {
+    if (section.kind == SectionKind::reference) note_external_ids(section.text);
     close_data_section();
     doc_.sections_.push_back(section);
     doc_.sections_.back().first_record = static_cast<std::uint32_t>(doc_.records_.size());
@@ -276,9 +277,21 @@ class DocumentBuilder final : public RecordHandler {
     return scanner_->report(doc_.diagnostic(ParseError{offset, std::move(message)}, id));
   }
 
+  // A REFERENCE section names instances kept in other files
+  // (`#12 = <other.stp#34>;`): references to them are not missing.
+  void note_external_ids(std::string_view text) {
+    for (std::size_t at = 0; at < text.size(); ++at) {
+      if (text[at] != '#' || (at > 0 && text[at - 1] != '\n')) continue;
+      const char* p = text.data() + at + 1;
+      if (const std::uint64_t id = detail::parse_id(p, text.data() + text.size())) external_ids_.push_back(id);
+    }
+    std::sort(external_ids_.begin(), external_ids_.end());
+  }
+
   void check_forward_references() {
     for (const Unresolved& u : unresolved_) {
       if (doc_.find(u.target) != nullptr) continue;
+      if (std::binary_search(external_ids_.begin(), external_ids_.end(), u.target)) continue;
       if (!report(u.offset, fmt::format("reference to missing instance #{}", u.target), u.from)) return;
     }
   }
@@ -289,6 +302,7 @@ class DocumentBuilder final : public RecordHandler {
   detail::Scanner* scanner_ = nullptr;
   ParamTree tree_;
   std::vector<Unresolved> unresolved_;
+  std::vector<std::uint64_t> external_ids_;  // sorted
 };
 
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -12,17 +13,37 @@
 
 namespace stepnc::p21::detail {
 
-inline bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
-inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
-inline bool is_upper(char c) { return (c >= 'A' && c <= 'Z') || c == '_'; }
-// Keywords are upper case in the standard; lower case is accepted and kept.
-inline bool is_keyword_start(char c) { return is_upper(c) || (c >= 'a' && c <= 'z') || c == '!'; }
-inline bool is_keyword_char(char c) {
-  return is_upper(c) || (c >= 'a' && c <= 'z') || is_digit(c);
-}
-inline bool is_hex_digit(char c) {
-  return is_digit(c) || (c >= 'A' && c <= 'F') || (c >= 'a' && c <= 'f');
-}
+// Character classes, looked up in one table (these tests run per byte).
+enum CharClass : std::uint8_t {
+  kSpace = 1,          // space, tab, CR, LF
+  kDigit = 2,          // 0-9
+  kKeywordStart = 4,   // A-Z a-z _ ! (keywords are upper case in the standard;
+                       // lower case is accepted and kept)
+  kKeywordChar = 8,    // A-Z a-z _ 0-9
+  kHexDigit = 16,      // 0-9 A-F a-f
+};
+
+struct CharClassTable {
+  std::uint8_t classes[256] = {};
+  constexpr CharClassTable() {
+    for (unsigned char c : {' ', '\t', '\r', '\n'}) classes[c] |= kSpace;
+    for (int c = '0'; c <= '9'; ++c) classes[c] |= kDigit | kKeywordChar | kHexDigit;
+    for (int c = 'A'; c <= 'Z'; ++c) classes[c] |= kKeywordStart | kKeywordChar;
+    for (int c = 'a'; c <= 'z'; ++c) classes[c] |= kKeywordStart | kKeywordChar;
+    for (int c = 'A'; c <= 'F'; ++c) classes[c] |= kHexDigit;
+    for (int c = 'a'; c <= 'f'; ++c) classes[c] |= kHexDigit;
+    classes[static_cast<unsigned char>('_')] |= kKeywordStart | kKeywordChar;
+    classes[static_cast<unsigned char>('!')] |= kKeywordStart;
+  }
+};
+inline constexpr CharClassTable kCharClasses{};
+
+inline bool has_class(char c, CharClass cls) { return (kCharClasses.classes[static_cast<unsigned char>(c)] & cls) != 0; }
+inline bool is_space(char c) { return has_class(c, kSpace); }
+inline bool is_digit(char c) { return has_class(c, kDigit); }
+inline bool is_keyword_start(char c) { return has_class(c, kKeywordStart); }
+inline bool is_keyword_char(char c) { return has_class(c, kKeywordChar); }
+inline bool is_hex_digit(char c) { return has_class(c, kHexDigit); }
 inline int hex_value(char c) {
   if (is_digit(c)) return c - '0';
   if (c >= 'A' && c <= 'F') return c - 'A' + 10;
@@ -54,15 +75,16 @@ inline const char* find_statement_stop(const char* p, const char* end) {
 // Returns 0 (never a valid id) when there are none or the value overflows.
 inline std::uint64_t parse_id(const char*& p, const char* end) {
   std::uint64_t id = 0;
-  bool overflow = false;
   const char* start = p;
-  while (p < end && is_digit(*p)) {
-    const auto digit = static_cast<unsigned>(*p - '0');
-    overflow = overflow || id > (UINT64_MAX - digit) / 10;
-    id = id * 10 + digit;
-    ++p;
+  while (p < end && is_digit(*p)) id = id * 10 + static_cast<unsigned>(*p++ - '0');
+  // Up to 19 digits always fit in 64 bits; longer spellings are checked.
+  if (p - start > 19) {
+    const char* first = start;
+    while (first < p && *first == '0') ++first;
+    const std::string_view digits(first, static_cast<std::size_t>(p - first));
+    if (digits.size() > 20 || (digits.size() == 20 && digits > "18446744073709551615")) return 0;
   }
-  return p == start || overflow ? 0 : id;
+  return p == start ? 0 : id;
 }
 
 // Why parse_id() returned 0 for the digits in [digits, after).

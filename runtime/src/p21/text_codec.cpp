@@ -4,6 +4,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
+#include <algorithm>
 
 #include "code_pages.h"
 #include "lexical.h"
@@ -218,8 +220,72 @@ bool encode_string(std::string_view text, std::string& out) {
   return true;
 }
 
+namespace {
+
+constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
+
+// The common case of coordinates such as 12.3456: finds the fewest
+// decimals k (up to 10) for which round(|value| * 10^k) / 10^k gives back
+// the same double (checked exactly: a mantissa below 10^15 and one
+// correctly rounded division). Below 16 significant digits two decimals
+// never map to the same double, so this is the shortest spelling, the one
+// std::to_chars finds. Used only where to_chars would pick plain
+// notation; returns false otherwise and for everything else.
+bool format_short_decimal(double value, std::string& out) {
+  const double magnitude = std::fabs(value);
+  if (!(magnitude >= 1e-4 && magnitude < 1e15)) return false;
+  for (int k = 0; k <= 10; ++k) {
+    const double scaled = magnitude * kPowersOfTen[k];
+    if (scaled >= 1e15) return false;
+    const auto nearest = static_cast<double>(static_cast<std::int64_t>(scaled + 0.5));
+    // Cheap filter before the exact test: the right k gives a product
+    // within a few ulps of an integer.
+    if (std::fabs(scaled - nearest) > 1e-9 * nearest + 1e-9) continue;
+    const auto mantissa = static_cast<std::uint64_t>(nearest);
+    if (static_cast<double>(mantissa) / kPowersOfTen[k] != magnitude) continue;
+
+    char text[24];
+    const char* end = std::to_chars(text, text + sizeof text, mantissa).ptr;
+    const std::string_view all(text, static_cast<std::size_t>(end - text));
+    const int digits = static_cast<int>(all.size());
+    // Plain notation must not be longer than scientific (to_chars' choice).
+    // Only k == 0 can leave trailing zeros (otherwise a smaller k fits).
+    const int trailing_zeros = static_cast<int>(all.size() - 1 - all.find_last_not_of('0'));
+    const int significant_digits = digits - trailing_zeros;
+    const int exponent = digits - 1 - k;
+    const int plain_length = k == 0 ? digits : std::max(digits - k, 1) + 1 + k;
+    const int scientific_length =
+        significant_digits + (significant_digits > 1 ? 1 : 0) + 2 + (std::abs(exponent) >= 100 ? 3 : 2);
+    if (plain_length > scientific_length) return false;
+
+    // Spelled in a local buffer and appended once: this runs per real.
+    char spelled[40];
+    char* p = spelled;
+    if (value < 0) *p++ = '-';
+    if (k == 0) {
+      p = std::copy(all.begin(), all.end(), p);
+      *p++ = '.';
+    } else if (digits > k) {
+      p = std::copy(all.begin(), all.end() - k, p);
+      *p++ = '.';
+      p = std::copy(all.end() - k, all.end(), p);
+    } else {
+      *p++ = '0';
+      *p++ = '.';
+      p = std::fill_n(p, k - digits, '0');
+      p = std::copy(all.begin(), all.end(), p);
+    }
+    out.append(spelled, p);
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool format_real(double value, std::string& out) {
   if (!std::isfinite(value)) return false;
+  if (format_short_decimal(value, out)) return true;
   std::array<char, 40> buffer{};
   const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
   if (ec != std::errc()) return false;

@@ -1,20 +1,20 @@
 %
 O1000
 G18 G21 G40 G97 G99
-(SHAFT [#1])
+(SHAFT D70 X 175 [#1])
 G0 X83. Z6.
-(WS[1] WS FACE ROUGH #30: facing_rough #20 on FRONT FACE #10)
+(WS[1] WS FACE ROUGH #40: facing_rough #200 on FRONT FACE #100)
 T0101
 G50 S3000
 G96 S200 M03
 M08
-G99 F0.3
+G99 F0.25
 G0 X83. Z0.2
 G1 X0.
 G0 Z2.2
 X83.
 Z6.
-(WS[2] WS FACE FINISH #31: facing_finish #21 on FRONT FACE #10)
+(WS[2] WS FACE FINISH #41: facing_finish #201 on FRONT FACE #100)
 M05
 M09
 T0202
@@ -27,17 +27,19 @@ G1 X0.
 G0 Z2.
 X83.
 Z6.
-(WS[3] WS CENTRE DRILL #32: drilling_on_lathe_axis #22 on CENTRE HOLE A5 #11)
+(WS[3] WS CENTRE DRILL #42: center_drilling #210 on CENTRE HOLE A5 #110)
 M05
 M09
 T0303
-G97 S1200 M03
+G97 S1200 M04
 M08
+G99 F0.08
 G0 X0. Z4.
-G1 Z-6.
+G1 Z-8.
+G04 P500
 G0 Z4.
 X83. Z6.
-(WS[4] WS CONTOUR ROUGH #33: contouring_rough #23 on OUTER CONTOUR #12)
+(WS[4] WS CONTOUR ROUGH #43: contouring_rough #220 on OUTER CONTOUR #120)
 M05
 M09
 T0101
@@ -101,15 +103,15 @@ X71.
 Z-120.
 G0 X83.
 Z6.
-(WS[5] WS CONTOUR FINISH #34: contouring_finish #24 on OUTER CONTOUR #12)
+(WS[5] WS CONTOUR FINISH #44: contouring_finish #221 on OUTER CONTOUR #120)
 M05
 M09
 T0202
 G50 S3000
 G96 S250 M03
 M08
-G99 F0.1
-(residual height 0.00297 mm [nose radius 0.4, feed 0.1 mm/rev])
+G99 F0.12
+(residual height 0.00450 mm [nose radius 0.4, feed 0.12 mm/rev])
 G0 X83. Z4.
 X32.
 G1 Z0.
@@ -121,16 +123,16 @@ X70.
 Z-120.
 G0 X83.
 Z6.
-(WS[6] WS GROOVE #35: grooving #25 on RELIEF GROOVE #13)
+(WS[6] WS RELIEF GROOVE #45: grooving #230 on RELIEF GROOVE 3 X 3 #130)
 M05
 M09
 T0404
-G97 S800 M03
+G97 S900 M04
 M08
 G99 F0.05
 G0 X52. Z-65.
 G1 X44.
-G04 P150
+G04 P133
 G0 X52.
 X83. Z6.
 M05

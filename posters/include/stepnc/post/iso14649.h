@@ -19,10 +19,9 @@ struct DescribeResult {
   bool ok() const;
 };
 
-// Reads the model's one `project` (ISO 14649-10 with Part 11 milling and
-// Part 111 tools). Turning (Part 12/121) projects are reported as not yet
-// supported by the adapter; the turning posters take hand-built
-// descriptions for now.
+// Reads the model's one `project`: ISO 14649-10 with Part 11 milling and
+// Part 111 tools, or Part 12 turning with Part 121 tools. Lathe holes on
+// the spindle axis use Part 111 tools (centre drills).
 DescribeResult describe_project(const meta::Model& model);
 
 }  // namespace stepnc::post

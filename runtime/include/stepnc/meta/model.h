@@ -26,8 +26,9 @@ class Model {
   Model() = default;
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
-  Model(Model&&) noexcept = default;
-  Model& operator=(Model&&) noexcept = default;
+  // Moving hands over the instances and the arena; the moved-from model is empty.
+  Model(Model&& other) noexcept;
+  Model& operator=(Model&& other) noexcept;
   ~Model();
 
   // Creates an instance of a generated entity class. Without an id, the

@@ -161,9 +161,9 @@ class EntityPart {
 class ParamTree {
  public:
   // Parses the text of a record (`#12=NAME(...);` or `#5=(A(..)B(..));`)
-  // or of a header entity (`NAME(...);`). `base_offset` is the absolute
-  // file offset of `record_text`, used for error offsets. On error the
-  // tree is left empty.
+  // or of a header entity (`NAME(...);`); the text must end with the ';'
+  // (whitespace may follow). `base_offset` is the absolute file offset of
+  // `record_text`, used for error offsets. On error the tree is left empty.
   std::optional<ParseError> parse(std::string_view record_text, std::uint64_t base_offset = 0);
 
   std::uint64_t id() const { return id_; }  // 0 for header entities

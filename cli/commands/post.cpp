@@ -1,0 +1,51 @@
+// stepnc post FILE --dialect D [-o OUT] [--trace MAP.json]: write the NC
+// program for a file's project, and optionally the map from each NC block
+// back to its workingstep, operation and feature.
+#include <fmt/format.h>
+
+#include "command.h"
+#include "posting.h"
+#include "stepnc/post/dialect.h"
+
+namespace stepnc::cli {
+namespace {
+
+struct PostOptions {
+  std::string file;
+  std::string dialect;
+  std::string output;
+  std::string trace;
+};
+
+int run_post(const PostOptions& options) {
+  const post::Dialect dialect = *post::dialect_from_name(options.dialect);  // checked by CLI11
+  const std::optional<PostedProject> posted = post_file(options.file);
+  if (!posted) return exit_invalid_input;
+  const post::PrintedProgram printed = post::print(posted->program, dialect);
+  // The trace first: a program is only published with its map.
+  if (!options.trace.empty() && !write_output(options.trace, post::trace_json(posted->program, printed))) {
+    return exit_failure;
+  }
+  if (options.output.empty()) {
+    fmt::print("{}", printed.text);
+  } else if (!write_output(options.output, printed.text)) {
+    return exit_failure;
+  }
+  return exit_ok;
+}
+
+}  // namespace
+
+void add_post_command(CLI::App& app, Action& action) {
+  auto options = std::make_shared<PostOptions>();
+  CLI::App* command = app.add_subcommand("post", "Write the NC program for a file's project");
+  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  command->add_option("-d,--dialect", options->dialect, "Output dialect")
+      ->required()
+      ->check(CLI::IsMember({"rs274ngc", "fanuc", "siemens840d", "canonical"}));
+  command->add_option("-o,--output", options->output, "Output file (default: standard output)");
+  command->add_option("--trace", options->trace, "Also write the NC block -> workingstep/operation/feature map (JSON)");
+  command->callback([&action, options] { action = [options] { return run_post(*options); }; });
+}
+
+}  // namespace stepnc::cli
