@@ -704,9 +704,11 @@ class trimming_select : public stepnc::meta::Select {
   bool is_cartesian_point() const;
   machining_schema::cartesian_point* as_cartesian_point() const;
 
-  bool is_parameter_value() const { return member() == &machining_schema::type_info::parameter_value; }
-  std::optional<machining_schema::parameter_value> as_parameter_value() const { return get_value<machining_schema::parameter_value>(machining_schema::type_info::parameter_value); }
-  void set_parameter_value(machining_schema::parameter_value value) { put_value(machining_schema::type_info::parameter_value, std::move(value)); }
+  bool is_parameter_value() const { return member() == &type_info::parameter_value; }
+  std::optional<machining_schema::parameter_value> as_parameter_value() const {
+    return get_value<machining_schema::parameter_value>(type_info::parameter_value);
+  }
+  void set_parameter_value(machining_schema::parameter_value value) { put_value(type_info::parameter_value, std::move(value)); }
 };
 
 // TYPE dimension_count = INTEGER;
@@ -1010,13 +1012,17 @@ class toolpath_speedprofile : public stepnc::meta::Select {
   bool is_toolpath_speed() const;
   machining_schema::toolpath_speed* as_toolpath_speed() const;
 
-  bool is_positive_ratio_measure() const { return member() == &machining_schema::type_info::positive_ratio_measure; }
-  std::optional<machining_schema::positive_ratio_measure> as_positive_ratio_measure() const { return get_value<machining_schema::positive_ratio_measure>(machining_schema::type_info::positive_ratio_measure); }
-  void set_positive_ratio_measure(machining_schema::positive_ratio_measure value) { put_value(machining_schema::type_info::positive_ratio_measure, std::move(value)); }
+  bool is_positive_ratio_measure() const { return member() == &type_info::positive_ratio_measure; }
+  std::optional<machining_schema::positive_ratio_measure> as_positive_ratio_measure() const {
+    return get_value<machining_schema::positive_ratio_measure>(type_info::positive_ratio_measure);
+  }
+  void set_positive_ratio_measure(machining_schema::positive_ratio_measure value) { put_value(type_info::positive_ratio_measure, std::move(value)); }
 
-  bool is_speed_name() const { return member() == &machining_schema::type_info::speed_name; }
-  std::optional<machining_schema::speed_name> as_speed_name() const { return get_value<machining_schema::speed_name>(machining_schema::type_info::speed_name); }
-  void set_speed_name(machining_schema::speed_name value) { put_value(machining_schema::type_info::speed_name, std::move(value)); }
+  bool is_speed_name() const { return member() == &type_info::speed_name; }
+  std::optional<machining_schema::speed_name> as_speed_name() const {
+    return get_value<machining_schema::speed_name>(type_info::speed_name);
+  }
+  void set_speed_name(machining_schema::speed_name value) { put_value(type_info::speed_name, std::move(value)); }
 };
 
 // TYPE curve_with_surface_normal = SELECT (bounded_pcurve, curve_with_normal_vector);
@@ -1708,7 +1714,8 @@ class oriented_closed_shell : public machining_schema::closed_shell {
   machining_schema::closed_shell* closed_shell_element{};  // closed_shell
   bool orientation{};  // BOOLEAN
 
-  // cfs_faces: redeclares connected_face_set.cfs_faces as DERIVE SET [1:?] OF face (stored in connected_face_set).
+  // cfs_faces: redeclares connected_face_set.cfs_faces as DERIVE SET [1:?] OF face := conditional_reverse(SELF.orientation, SELF.closed_shell_element.cfs_faces)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
 };
 
 // ENTITY oriented_edge SUBTYPE OF (edge)
@@ -1721,8 +1728,10 @@ class oriented_edge : public machining_schema::edge {
   machining_schema::edge* edge_element{};  // edge
   bool orientation{};  // BOOLEAN
 
-  // edge_start: redeclares edge.edge_start as DERIVE vertex (stored in edge).
-  // edge_end: redeclares edge.edge_end as DERIVE vertex (stored in edge).
+  // edge_start: redeclares edge.edge_start as DERIVE vertex := boolean_choose(SELF.orientation, SELF.edge_element.edge_start, SELF.edge_element.edge_end)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
+  // edge_end: redeclares edge.edge_end as DERIVE vertex := boolean_choose(SELF.orientation, SELF.edge_element.edge_end, SELF.edge_element.edge_start)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
 };
 
 // ENTITY oriented_face SUBTYPE OF (face)
@@ -1735,7 +1744,8 @@ class oriented_face : public machining_schema::face {
   machining_schema::face* face_element{};  // face
   bool orientation{};  // BOOLEAN
 
-  // bounds: redeclares face.bounds as DERIVE SET [1:?] OF face_bound (stored in face).
+  // bounds: redeclares face.bounds as DERIVE SET [1:?] OF face_bound := conditional_reverse(SELF.orientation, SELF.face_element.bounds)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
 };
 
 // ENTITY oriented_open_shell SUBTYPE OF (open_shell)
@@ -1748,7 +1758,8 @@ class oriented_open_shell : public machining_schema::open_shell {
   machining_schema::open_shell* open_shell_element{};  // open_shell
   bool orientation{};  // BOOLEAN
 
-  // cfs_faces: redeclares connected_face_set.cfs_faces as DERIVE SET [1:?] OF face (stored in connected_face_set).
+  // cfs_faces: redeclares connected_face_set.cfs_faces as DERIVE SET [1:?] OF face := conditional_reverse(SELF.orientation, SELF.open_shell_element.cfs_faces)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
 };
 
 // ENTITY oriented_path SUBTYPE OF (path)
@@ -1761,7 +1772,8 @@ class oriented_path : public machining_schema::path {
   machining_schema::path* path_element{};  // path
   bool orientation{};  // BOOLEAN
 
-  // edge_list: redeclares path.edge_list as DERIVE LIST [1:?] OF UNIQUE oriented_edge (stored in path).
+  // edge_list: redeclares path.edge_list as DERIVE LIST [1:?] OF UNIQUE oriented_edge := conditional_reverse(SELF.orientation, SELF.path_element.edge_list)
+  //   (written as * in Part 21; not yet derivable, the inherited member is unused here).
 };
 
 // ENTITY poly_loop SUBTYPE OF (loop, geometric_representation_item)

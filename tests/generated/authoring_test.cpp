@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 
+#include <unistd.h>
+
 #include "example1_project.h"
 #include "machining_schema.h"
 #include "stepnc/meta/io.h"
@@ -55,7 +57,8 @@ TEST_CASE("Example 1 built in code equals the standard's file, instance by insta
 TEST_CASE("Example 1 is written as a valid file that reads back unchanged", "[generated][authoring]") {
   meta::Model authored;
   stepnc_samples::build_example1(authored);
-  const auto path = std::filesystem::temp_directory_path() / "stepnc-example1-authored.stp";
+  const auto path =
+      std::filesystem::temp_directory_path() / ("stepnc-example1-" + std::to_string(::getpid()) + ".stp");
   REQUIRE_FALSE(meta::write_file(authored, stepnc_samples::example1_header(), path).has_value());
 
   auto read = p21::read_file(path);

@@ -82,3 +82,12 @@ TEST_CASE("a missing file is an error value", "[p21][malformed]") {
   REQUIRE(result.diagnostics.items().size() == 1);
   CHECK(result.diagnostics.items()[0].to_string() == "/nonexistent/dir/x.stp: error: cannot open file");
 }
+
+TEST_CASE("an error limit of 0 still keeps the first error", "[p21][malformed]") {
+  ReadOptions options;
+  options.error_limit = 0;
+  const ReadResult result = read_text(p21_test::wrap("#1=A(#2);"), "zero.stp", options);
+  CHECK_FALSE(result.ok());
+  REQUIRE(result.diagnostics.items().size() == 1);
+  CHECK(result.diagnostics.items()[0].to_string() == "zero.stp:8:6: error: #1: reference to missing instance #2");
+}

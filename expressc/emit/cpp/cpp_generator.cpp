@@ -273,6 +273,21 @@ void add_type_schemas(const TypeRef& t, SchemaList& list) {
 
 // ---------------------------------------------------------------- emitter
 
+// One class's reflection tables: its names, and which of the optional
+// tables were printed, so that its EntityInfo refers to exactly those.
+struct EntityTables {
+  std::string cpp_name;      // qualified class name
+  std::string table_name;    // prefix of its tables in meta_tables
+  std::string express_name;  // empty for a complex combination
+  bool abstract = false;
+  bool supertypes = false;
+  bool subtypes = false;
+  bool parts = false;
+  bool attributes = false;
+  bool derived = false;
+  bool inverses = false;
+};
+
 class SchemaEmitter {
  public:
   SchemaEmitter(const model::Model& model, const Analysis& analysis, const Schema& schema,
@@ -296,8 +311,8 @@ class SchemaEmitter {
   std::string type_info_ref(const TypeRef& t);
   std::string register_aggregate(const TypeRef& t);
   void print_type_tables(Printer& p, const DefinedType& type);
-  void print_entity_tables(Printer& p, const std::string& cpp_name, const std::string& table_name,
-                           const Entity* entity, const Combination* combination);
+  EntityTables print_entity_tables(Printer& p, const Entity* entity, const Combination* combination);
+  void print_entity_info(Printer& p, const EntityTables& tables);
   void print_attribute_row(Printer& p, const model::Part21Slot& slot);
 
   std::vector<const Entity*> entities_in_order() const;
@@ -503,14 +518,18 @@ void SchemaEmitter::print_select(Printer& p, const DefinedType& type) {
     }
     const DefinedType* d = m.defined;
     const std::string value_type = qualified(d);
-    const std::string info = type_info_name(d->schema, d->name);
+    // This schema's type_info namespace is in scope; others are qualified.
+    const std::string info =
+        d->schema == &schema_ ? concat({"type_info::", identifier(d->name)}) : type_info_name(d->schema, d->name);
     if (d->kind == DefinedType::Kind::Alias && storage_of(d->underlying) == Storage::Aggregate) {
       p.print("\n// $member$: aggregate members have no typed accessors yet.\n", {{"member", d->name}});
       continue;
     }
     p.print(
         "\nbool is_$member$() const { return member() == &$info$; }\n"
-        "std::optional<$type$> as_$member$() const { return get_value<$type$>($info$); }\n"
+        "std::optional<$type$> as_$member$() const {\n"
+        "  return get_value<$type$>($info$);\n"
+        "}\n"
         "void set_$member$($type$ value) { put_value($info$, std::move(value)); }\n",
         {{"member", d->name}, {"type", value_type}, {"info", info}});
   }
@@ -563,10 +582,14 @@ void SchemaEmitter::print_entity_class(Printer& p, const Entity& entity) {
     const bool stored = a->kind == Attribute::Kind::Explicit && a->redeclares == nullptr;
     if (!stored && first_note) p.print("\n");
     if (!stored) first_note = false;
-    if (a->redeclares != nullptr) {
-      p.print("// $name$: redeclares $owner$.$name$ as $kind$$express$ (stored in $owner$).\n",
-              {{"name", a->name}, {"owner", a->redeclares->owner->name},
-               {"kind", a->kind == Attribute::Kind::Derived ? "DERIVE " : ""}, {"express", express_text(a->type)}});
+    if (a->redeclares != nullptr && a->kind == Attribute::Kind::Derived) {
+      p.print("// $name$: redeclares $owner$.$name$ as DERIVE $express$ := $derivation$\n"
+              "//   (written as * in Part 21; not yet derivable, the inherited member is unused here).\n",
+              {{"name", a->name}, {"owner", a->redeclares->owner->name}, {"express", express_text(a->type)},
+               {"derivation", a->derivation != nullptr ? ast::to_string(*a->derivation) : "?"}});
+    } else if (a->redeclares != nullptr) {
+      p.print("// $name$: redeclares $owner$.$name$ as $express$ (the member stays in $owner$).\n",
+              {{"name", a->name}, {"owner", a->redeclares->owner->name}, {"express", express_text(a->type)}});
     } else if (a->kind == Attribute::Kind::Derived) {
       const std::string derivation = a->derivation != nullptr ? ast::to_string(*a->derivation) : "?";
       if (auto body = translate_derived(*a)) {
@@ -669,36 +692,47 @@ void SchemaEmitter::print_type_tables(Printer& p, const DefinedType& type) {
 
 void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slot) {
   const Attribute& declared = *slot.declared;
+  // Printer variables are views: the strings must outlive them.
   const std::string owner = qualified(declared.owner);
-  std::string row = "{.name = \"" + declared.name + "\", .owner = &" + owner + "::meta_entity, .type = " +
-                    type_info_ref(declared.type);
-  if (slot.effective->optional) row += ", .optional = true";
+  const std::string type = type_info_ref(declared.type);
+  const std::string member = member_identifier(declared.name);
+  const std::string storage = member_type(declared.type, true);
+  const Printer::Variables v{
+      {"name", declared.name}, {"owner", owner}, {"type", type}, {"member", member}, {"storage", storage}};
+  p.print("{.name = \"$name$\", .owner = &$owner$::meta_entity, .type = $type$", v);
+  if (slot.effective->optional) p.print(", .optional = true");
   if (slot.derived()) {
-    row += ", .kind = AttributeKind::Derived";
+    p.print(", .kind = AttributeKind::Derived");
   } else {
-    row += concat({",\n .locate = &stepnc::meta::field<", owner, ", &", owner, "::", member_identifier(declared.name), ">"});
+    p.print(",\n .locate = &stepnc::meta::field<$owner$, &$owner$::$member$>", v);
     if (declared.optional && !nullable(declared.type))
-      row += concat({",\n .optional_storage = &stepnc::meta::optional_ops<", member_type(declared.type, true), ">"});
+      p.print(",\n .optional_storage = &stepnc::meta::optional_ops<$storage$>", v);
   }
-  row += "},\n";
-  p.print("$row$", {{"row", row}});
+  p.print("},\n");
 }
 
-void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name, const std::string& table_name,
-                                        const Entity* entity, const Combination* combination) {
-  const std::vector<const Entity*>& supertypes = entity ? entity->supertypes : combination->parts;
-  const bool abstract = entity ? entity->abstract : combination->abstract;
+// Prints the tables behind one class's EntityInfo (`entity` or
+// `combination`, the other being null) and says which it printed.
+EntityTables SchemaEmitter::print_entity_tables(Printer& p, const Entity* entity, const Combination* combination) {
+  EntityTables tables;
+  tables.cpp_name = entity ? qualified(entity) : qualified(&schema_, combination->name);
+  tables.table_name = identifier(entity ? entity->name : combination->name);
+  tables.express_name = entity ? entity->name : "";
+  tables.abstract = entity ? entity->abstract : combination->abstract;
+  const std::string& cpp_name = tables.cpp_name;
+  const std::string& table_name = tables.table_name;
   p.print("\n// $name$\n", {{"name", entity ? entity->name : combination->name}});
 
   auto print_entity_array = [&](std::string_view suffix, const std::vector<const Entity*>& list) {
-    if (list.empty()) return;
+    if (list.empty()) return false;
     p.print("constexpr const EntityInfo* $table$_$suffix$[] = {\n", {{"table", table_name}, {"suffix", suffix}});
     for (const Entity* e : list) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
     p.print("};\n");
+    return true;
   };
-  print_entity_array("supertypes", supertypes);
-  if (entity) print_entity_array("subtypes", entity->subtypes);
-  if (combination) print_entity_array("parts", combination->parts);
+  tables.supertypes = print_entity_array("supertypes", entity ? entity->supertypes : combination->parts);
+  if (entity) tables.subtypes = print_entity_array("subtypes", entity->subtypes);
+  if (combination) tables.parts = print_entity_array("parts", combination->parts);
 
   // The Part 21 slots; a combination takes each entity's slots once.
   std::vector<model::Part21Slot> slots;
@@ -716,7 +750,8 @@ void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name,
         }
       }
   }
-  if (!slots.empty()) {
+  tables.attributes = !slots.empty();
+  if (tables.attributes) {
     p.print("constexpr AttributeInfo $table$_attributes[] = {\n", {{"table", table_name}});
     p.indent();
     p.indent();
@@ -727,29 +762,38 @@ void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name,
   }
 
   if (entity) {
-    std::string derived, inverses;
+    // Type tables first, in declaration order (they may register aggregates).
+    std::vector<std::pair<const Attribute*, std::string>> derived, inverses;
     for (const auto& a : entity->attributes) {
-      if (a->kind == Attribute::Kind::Derived) {
-        derived += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
-                   type_info_ref(a->type) + ", .kind = AttributeKind::Derived";
-        if (translate_derived(*a))
-          derived += concat({",\n     .derive = &stepnc::meta::derived<", cpp_name, ", &", cpp_name, "::",
-                             member_identifier(a->name), ">"});
-        derived += "},\n";
-      } else if (a->kind == Attribute::Kind::Inverse) {
-        inverses += "    {.name = \"" + a->name + "\", .owner = &" + cpp_name + "::meta_entity, .type = " +
-                    type_info_ref(a->type) + ", .kind = AttributeKind::Inverse,\n     .inverse_entity = &" +
-                    qualified(a->inverse_entity) + "::meta_entity, .inverse_attribute = \"" +
-                    (a->inverse_attribute ? a->inverse_attribute->name : std::string()) + "\"},\n";
-      }
+      if (a->kind == Attribute::Kind::Derived) derived.emplace_back(a.get(), type_info_ref(a->type));
+      if (a->kind == Attribute::Kind::Inverse) inverses.emplace_back(a.get(), type_info_ref(a->type));
     }
-    if (!derived.empty())
-      p.print("constexpr AttributeInfo $table$_derived[] = {\n$rows$};\n", {{"table", table_name}, {"rows", derived}});
-    if (!inverses.empty())
-      p.print("constexpr AttributeInfo $table$_inverses[] = {\n$rows$};\n", {{"table", table_name}, {"rows", inverses}});
+    tables.derived = !derived.empty();
+    tables.inverses = !inverses.empty();
+    if (tables.derived) {
+      p.print("constexpr AttributeInfo $table$_derived[] = {\n", {{"table", table_name}});
+      for (const auto& [a, type] : derived) {
+        const std::string member = member_identifier(a->name);
+        const Printer::Variables v{{"name", a->name}, {"cpp", cpp_name}, {"type", type}, {"member", member}};
+        p.print("    {.name = \"$name$\", .owner = &$cpp$::meta_entity, .type = $type$, .kind = AttributeKind::Derived", v);
+        if (translate_derived(*a)) p.print(",\n     .derive = &stepnc::meta::derived<$cpp$, &$cpp$::$member$>", v);
+        p.print("},\n");
+      }
+      p.print("};\n");
+    }
+    if (tables.inverses) {
+      p.print("constexpr AttributeInfo $table$_inverses[] = {\n", {{"table", table_name}});
+      for (const auto& [a, type] : inverses)
+        p.print(
+            "    {.name = \"$name$\", .owner = &$cpp$::meta_entity, .type = $type$, .kind = AttributeKind::Inverse,\n"
+            "     .inverse_entity = &$entity$::meta_entity, .inverse_attribute = \"$attribute$\"},\n",
+            {{"name", a->name}, {"cpp", cpp_name}, {"type", type}, {"entity", qualified(a->inverse_entity)},
+             {"attribute", a->inverse_attribute ? a->inverse_attribute->name : std::string()}});
+      p.print("};\n");
+    }
   }
 
-  if (!abstract) {
+  if (!tables.abstract) {
     p.print("constexpr Upcast $table$_upcasts[] = {\n", {{"table", table_name}});
     if (combination)
       p.print("    {&$c$::meta_entity, &stepnc::meta::upcast_to<$c$, $c$>},\n", {{"c", cpp_name}});
@@ -758,6 +802,30 @@ void SchemaEmitter::print_entity_tables(Printer& p, const std::string& cpp_name,
       p.print("    {&$a$::meta_entity, &stepnc::meta::upcast_to<$c$, $a$>},\n", {{"a", qualified(a)}, {"c", cpp_name}});
     p.print("};\n");
   }
+  return tables;
+}
+
+void SchemaEmitter::print_entity_info(Printer& p, const EntityTables& tables) {
+  const Printer::Variables v{{"table", tables.table_name}, {"cpp", tables.cpp_name}, {"name", tables.express_name}};
+  p.print(
+      "\nconst stepnc::meta::EntityInfo& $cpp$::entity_info() const noexcept { return meta_entity; }\n"
+      "\nconstinit const stepnc::meta::EntityInfo $cpp$::meta_entity{\n",
+      v);
+  p.indent();
+  p.indent();
+  p.print(".name = \"$name$\",\n.schema = &meta_schema,\n", v);
+  if (tables.abstract) p.print(".abstract = true,\n");
+  if (tables.supertypes) p.print(".supertypes = meta_tables::$table$_supertypes,\n", v);
+  if (tables.subtypes) p.print(".subtypes = meta_tables::$table$_subtypes,\n", v);
+  if (tables.parts) p.print(".parts = meta_tables::$table$_parts,\n", v);
+  if (tables.attributes) p.print(".attributes = meta_tables::$table$_attributes,\n", v);
+  if (tables.derived) p.print(".derived = meta_tables::$table$_derived,\n", v);
+  if (tables.inverses) p.print(".inverses = meta_tables::$table$_inverses,\n", v);
+  if (!tables.abstract)
+    p.print(".create = &stepnc::meta::create_in<$cpp$>,\n.upcasts = meta_tables::$table$_upcasts,\n", v);
+  p.outdent();
+  p.outdent();
+  p.print("};\n");
 }
 
 std::string SchemaEmitter::source() {
@@ -785,9 +853,9 @@ std::string SchemaEmitter::source() {
       t.print("};\n");
     }
   }
-  for (const Entity* e : entities) print_entity_tables(t, qualified(e), identifier(e->name), e, nullptr);
-  for (const Combination& c : combinations)
-    print_entity_tables(t, qualified(&schema_, c.name), identifier(c.name), nullptr, &c);
+  std::vector<EntityTables> classes;
+  for (const Entity* e : entities) classes.push_back(print_entity_tables(t, e, nullptr));
+  for (const Combination& c : combinations) classes.push_back(print_entity_tables(t, nullptr, &c));
 
   // The named types' tables, which may also register aggregates.
   std::string type_tables;
@@ -854,44 +922,7 @@ std::string SchemaEmitter::source() {
   if (!schema_.types.empty()) p.print("    .types = meta_tables::schema_types,\n");
   p.print("};\n\nnamespace type_info {\n\n$text$\n}  // namespace type_info\n", {{"text", type_tables}});
 
-  // Entity definitions.
-  auto print_entity_info = [&](const std::string& cpp_name, const std::string& table, std::string_view express_name,
-                               bool abstract, bool has_supertypes, bool has_subtypes, bool is_combination,
-                               bool has_attributes, bool has_derived, bool has_inverses) {
-    p.print(
-        "\nconst stepnc::meta::EntityInfo& $cpp$::entity_info() const noexcept { return meta_entity; }\n"
-        "\nconstinit const stepnc::meta::EntityInfo $cpp$::meta_entity{\n",
-        {{"cpp", cpp_name}});
-    p.indent();
-    p.indent();
-    p.print(".name = \"$name$\",\n.schema = &meta_schema,\n", {{"name", express_name}});
-    if (abstract) p.print(".abstract = true,\n");
-    const Printer::Variables v{{"table", table}, {"cpp", cpp_name}};
-    if (has_supertypes) p.print(".supertypes = meta_tables::$table$_supertypes,\n", v);
-    if (has_subtypes) p.print(".subtypes = meta_tables::$table$_subtypes,\n", v);
-    if (is_combination) p.print(".parts = meta_tables::$table$_parts,\n", v);
-    if (has_attributes) p.print(".attributes = meta_tables::$table$_attributes,\n", v);
-    if (has_derived) p.print(".derived = meta_tables::$table$_derived,\n", v);
-    if (has_inverses) p.print(".inverses = meta_tables::$table$_inverses,\n", v);
-    if (!abstract)
-      p.print(".create = &stepnc::meta::create_in<$cpp$>,\n.upcasts = meta_tables::$table$_upcasts,\n", v);
-    p.outdent();
-    p.outdent();
-    p.print("};\n");
-  };
-  for (const Entity* e : entities) {
-    const bool has_derived = std::any_of(e->attributes.begin(), e->attributes.end(),
-                                         [](const auto& a) { return a->kind == Attribute::Kind::Derived; });
-    const bool has_inverses = std::any_of(e->attributes.begin(), e->attributes.end(),
-                                          [](const auto& a) { return a->kind == Attribute::Kind::Inverse; });
-    print_entity_info(qualified(e), identifier(e->name), e->name, e->abstract, !e->supertypes.empty(),
-                      !e->subtypes.empty(), false, !e->part21.empty(), has_derived, has_inverses);
-  }
-  for (const Combination& c : combinations) {
-    const bool has_attributes = std::any_of(c.parts.begin(), c.parts.end(), [](const Entity* e) { return !e->part21.empty(); });
-    print_entity_info(qualified(&schema_, c.name), identifier(c.name), "", c.abstract, true, false, true,
-                      has_attributes, false, false);
-  }
+  for (const EntityTables& entity_tables : classes) print_entity_info(p, entity_tables);
 
   // Select members that need complete entity classes.
   for (const auto& type : schema_.types) {

@@ -15,14 +15,21 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 namespace expressc::emit::cpp {
 
 class Printer {
  public:
-  using Variables = std::vector<std::pair<std::string_view, std::string_view>>;
+  // A `$name$` and its text. The text is copied, so a Variables object may
+  // be built from temporaries and kept; names are string literals.
+  struct Variable {
+    Variable(std::string_view variable_name, std::string_view variable_value)
+        : name(variable_name), value(variable_value) {}
+    std::string_view name;
+    std::string value;
+  };
+  using Variables = std::vector<Variable>;
 
   explicit Printer(std::string& out, int indent_width = 2) : out_(out), indent_width_(indent_width) {}
 

@@ -4,9 +4,8 @@
 
 #include <algorithm>
 #include <bit>
-#include <charconv>
 #include <cstdio>
-#include <unordered_map>
+#include <random>
 
 #include "lexical.h"
 #include "scanner.h"
@@ -85,7 +84,9 @@ std::string Header::file_name() const {
 // direct array indexed by id: 4 bytes per id, and consecutive records
 // touch consecutive slots. When ids turn out sparse (an id beyond twice
 // the count so far, e.g. #4000000000) it becomes an open-addressing hash
-// (linear probing, at most half full, 8-16 bytes per instance).
+// (linear probing, at most half full, 8-16 bytes per instance). The hash
+// is multiply-shift with a random odd multiplier, a universal family, so
+// no file can be crafted to make every id collide.
 struct Document::IdTable {
   static constexpr std::uint64_t kDenseSlack = 1 << 16;
 
@@ -93,6 +94,7 @@ struct Document::IdTable {
   std::vector<std::uint32_t> slots;
   unsigned shift = 64;
   std::size_t count = 0;
+  std::uint64_t multiplier = 0x9E3779B97F4A7C15ull;
 
   explicit IdTable(std::size_t expected) { slots.assign(expected + 1, 0); }
 
@@ -131,12 +133,12 @@ struct Document::IdTable {
   }
 
  private:
-  std::size_t home(std::uint64_t id) const {
-    return static_cast<std::size_t>((id * 0x9E3779B97F4A7C15ull) >> shift);
-  }
+  std::size_t home(std::uint64_t id) const { return static_cast<std::size_t>((id * multiplier) >> shift); }
 
   void become_hash(std::uint32_t index, std::span<const RecordEntry> records) {
     direct = false;
+    std::random_device entropy;
+    multiplier = ((std::uint64_t{entropy()} << 32) ^ entropy()) | 1;
     rehash(2 * (count + 1), index, records);
   }
 
@@ -203,19 +205,20 @@ Diagnostic Document::diagnostic(const ParseError& error, std::uint64_t instance_
 // syntax and duplicate ids first, then missing references.
 class DocumentBuilder final : public RecordHandler {
  public:
-  DocumentBuilder(std::string text, std::string file_name, const ReadOptions& options)
+  DocumentBuilder(std::unique_ptr<char[]> bytes, std::size_t size, std::string file_name, const ReadOptions& options)
       : options_(options), diagnostics_(options.error_limit) {
     doc_.file_name_ = std::move(file_name);
-    doc_.buffer_ = std::make_unique<const std::string>(std::move(text));
+    doc_.bytes_ = std::move(bytes);
+    doc_.size_ = size;
   }
 
   ReadResult run() {
     // Typical records are 40-80 bytes: reserve so that the index rarely
     // regrows (untouched capacity costs address space, not memory).
-    const std::size_t expected = doc_.buffer_->size() / 48;
+    const std::size_t expected = doc_.size_ / 48;
     doc_.records_.reserve(expected);
     doc_.ids_ = std::make_unique<Document::IdTable>(expected);
-    detail::Scanner scanner(*doc_.buffer_, doc_.file_name_, options_, diagnostics_,
+    detail::Scanner scanner(doc_.buffer(), doc_.file_name_, options_, diagnostics_,
                             [this](std::uint64_t offset) { return doc_.location(offset); });
     scanner_ = &scanner;
     if (scanner.run(*this)) check_forward_references();
@@ -306,32 +309,40 @@ class DocumentBuilder final : public RecordHandler {
 };
 
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
-  return DocumentBuilder(std::move(text), std::move(file_name), options).run();
+  auto bytes = std::make_unique_for_overwrite<char[]>(text.size());
+  std::copy(text.begin(), text.end(), bytes.get());
+  return DocumentBuilder(std::move(bytes), text.size(), std::move(file_name), options).run();
 }
 
 ReadResult read_file(const std::filesystem::path& path, const ReadOptions& options) {
-  std::string text;
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  const auto io_error = [&](std::string_view what) {
+  const auto io_error = [&](std::string message) {
     ReadResult result{std::nullopt, Diagnostics(options.error_limit)};
-    result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0, std::string(what)});
+    result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0, std::move(message)});
     return result;
   };
+  std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return io_error("cannot open file");
-  if (std::fseek(file, 0, SEEK_END) == 0) {
-    const long size = std::ftell(file);
-    if (size > 0) text.resize(static_cast<std::size_t>(size));
-    std::rewind(file);
+  long size = -1;
+  if (std::fseek(file, 0, SEEK_END) == 0) size = std::ftell(file);
+  std::rewind(file);
+  if (size < 0) {
+    // Not seekable (a pipe): read to the end, then read it as text.
+    std::string text;
+    char chunk[65536];
+    while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file)) text.append(chunk, n);
+    const bool failed = std::ferror(file) != 0;
+    std::fclose(file);
+    if (failed) return io_error("read error");
+    return read_text(std::move(text), path.string(), options);
   }
-  std::size_t got = std::fread(text.data(), 1, text.size(), file);
-  text.resize(got);
-  // Files whose size is not known up front (pipes) are read to the end.
-  char chunk[65536];
-  while (std::size_t n = std::fread(chunk, 1, sizeof chunk, file)) text.append(chunk, n);
+  // Uninitialised on purpose: fread fills it, and zeroing 64 MB first
+  // would cost a fifth of the scan.
+  auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(size));
+  const std::size_t got = std::fread(bytes.get(), 1, static_cast<std::size_t>(size), file);
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);
   if (failed) return io_error("read error");
-  return read_text(std::move(text), path.string(), options);
+  return DocumentBuilder(std::move(bytes), got, path.string(), options).run();
 }
 
 }  // namespace stepnc::p21

@@ -1,6 +1,5 @@
 #include "stepnc/p21/parameters.h"
 
-#include <charconv>
 #include <cstring>
 
 #include "lexical.h"

@@ -227,7 +227,7 @@ bool Scanner::run(RecordHandler& handler) {
       return false;
     }
   }
-  if (!read_header(handler) || !handler.on_header(header_, *this)) return false;
+  if (!read_header() || !handler.on_header(header_, *this)) return false;
 
   for (;;) {
     if (!next_statement(statement)) {
@@ -263,7 +263,7 @@ bool Scanner::run(RecordHandler& handler) {
   }
 }
 
-bool Scanner::read_header(RecordHandler& /*handler*/) {
+bool Scanner::read_header() {
   ParamTree tree;
   Statement statement;
   for (;;) {

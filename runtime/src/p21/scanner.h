@@ -62,7 +62,7 @@ class Scanner final : public StreamContext {
   bool fail_at(std::uint64_t offset, std::string message, std::uint64_t id = 0);
   bool report_allows_more() const;
 
-  bool read_header(RecordHandler& handler);
+  bool read_header();
   bool read_data_section(const Statement& opening, RecordHandler& handler);
   bool read_verbatim_section(SectionKind kind, RecordHandler& handler);
   bool read_record(const Statement& statement, RecordHandler& handler);

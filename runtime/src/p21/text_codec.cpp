@@ -110,12 +110,6 @@ std::optional<StringDecodeError> decode_wide_run(std::string_view token, std::si
 
 }  // namespace
 
-bool string_needs_decoding(std::string_view token) {
-  for (char c : token)
-    if (c == '\'' || c == '\\' || c == '\n' || c == '\r') return true;
-  return false;
-}
-
 std::optional<StringDecodeError> decode_string(std::string_view token, std::string& out) {
   int code_page = 0;  // 0 = ISO 8859-1 (\PA\), 1.. = ISO 8859-2.. (\PB\..)
   std::size_t i = 0;

@@ -43,7 +43,8 @@ struct ParseError {
 // reader can stop cleanly.
 class Diagnostics {
  public:
-  explicit Diagnostics(std::size_t error_limit = 100) : error_limit_(error_limit) {}
+  // A limit of 0 is taken as 1: the first error is always kept.
+  explicit Diagnostics(std::size_t error_limit = 100) : error_limit_(error_limit == 0 ? 1 : error_limit) {}
 
   // Returns false when the error limit has been reached (the caller stops).
   bool add(Diagnostic diagnostic);

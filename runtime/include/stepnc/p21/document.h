@@ -35,12 +35,16 @@ struct ReadOptions {
   // Strict: any error makes the read fail (no document is returned).
   // Lenient: records with errors are dropped, everything else is kept,
   // errors are reported up to `error_limit`, then reading stops cleanly.
+  // Diagnostics come in file order within each check: structure, syntax
+  // and duplicate ids as the file is read, then missing references. So
+  // a strict read reports exactly the first diagnostic of a lenient one.
   bool strict = true;
   std::size_t error_limit = 100;
   // Parse every record's parameters while reading (syntax of values,
   // escapes, numbers) and check that every `#n` reference names an
-  // instance of the file. A layer that parses every record anyway (the
-  // typed reader) may turn this off and use Document::parse() itself.
+  // instance of the file (or one a REFERENCE section declares). A layer
+  // that parses every record anyway (the typed reader) may turn this off
+  // and use Document::parse() itself.
   bool validate_parameters = true;
 };
 
@@ -92,7 +96,7 @@ class Document {
   ~Document();
 
   const std::string& file_name() const { return file_name_; }
-  std::string_view buffer() const { return buffer_ ? std::string_view(*buffer_) : std::string_view(); }
+  std::string_view buffer() const { return {bytes_.get(), size_}; }
   const Header& header() const { return header_; }
   std::span<const Section> sections() const { return sections_; }
 
@@ -124,11 +128,12 @@ class Document {
   struct IdTable;
 
   std::string file_name_;
-  std::unique_ptr<const std::string> buffer_;  // heap-held: views stay valid on move
+  std::unique_ptr<char[]> bytes_;  // the file text; views into it stay valid on move
+  std::size_t size_ = 0;
   Header header_;
   std::vector<Section> sections_;
   std::vector<RecordEntry> records_;
-  std::vector<std::string_view> entity_names_;  // views into buffer_
+  std::vector<std::string_view> entity_names_;  // views into bytes_
   std::unique_ptr<IdTable> ids_;
   mutable std::vector<std::uint64_t> line_starts_;
 };

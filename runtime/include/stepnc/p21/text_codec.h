@@ -23,10 +23,6 @@ struct StringDecodeError {
 };
 std::optional<StringDecodeError> decode_string(std::string_view token, std::string& out);
 
-// True when decode_string() would return `token` unchanged (no escape,
-// no doubled apostrophe, no line break): the reader then keeps a view.
-bool string_needs_decoding(std::string_view token);
-
 // Encodes UTF-8 text as a complete Part 21 string token, apostrophes
 // included, appending to `out`. Printable ASCII is written as is (with
 // ' and \ doubled); U+0000..U+001F, U+007F..U+00FF as \X\hh; other BMP
@@ -35,9 +31,10 @@ bool string_needs_decoding(std::string_view token);
 bool encode_string(std::string_view text, std::string& out);
 
 // Appends `value` as a Part 21 REAL in the shortest form that reads back
-// to the same double: always with a '.', exponent as 'E' (`10.`, `0.1`,
-// `1.E-05` becomes `1.E-5`, `-0.`). Returns false for NaN and infinities,
-// which Part 21 cannot represent (nothing is appended).
+// to the same double (std::to_chars' digits), always with a '.' and an
+// upper-case exponent without padding: `10.`, `0.1`, `1.E-5`, `-0.`.
+// Returns false for NaN and infinities, which Part 21 cannot represent
+// (nothing is appended).
 bool format_real(double value, std::string& out);
 
 // Parses a REAL or INTEGER spelling (optional sign, digits, optional
