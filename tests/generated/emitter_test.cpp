@@ -131,3 +131,16 @@ TEST_CASE("the same schema always gives the same bytes", "[generated][emitter]")
   CHECK(contains(first[0].text, "stepnc::meta::InlineVector<again::length, 3> l{};"));
   CHECK(contains(first[0].text, "again::choice c{};  // OPTIONAL choice"));
 }
+
+TEST_CASE("schemas that use each other are reported, not emitted", "[generated][emitter]") {
+  auto compiled = model::compile({{"a.exp", "SCHEMA first; REFERENCE FROM second (b); ENTITY a; link : b; END_ENTITY; END_SCHEMA;"},
+                                  {"b.exp", "SCHEMA second; REFERENCE FROM first (a); ENTITY b; link : a; END_ENTITY; END_SCHEMA;"}});
+  for (const auto& d : compiled.diagnostics) UNSCOPED_INFO(d.to_string());
+  REQUIRE(compiled.ok());
+  std::vector<model::Diagnostic> diagnostics;
+  CHECK(CppGenerator::render(*compiled.model, diagnostics).empty());
+  REQUIRE(diagnostics.size() == 1);
+  CHECK(diagnostics[0].to_string() ==
+        "b.exp:1:8: error: C++ emitter: the schemas use each other (first -> second -> first), so their headers "
+        "cannot include each other");
+}

@@ -217,3 +217,15 @@ TEST_CASE("the ISO 14649-11 Example 1 sample loads into typed instances", "[gene
   REQUIRE(project_->main_workplan != nullptr);
   CHECK(project_->main_workplan->its_elements.size() == 5);
 }
+
+TEST_CASE("the dump shows the derived attributes the class computes", "[generated][io]") {
+  meta::Model model;
+  auto& curve = model.create<b_spline_curve_with_knots>();
+  curve.degree = 1;
+  for (int i = 0; i < 3; ++i) curve.control_points_list.push_back(&model.create<cartesian_point>());
+  curve.knots = {0.0, 1.0};
+  const std::string text = meta::dump(curve);
+  CHECK(text.find("  knots: (0.,1.)\n") != std::string::npos);
+  CHECK(text.find("  upper_index_on_knots (derived): 2\n") != std::string::npos);
+  CHECK(text.find("  upper_index_on_control_points (derived): 2\n") != std::string::npos);  // inherited
+}

@@ -297,6 +297,8 @@ class SchemaEmitter {
   bool check();
   std::string header();
   std::string source();
+  // The schemas whose headers this schema's header includes.
+  std::vector<const Schema*> header_dependencies() const;
 
  private:
   // Header parts.
@@ -317,7 +319,6 @@ class SchemaEmitter {
 
   std::vector<const Entity*> entities_in_order() const;
   std::vector<const DefinedType*> types_in_order() const;
-  std::vector<const Schema*> header_dependencies() const;
   std::vector<const Schema*> source_dependencies() const;
 
   const model::Model& model_;
@@ -956,9 +957,49 @@ bool unchanged(const std::filesystem::path& path, const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// Headers include the headers of the schemas they use, so those uses must
+// not form a cycle. Reports each schema on a cycle; returns false if any.
+bool check_header_order(const model::Model& model, const Analysis& analysis,
+                        std::vector<model::Diagnostic>& diagnostics) {
+  std::map<const Schema*, std::vector<const Schema*>> uses;
+  for (const auto& schema : model.schemas)
+    uses[schema.get()] = SchemaEmitter(model, analysis, *schema, diagnostics).header_dependencies();
+  enum class State { unvisited, open, done };
+  std::map<const Schema*, State> state;
+  std::vector<const Schema*> path;
+  bool ok = true;
+  std::function<void(const Schema*)> visit = [&](const Schema* s) {
+    state[s] = State::open;
+    path.push_back(s);
+    for (const Schema* used : uses[s]) {
+      if (state[used] == State::open) {
+        std::string cycle;
+        for (auto it = std::find(path.begin(), path.end(), used); it != path.end(); ++it)
+          append_item(cycle, " -> ", (*it)->name);
+        append_item(cycle, " -> ", used->name);
+        diagnostics.push_back(error_at(s->location, "C++ emitter: the schemas use each other (" + cycle +
+                                                        "), so their headers cannot include each other"));
+        ok = false;
+      } else if (state[used] == State::unvisited) {
+        visit(used);
+      }
+    }
+    path.pop_back();
+    state[s] = State::done;
+  };
+  for (const auto& schema : model.schemas)
+    if (state[schema.get()] == State::unvisited) visit(schema.get());
+  return ok;
+}
+
+}  // namespace
+
 std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::vector<model::Diagnostic>& diagnostics) {
   const Analysis analysis(model);
   std::vector<GeneratedFile> files;
+  if (!check_header_order(model, analysis, diagnostics)) return files;
   bool ok = true;
   for (const auto& schema : model.schemas) {
     SchemaEmitter emitter(model, analysis, *schema, diagnostics);

@@ -159,10 +159,15 @@ void write(const ModelFile& file, p21::Writer& writer) {
   writer.end_header();
   writer.begin_data();
 
+  // Files usually list instances in id order already; sort only when not.
   std::vector<const meta::Instance*> typed(file.model.instances().begin(), file.model.instances().end());
-  std::sort(typed.begin(), typed.end(), [](auto* a, auto* b) { return a->id() < b->id(); });
+  const auto by_id = [](const meta::Instance* a, const meta::Instance* b) { return a->id() < b->id(); };
+  if (!std::is_sorted(typed.begin(), typed.end(), by_id)) std::sort(typed.begin(), typed.end(), by_id);
   std::vector<const p21::RecordEntry*> generic = file.generic_records;
-  std::sort(generic.begin(), generic.end(), [](auto* a, auto* b) { return a->id < b->id; });
+  const auto by_record_id = [](const p21::RecordEntry* a, const p21::RecordEntry* b) { return a->id < b->id; };
+  if (!std::is_sorted(generic.begin(), generic.end(), by_record_id)) {
+    std::sort(generic.begin(), generic.end(), by_record_id);
+  }
 
   // Merge the two id-ordered sequences.
   std::string normalised;

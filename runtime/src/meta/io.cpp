@@ -497,6 +497,16 @@ std::string dump(const Instance& const_instance) {
     const std::string_view text = writer.text();
     out += fmt::format("  {}: {}\n", a.name, text.substr(1, text.size() - 2));
   }
+  // Derived attributes the class can compute, its own and inherited ones
+  // (the translated ones are all INTEGER).
+  for (const Upcast& u : entity.upcasts) {
+    for (const AttributeInfo& d : u.entity->derived) {
+      if (!d.derivable() || d.type->resolved().kind != TypeKind::Integer) continue;
+      std::int64_t value = 0;
+      d.derive(instance, &value);
+      out += fmt::format("  {} (derived): {}\n", d.name, value);
+    }
+  }
   return out;
 }
 

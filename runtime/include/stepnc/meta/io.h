@@ -86,7 +86,8 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
 //   #12=cartesian_point (machining_schema)
 //     name: ''
 //     coordinates: (0.,0.,10.)
-// Values use Part 21 spelling; unset optionals show as `$`.
+// Values use Part 21 spelling; unset optionals show as `$`. Derived
+// attributes the class computes follow, marked `(derived)`.
 std::string dump(const Instance& instance);
 
 }  // namespace stepnc::meta
