@@ -11,6 +11,7 @@
 // ancestors or one of its subtypes declares it, because schemas commonly
 // read a subtype's attribute after testing TYPEOF. Where nothing is known
 // (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
+#include <unordered_map>
 #include <unordered_set>
 
 #include <fmt/format.h>
@@ -60,6 +61,88 @@ bool family_has_attribute(const Entity& entity, std::string_view name) {
     return false;
   };
   return down(entity);
+}
+
+// `entity` and its ancestors.
+std::unordered_set<const Entity*> ancestors_and_self(const Entity& entity) {
+  std::unordered_set<const Entity*> result;
+  std::vector<const Entity*> pending{&entity};
+  while (!pending.empty()) {
+    const Entity* e = pending.back();
+    pending.pop_back();
+    if (!result.insert(e).second) continue;
+    for (const Entity* supertype : e->supertypes) pending.push_back(supertype);
+  }
+  return result;
+}
+
+// `entity` and its descendants.
+std::unordered_set<const Entity*> descendants_and_self(const Entity& entity) {
+  std::unordered_set<const Entity*> result;
+  std::vector<const Entity*> pending{&entity};
+  while (!pending.empty()) {
+    const Entity* e = pending.back();
+    pending.pop_back();
+    if (!result.insert(e).second) continue;
+    for (const Entity* subtype : e->subtypes) pending.push_back(subtype);
+  }
+  return result;
+}
+
+void count_leaves(const SupertypeExpression& expression, std::unordered_map<const Entity*, int>& counts) {
+  if (expression.kind == SupertypeExpression::Kind::Entity) {
+    if (expression.entity) ++counts[expression.entity];
+    return;
+  }
+  for (const auto& operand : expression.operands) count_leaves(*operand, counts);
+}
+
+// Does some ONEOF in `expression` list, as two of its operands, an entity
+// in `a` and another in `b`? Only entities written once in the whole
+// expression count, so no other operator can combine them again.
+bool oneof_separates(const SupertypeExpression& expression, const std::unordered_map<const Entity*, int>& counts,
+                     const std::unordered_set<const Entity*>& a, const std::unordered_set<const Entity*>& b) {
+  using K = SupertypeExpression::Kind;
+  if (expression.kind == K::Entity) return false;
+  if (expression.kind == K::OneOf) {
+    auto once = [&](const Entity* e) {
+      auto it = counts.find(e);
+      return it != counts.end() && it->second == 1;
+    };
+    for (const auto& first : expression.operands)
+      for (const auto& second : expression.operands) {
+        if (first == second || first->kind != K::Entity || second->kind != K::Entity) continue;
+        if (first->entity == second->entity || !once(first->entity) || !once(second->entity)) continue;
+        if (a.contains(first->entity) && b.contains(second->entity)) return true;
+      }
+  }
+  for (const auto& operand : expression.operands)
+    if (oneof_separates(*operand, counts, a, b)) return true;
+  return false;
+}
+
+// Can one instance be both an `a` and a `b` (as a simple or a complex
+// instance)? Answers "no" only when sure: the two are related by no
+// ancestor and no descendant, or a common ancestor's SUPERTYPE OF puts
+// them below different operands of a ONEOF.
+bool can_be_both(const Entity& a, const Entity& b) {
+  if (&a == &b) return true;
+  const auto above_a = ancestors_and_self(a);
+  const auto above_b = ancestors_and_self(b);
+  if (above_a.contains(&b) || above_b.contains(&a)) return true;
+  const auto below_b = descendants_and_self(b);
+  for (const Entity* e : descendants_and_self(a))
+    if (below_b.contains(e)) return true;  // a common subtype
+  bool common_ancestor = false;
+  for (const Entity* root : above_a) {
+    if (!above_b.contains(root)) continue;
+    common_ancestor = true;
+    if (!root->supertype_constraint) continue;
+    std::unordered_map<const Entity*, int> counts;
+    count_leaves(*root->supertype_constraint, counts);
+    if (oneof_separates(*root->supertype_constraint, counts, above_a, above_b)) return false;
+  }
+  return common_ancestor;
 }
 
 // The attribute `name` as seen from `entity` itself (own or inherited).
@@ -245,13 +328,14 @@ class Checker {
         return check_attribute_reference(e, base_shape);
       }
       case K::Group: {
-        check(*e.operands[0]);
+        const Shape base = check(*e.operands[0]);
         const Binding target = lookup(e.text).binding;
         e.binding = target;
         if (target.kind != BindingKind::Entity) {
           error(e.position, fmt::format("unknown entity '{}'", e.text));
           return {};
         }
+        check_group_qualifier(e, base, *target.entity);
         return Shape::of_entity(target.entity);
       }
       case K::Index: {
@@ -297,6 +381,29 @@ class Checker {
         error(e.position, fmt::format("no entity of select type '{}' has an attribute '{}'", base.select->name, e.text));
     }
     return {};
+  }
+
+  // A group qualifier `x\E`: some entity `x` is statically known to be
+  // must be able to be an `E` too.
+  void check_group_qualifier(const ast::Expression& e, const Shape& base, const Entity& group) {
+    if (base.kind == Shape::Kind::Entity) {
+      if (!can_be_both(*base.entity, group))
+        error(e.position, fmt::format("group qualifier '{}': an instance of '{}' is never an instance of '{}'",
+                                      group.name, base.entity->name, group.name));
+      return;
+    }
+    if (base.kind == Shape::Kind::Select && !base.select->extensible) {
+      bool any_entity = false;
+      for (const auto& member : base.select->select_closure) {
+        if (!member.entity) continue;
+        any_entity = true;
+        if (can_be_both(*member.entity, group)) return;
+      }
+      if (any_entity)
+        error(e.position,
+              fmt::format("group qualifier '{}': no entity of select type '{}' is ever an instance of '{}'",
+                          group.name, base.select->name, group.name));
+    }
   }
 
   // `type.item`: the item must belong to the enumeration `type`.

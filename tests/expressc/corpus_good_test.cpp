@@ -343,3 +343,15 @@ TEST_CASE("lexical rules: nested remarks, tail remarks, case-insensitive keyword
         "((value = MIXED_CASE.alpha) OR (text = 'it''s -- not a remark'))");
   CHECK(ast::to_string(*thing.where.at(1).expression) == "(text <> 'AB')");
 }
+
+TEST_CASE("group qualifiers naming an ancestor, a subtype, an ANDOR sibling or a co-supertype", "[corpus]") {
+  auto model = compile_good({"group_qualifiers.exp"});
+  const model::Entity& styled_curve = test::entity(*model, "styled_curve");
+  const ast::Expression* group = nullptr;  // SELF\styled
+  visit(*styled_curve.where.at(1).expression, [&](const ast::Expression& e) {
+    if (e.kind == ast::Expression::Kind::Group) group = &e;
+  });
+  REQUIRE(group);
+  CHECK(group->text == "styled");
+  CHECK(group->binding.entity == &test::entity(*model, "styled"));
+}

@@ -126,6 +126,7 @@ ModelReadResult build(p21::ReadResult read, const meta::Registry& registry, cons
   auto file = std::make_unique<ModelFile>();
   file->document = std::move(*read.document);
   ModelBuilder(*file, registry, result.diagnostics).run();
+  result.diagnostics.sort_by_position();  // creation and filling are separate passes
   if (!(options.strict && result.diagnostics.has_errors())) result.file = std::move(file);
   return result;
 }

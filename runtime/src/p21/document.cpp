@@ -1,11 +1,18 @@
 #include "stepnc/p21/document.h"
 
+#include <tuple>
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <random>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "lexical.h"
 #include "scanner.h"
@@ -32,6 +39,12 @@ bool Diagnostics::add(Diagnostic diagnostic) {
   }
   items_.push_back(std::move(diagnostic));
   return !limit_reached();
+}
+
+void Diagnostics::sort_by_position() {
+  std::stable_sort(items_.begin(), items_.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.location.line, a.location.column) < std::tie(b.location.line, b.location.column);
+  });
 }
 
 std::string Diagnostics::to_string() const {
@@ -171,6 +184,31 @@ Document::Document(Document&&) noexcept = default;
 Document& Document::operator=(Document&&) noexcept = default;
 Document::~Document() = default;
 
+void Document::TextDeleter::operator()(char* text) const {
+  if (mapped_size != 0) {
+    ::munmap(text, mapped_size);
+  } else {
+    delete[] text;
+  }
+}
+
+namespace {
+// Mapped pages are given back in steps of this size: a few system calls
+// per file, and a few MiB resident at most.
+constexpr std::uint64_t kReleaseStep = std::uint64_t{4} << 20;
+}  // namespace
+
+void Document::release_text_before(std::uint64_t offset) const {
+  if (!is_mapped() || offset < released_before_ + kReleaseStep) return;
+  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  const std::uint64_t end = std::min<std::uint64_t>(offset, size_) / page * page;
+  // MADV_DONTNEED on a read-only file mapping drops our mapping of the
+  // pages, not their contents: a later access faults them back in from
+  // the page cache (or the file).
+  ::madvise(bytes_.get() + released_before_, end - released_before_, MADV_DONTNEED);
+  released_before_ = end;
+}
+
 const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
 
 std::string_view Document::entity_name(const RecordEntry& r) const {
@@ -205,7 +243,7 @@ Diagnostic Document::diagnostic(const ParseError& error, std::uint64_t instance_
 // syntax and duplicate ids first, then missing references.
 class DocumentBuilder final : public RecordHandler {
  public:
-  DocumentBuilder(std::unique_ptr<char[]> bytes, std::size_t size, std::string file_name, const ReadOptions& options)
+  DocumentBuilder(Document::TextBytes bytes, std::size_t size, std::string file_name, const ReadOptions& options)
       : options_(options), diagnostics_(options.error_limit) {
     doc_.file_name_ = std::move(file_name);
     doc_.bytes_ = std::move(bytes);
@@ -230,6 +268,9 @@ class DocumentBuilder final : public RecordHandler {
     return result;
   }
 
+  static Document::TextBytes copy_text(std::string_view text);
+  static Document::TextBytes map_file(int descriptor, std::size_t size);
+
   bool on_section(const Section& section, StreamContext&) override {
     if (section.kind == SectionKind::reference) note_external_ids(section.text);
     close_data_section();
@@ -239,6 +280,7 @@ class DocumentBuilder final : public RecordHandler {
   }
 
   bool on_record(const RecordView& record, StreamContext&) override {
+    doc_.release_text_before(record.offset);
     if (record.text.size() > 0xFFFFFFFFu) return report(record.offset, "record longer than 4 GiB", record.id);
     if (options_.validate_parameters) {
       if (auto error = tree_.parse(record.text, record.offset)) return report(error->offset, error->message, record.id);
@@ -308,10 +350,27 @@ class DocumentBuilder final : public RecordHandler {
   std::vector<std::uint64_t> external_ids_;  // sorted
 };
 
-ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
-  auto bytes = std::make_unique_for_overwrite<char[]>(text.size());
+// A copy of `text` as the Document's buffer.
+Document::TextBytes DocumentBuilder::copy_text(std::string_view text) {
+  Document::TextBytes bytes(new char[text.size()]);
   std::copy(text.begin(), text.end(), bytes.get());
-  return DocumentBuilder(std::move(bytes), text.size(), std::move(file_name), options).run();
+  return bytes;
+}
+
+// A read-only mapping of the whole of a regular file, or null (then the
+// caller reads it). Mapping a large file saves copying it and lets
+// release_text_before() drop what a pass has read. The usual caveat of
+// mappings applies: a file truncated by another process while it is
+// read faults (SIGBUS); files are not expected to change under a reader.
+Document::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
+  void* mapping = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, descriptor, 0);
+  if (mapping == MAP_FAILED) return {};
+  return Document::TextBytes(static_cast<char*>(mapping), Document::TextDeleter{size});
+}
+
+ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
+  const std::size_t size = text.size();
+  return DocumentBuilder(DocumentBuilder::copy_text(text), size, std::move(file_name), options).run();
 }
 
 ReadResult read_file(const std::filesystem::path& path, const ReadOptions& options) {
@@ -320,6 +379,22 @@ ReadResult read_file(const std::filesystem::path& path, const ReadOptions& optio
     result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0, std::move(message)});
     return result;
   };
+  // Files from this size on are mapped rather than copied (below it the
+  // mapping's set-up costs more than the copy).
+  constexpr std::size_t kMapThreshold = std::size_t{64} << 10;
+  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0) return io_error("cannot open file");
+  struct stat status {};
+  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
+      static_cast<std::size_t>(status.st_size) >= kMapThreshold) {
+    const auto size = static_cast<std::size_t>(status.st_size);
+    Document::TextBytes bytes = DocumentBuilder::map_file(descriptor, size);
+    ::close(descriptor);
+    if (bytes) return DocumentBuilder(std::move(bytes), size, path.string(), options).run();
+  } else {
+    ::close(descriptor);
+  }
+
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return io_error("cannot open file");
   long size = -1;
@@ -335,9 +410,8 @@ ReadResult read_file(const std::filesystem::path& path, const ReadOptions& optio
     if (failed) return io_error("read error");
     return read_text(std::move(text), path.string(), options);
   }
-  // Uninitialised on purpose: fread fills it, and zeroing 64 MB first
-  // would cost a fifth of the scan.
-  auto bytes = std::make_unique_for_overwrite<char[]>(static_cast<std::size_t>(size));
+  // Uninitialised on purpose: fread fills it.
+  Document::TextBytes bytes(new char[static_cast<std::size_t>(size)]);
   const std::size_t got = std::fread(bytes.get(), 1, static_cast<std::size_t>(size), file);
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);

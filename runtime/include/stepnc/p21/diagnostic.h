@@ -55,6 +55,11 @@ class Diagnostics {
   bool limit_reached() const { return error_count_ >= error_limit_; }
   std::size_t error_limit() const { return error_limit_; }
 
+  // Orders the items by file position (line, then column), keeping the
+  // discovery order of items at the same position. Readers that check a
+  // file in several passes call it so users read problems top to bottom.
+  void sort_by_position();
+
   // All items, one per line, each formatted with Diagnostic::to_string().
   std::string to_string() const;
 

@@ -97,6 +97,8 @@ class Document {
 
   const std::string& file_name() const { return file_name_; }
   std::string_view buffer() const { return {bytes_.get(), size_}; }
+  // True when the text is a read-only mapping of the file rather than a copy.
+  bool is_mapped() const { return bytes_.get_deleter().mapped_size != 0; }
   const Header& header() const { return header_; }
   std::span<const Section> sections() const { return sections_; }
 
@@ -116,6 +118,14 @@ class Document {
     return tree.parse(text(r), r.offset);
   }
 
+  // A hint for a reader that goes through the records in file order: the
+  // text before `offset` is not needed again soon. When the file is mapped
+  // (large files, see read_file) its pages there are given back to the
+  // page cache, so one pass over a large file does not keep all of it
+  // resident; touching the text again just maps it back in. No effect on
+  // text read into memory. Not thread-safe.
+  void release_text_before(std::uint64_t offset) const;
+
   // Line and column of a byte offset, computed on demand (the line table
   // is built on first use; not thread-safe on that first call).
   SourceLocation location(std::uint64_t offset) const;
@@ -127,9 +137,17 @@ class Document {
   friend class DocumentBuilder;
   struct IdTable;
 
+  // Frees the file text: unmaps a mapping, deletes a copy.
+  struct TextDeleter {
+    std::size_t mapped_size = 0;  // non-zero: bytes mapped with mmap
+    void operator()(char* text) const;
+  };
+  using TextBytes = std::unique_ptr<char, TextDeleter>;
+
   std::string file_name_;
-  std::unique_ptr<char[]> bytes_;  // the file text; views into it stay valid on move
+  TextBytes bytes_;  // the file text; views into it stay valid on move
   std::size_t size_ = 0;
+  mutable std::uint64_t released_before_ = 0;  // see release_text_before()
   Header header_;
   std::vector<Section> sections_;
   std::vector<RecordEntry> records_;
