@@ -36,31 +36,34 @@ struct Shape {
   static Shape of_entity(const Entity* entity) { return entity ? Shape{Kind::Entity, entity, nullptr, {}} : Shape{}; }
 };
 
-// Does `entity`, an ancestor or a descendant declare `name`?
+// Can an instance of `entity` have an attribute `name`? True when `entity` or
+// one of its descendants declares or inherits it: a descendant inherits from
+// all its supertypes, including ones that are not related to `entity` (an
+// instance of `external_source` may be a `known_source`, which inherits `name`
+// from its other supertype `pre_defined_item`).
 bool family_has_attribute(const Entity& entity, std::string_view name) {
+  // Entities already searched upwards; whether an entity declares `name` does
+  // not depend on where the search came from, so one set serves every start.
   std::unordered_set<const Entity*> seen;
-  auto declares = [&](const Entity& e) {
-    for (const auto& attribute : e.attributes)
-      if (same_name(attribute->name, name) || same_name(attribute->renamed_to, name)) return true;
-    return false;
-  };
   std::function<bool(const Entity&)> up = [&](const Entity& e) {
     if (!seen.insert(&e).second) return false;
-    if (declares(e)) return true;
+    for (const auto& attribute : e.attributes)
+      if (same_name(attribute->name, name) || same_name(attribute->renamed_to, name)) return true;
     for (const Entity* supertype : e.supertypes)
       if (up(*supertype)) return true;
     return false;
   };
-  if (up(entity)) return true;
-  seen.clear();
-  std::function<bool(const Entity&)> down = [&](const Entity& e) {
-    if (!seen.insert(&e).second) return false;
-    if (declares(e)) return true;
-    for (const Entity* subtype : e.subtypes)
-      if (down(*subtype)) return true;
-    return false;
-  };
-  return down(entity);
+  if (up(entity)) return true;  // the common case: declared or inherited
+  std::unordered_set<const Entity*> visited{&entity};
+  std::vector<const Entity*> pending(entity.subtypes.begin(), entity.subtypes.end());
+  while (!pending.empty()) {
+    const Entity* e = pending.back();
+    pending.pop_back();
+    if (!visited.insert(e).second) continue;
+    if (up(*e)) return true;
+    for (const Entity* subtype : e->subtypes) pending.push_back(subtype);
+  }
+  return false;
 }
 
 // `entity` and its ancestors.

@@ -355,3 +355,12 @@ TEST_CASE("group qualifiers naming an ancestor, a subtype, an ANDOR sibling or a
   CHECK(group->text == "styled");
   CHECK(group->binding.entity == &test::entity(*model, "styled"));
 }
+
+TEST_CASE("attribute references that hold for a subtype inheriting from another supertype", "[corpus]") {
+  auto model = compile_good({"inherited_by_subtype.exp"});
+  const model::Entity& item = test::entity(*model, "externally_defined_item");
+  REQUIRE(item.where.size() == 1);
+  CHECK(ast::to_string(*item.where.at(0).expression) ==
+        "(NOT ('INHERITED_BY_SUBTYPE.KNOWN_SOURCE' IN TYPEOF(SELF.source)) OR (SELF.source.name = 'ISO 13584 library'))");
+  CHECK(test::entity(*model, "known_source").supertypes.size() == 2);
+}

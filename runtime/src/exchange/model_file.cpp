@@ -21,16 +21,27 @@ class ModelBuilder final : public meta::FillContext {
 
   void run() {
     const auto records = file_.document.records();
-    instances_.assign(records.size(), nullptr);
+    file_.model.reserve(records.size());
     resolve_entity_names();
-    for (std::size_t i = 0; i < records.size() && !diagnostics_.limit_reached(); ++i) create(i);
-    for (std::size_t i = 0; i < records.size() && !diagnostics_.limit_reached(); ++i) fill(i);
+    for (; created_ < records.size() && !diagnostics_.limit_reached(); ++created_) create(created_);
+    // Instances are filled in record order, so the instance of the next
+    // typed record is always the next one in the model.
+    const auto instances = file_.model.instances();
+    auto next_instance = instances.begin();
+    auto next_skipped = skipped_.begin();
+    for (std::size_t i = 0; i < created_ && !diagnostics_.limit_reached(); ++i) {
+      if (next_skipped != skipped_.end() && *next_skipped == i) {
+        ++next_skipped;
+        continue;
+      }
+      fill(records[i], **next_instance++);
+    }
   }
 
   meta::Instance* resolve(std::uint64_t id) override {
     const p21::RecordEntry* record = file_.document.find(id);
     if (record == nullptr) return nullptr;
-    return instances_[static_cast<std::size_t>(record - file_.document.records().data())];
+    return instance_of(static_cast<std::size_t>(record - file_.document.records().data()));
   }
 
   void error(std::uint64_t offset, std::string message) override {
@@ -47,56 +58,75 @@ class ModelBuilder final : public meta::FillContext {
     const p21::RecordEntry& record = file_.document.records()[index];
     current_id_ = record.id;
     const meta::EntityInfo* entity = nullptr;
-    std::string display_name;
+    std::vector<std::string_view> parts;  // of a complex instance
+    // Only for messages: not spelled out for every record.
+    const auto display_name = [&] {
+      return parts.empty() ? std::string(file_.document.entity_name(record))
+                           : fmt::format("({})", fmt::join(parts, " "));
+    };
     if (record.entity == p21::RecordEntry::complex_entity) {
       if (auto problem = file_.document.parse(record, tree_)) {
         report_parse_error(*problem, record.id);
+        skip(index);
         return;
       }
-      std::vector<std::string_view> parts;
       for (const p21::EntityPart& part : tree_.parts()) parts.push_back(part.entity());
       entity = registry_.find_complex(parts);
-      display_name = fmt::format("({})", fmt::join(parts, " "));
       if (entity == nullptr) {
-        keep_generic(record, fmt::format("no schema defines the combination {}; kept as a generic record",
-                                         display_name));
+        keep_generic(index, fmt::format("no schema defines the combination {}; kept as a generic record",
+                                        display_name()));
         return;
       }
     } else {
       entity = entities_[record.entity];
-      display_name = std::string(file_.document.entity_name(record));
       if (entity == nullptr) {
-        keep_generic(record, fmt::format("unknown entity {}; kept as a generic record", display_name));
+        keep_generic(index, fmt::format("unknown entity {}; kept as a generic record", display_name()));
         return;
       }
     }
     if (entity->abstract) {
       report(p21::Severity::error, record.offset, record.id,
-             fmt::format("{} is ABSTRACT and cannot be instantiated", display_name));
+             fmt::format("{} is ABSTRACT and cannot be instantiated", display_name()));
+      skip(index);
       return;
     }
     if (record.id > std::numeric_limits<std::uint32_t>::max()) {
       report(p21::Severity::error, record.offset, record.id,
              fmt::format("instance id #{} exceeds the typed model's limit of {}", record.id,
                          std::numeric_limits<std::uint32_t>::max()));
+      skip(index);
       return;
     }
-    instances_[index] = file_.model.create(*entity, static_cast<std::uint32_t>(record.id));
+    if (file_.model.create(*entity, static_cast<std::uint32_t>(record.id)) == nullptr) skip(index);
   }
 
-  void fill(std::size_t index) {
-    meta::Instance* instance = instances_[index];
-    if (instance == nullptr) return;
-    const p21::RecordEntry& record = file_.document.records()[index];
+  void fill(const p21::RecordEntry& record, meta::Instance& instance) {
     current_id_ = record.id;
+    // The text of the records filled so far is not needed again.
+    file_.document.release_text_before(record.offset);
     if (auto problem = file_.document.parse(record, tree_)) {
       report_parse_error(*problem, record.id);
       return;
     }
-    meta::fill_instance(*instance, tree_, *this);
+    meta::fill_instance(instance, tree_, *this);
   }
 
-  void keep_generic(const p21::RecordEntry& record, std::string message) {
+  // Records are created in order, each typed one adding one instance to
+  // the model, so record r's instance is the model's instance number r
+  // minus the records skipped before r. This needs no table per record
+  // (skipped records are rare: generic records and errors).
+  void skip(std::size_t index) { skipped_.push_back(index); }
+
+  meta::Instance* instance_of(std::size_t index) const {
+    if (index >= created_) return nullptr;
+    const auto skipped = std::lower_bound(skipped_.begin(), skipped_.end(), index);
+    if (skipped != skipped_.end() && *skipped == index) return nullptr;
+    return file_.model.instances()[index - static_cast<std::size_t>(skipped - skipped_.begin())];
+  }
+
+  void keep_generic(std::size_t index, std::string message) {
+    const p21::RecordEntry& record = file_.document.records()[index];
+    skip(index);
     file_.generic_records.push_back(&record);
     report(p21::Severity::warning, record.offset, record.id, std::move(message));
   }
@@ -114,7 +144,8 @@ class ModelBuilder final : public meta::FillContext {
   const meta::Registry& registry_;
   p21::Diagnostics& diagnostics_;
   std::vector<const meta::EntityInfo*> entities_;  // per Document::entity_names() index
-  std::vector<meta::Instance*> instances_;         // per record index; null: not typed
+  std::size_t created_ = 0;                        // records [0, created_) went through create()
+  std::vector<std::size_t> skipped_;               // records without an instance, ascending
   p21::ParamTree tree_;
   std::uint64_t current_id_ = 0;
 };

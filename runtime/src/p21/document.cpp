@@ -184,7 +184,7 @@ Document::Document(Document&&) noexcept = default;
 Document& Document::operator=(Document&&) noexcept = default;
 Document::~Document() = default;
 
-void Document::TextDeleter::operator()(char* text) const {
+void detail::TextDeleter::operator()(char* text) const {
   if (mapped_size != 0) {
     ::munmap(text, mapped_size);
   } else {
@@ -199,13 +199,17 @@ constexpr std::uint64_t kReleaseStep = std::uint64_t{4} << 20;
 }  // namespace
 
 void Document::release_text_before(std::uint64_t offset) const {
-  if (!is_mapped() || offset < released_before_ + kReleaseStep) return;
+  if (!is_mapped()) return;
+  // A new pass from the start: what it touches from here on is resident again.
+  if (offset < released_before_) released_before_ = offset;
+  if (offset < released_before_ + kReleaseStep) return;
   const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  const std::uint64_t begin = released_before_ / page * page;
   const std::uint64_t end = std::min<std::uint64_t>(offset, size_) / page * page;
   // MADV_DONTNEED on a read-only file mapping drops our mapping of the
   // pages, not their contents: a later access faults them back in from
   // the page cache (or the file).
-  ::madvise(bytes_.get() + released_before_, end - released_before_, MADV_DONTNEED);
+  ::madvise(bytes_.get() + begin, end - begin, MADV_DONTNEED);
   released_before_ = end;
 }
 
@@ -243,7 +247,7 @@ Diagnostic Document::diagnostic(const ParseError& error, std::uint64_t instance_
 // syntax and duplicate ids first, then missing references.
 class DocumentBuilder final : public RecordHandler {
  public:
-  DocumentBuilder(Document::TextBytes bytes, std::size_t size, std::string file_name, const ReadOptions& options)
+  DocumentBuilder(detail::TextBytes bytes, std::size_t size, std::string file_name, const ReadOptions& options)
       : options_(options), diagnostics_(options.error_limit) {
     doc_.file_name_ = std::move(file_name);
     doc_.bytes_ = std::move(bytes);
@@ -268,8 +272,8 @@ class DocumentBuilder final : public RecordHandler {
     return result;
   }
 
-  static Document::TextBytes copy_text(std::string_view text);
-  static Document::TextBytes map_file(int descriptor, std::size_t size);
+  static detail::TextBytes copy_text(std::string_view text);
+  static detail::TextBytes map_file(int descriptor, std::size_t size);
 
   bool on_section(const Section& section, StreamContext&) override {
     if (section.kind == SectionKind::reference) note_external_ids(section.text);
@@ -351,8 +355,8 @@ class DocumentBuilder final : public RecordHandler {
 };
 
 // A copy of `text` as the Document's buffer.
-Document::TextBytes DocumentBuilder::copy_text(std::string_view text) {
-  Document::TextBytes bytes(new char[text.size()]);
+detail::TextBytes DocumentBuilder::copy_text(std::string_view text) {
+  detail::TextBytes bytes(new char[text.size()]);
   std::copy(text.begin(), text.end(), bytes.get());
   return bytes;
 }
@@ -362,10 +366,10 @@ Document::TextBytes DocumentBuilder::copy_text(std::string_view text) {
 // release_text_before() drop what a pass has read. The usual caveat of
 // mappings applies: a file truncated by another process while it is
 // read faults (SIGBUS); files are not expected to change under a reader.
-Document::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
+detail::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
   void* mapping = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, descriptor, 0);
   if (mapping == MAP_FAILED) return {};
-  return Document::TextBytes(static_cast<char*>(mapping), Document::TextDeleter{size});
+  return detail::TextBytes(static_cast<char*>(mapping), detail::TextDeleter{size});
 }
 
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
@@ -388,7 +392,7 @@ ReadResult read_file(const std::filesystem::path& path, const ReadOptions& optio
   if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
       static_cast<std::size_t>(status.st_size) >= kMapThreshold) {
     const auto size = static_cast<std::size_t>(status.st_size);
-    Document::TextBytes bytes = DocumentBuilder::map_file(descriptor, size);
+    detail::TextBytes bytes = DocumentBuilder::map_file(descriptor, size);
     ::close(descriptor);
     if (bytes) return DocumentBuilder(std::move(bytes), size, path.string(), options).run();
   } else {
@@ -411,7 +415,7 @@ ReadResult read_file(const std::filesystem::path& path, const ReadOptions& optio
     return read_text(std::move(text), path.string(), options);
   }
   // Uninitialised on purpose: fread fills it.
-  Document::TextBytes bytes(new char[static_cast<std::size_t>(size)]);
+  detail::TextBytes bytes(new char[static_cast<std::size_t>(size)]);
   const std::size_t got = std::fread(bytes.get(), 1, static_cast<std::size_t>(size), file);
   const bool failed = std::ferror(file) != 0;
   std::fclose(file);

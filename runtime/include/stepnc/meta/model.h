@@ -45,6 +45,10 @@ class Model {
   // null when the entity is abstract.
   Instance* create(const EntityInfo& entity, std::uint32_t id = 0);
 
+  // Makes room for `count` instances in all (a reader knows how many it
+  // will create), so the instance list is allocated once, at its size.
+  void reserve(std::size_t count) { instances_.reserve(count); }
+
   // Every instance, in creation order.
   std::span<Instance* const> instances() const noexcept { return instances_; }
   std::size_t size() const noexcept { return instances_.size(); }

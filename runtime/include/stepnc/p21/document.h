@@ -88,6 +88,15 @@ struct RecordEntry {
 };
 static_assert(sizeof(RecordEntry) == 24);
 
+namespace detail {
+// Frees a Document's text: unmaps a mapping of the file, deletes a copy.
+struct TextDeleter {
+  std::size_t mapped_size = 0;  // non-zero: that many bytes mapped with mmap
+  void operator()(char* text) const;
+};
+using TextBytes = std::unique_ptr<char, TextDeleter>;
+}  // namespace detail
+
 class Document {
  public:
   Document();
@@ -137,15 +146,8 @@ class Document {
   friend class DocumentBuilder;
   struct IdTable;
 
-  // Frees the file text: unmaps a mapping, deletes a copy.
-  struct TextDeleter {
-    std::size_t mapped_size = 0;  // non-zero: bytes mapped with mmap
-    void operator()(char* text) const;
-  };
-  using TextBytes = std::unique_ptr<char, TextDeleter>;
-
   std::string file_name_;
-  TextBytes bytes_;  // the file text; views into it stay valid on move
+  detail::TextBytes bytes_;  // the file text; views into it stay valid on move
   std::size_t size_ = 0;
   mutable std::uint64_t released_before_ = 0;  // see release_text_before()
   Header header_;
