@@ -676,8 +676,8 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   }
   // Lap direction: the strategy's rotation, else from cut mode (climb
   // inside a pocket with an M3 spindle runs counter-clockwise); STEP-NC's
-  // default cut mode is conventional.
-  bool clockwise = true;
+  // default cut mode is conventional. The 840D CDIR follows the same rule.
+  bool clockwise = job.tech.spindle.clockwise;
   if (auto* cp = std::get_if<ContourParallel>(&op.strategy)) {
     if (cp->rotation != Rotation::unspecified)
       clockwise = cp->rotation == Rotation::clockwise;

@@ -1,8 +1,12 @@
 // Siemens SINUMERIK 840D: tool data in $TC_DP, CYCLE832 with the model's
 // tolerance, feature cycles (POCKET1/2, CYCLE71, SLOT1; parameters mapped
 // per seed 000 Table 1 in siemens_cycles.cpp) and drilling cycles
-// CYCLE81..86. Each parameter list below follows the 840D cycle manual's
-// order; an empty position is a parameter left out.
+// CYCLE81..86. An empty position is a parameter left out. The drilling
+// cycles' lists are confirmed by the Autodesk "Siemens SINUMERIK 840D"
+// post processor (siemens-840d.cps, revision 43265, 2021; copies on GitHub
+// in AntonTroskin/posts and konkers/Mill-Post-Processors), which writes
+// each of them with its parameter names; CYCLE81 and CYCLE83 also by
+// Siemens pages.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -38,6 +42,8 @@ class Siemens840dPrinter final : public GcodePrinter {
 
  private:
   bool lathe() const { return program_.machine == MachineKind::turning; }
+  // The 840D's code for the spindle direction the cycles restore: 3 = M3, 4 = M4.
+  double spindle_direction() const { return spindle_clockwise_ ? 3 : 4; }
 
   void prologue() override {
     line(lathe() ? "G18 G71 G90 G40 DIAMON" : "G17 G71 G90 G40 G94");
@@ -59,7 +65,11 @@ class Siemens840dPrinter final : public GcodePrinter {
   void epilogue() override { line("M30"); }
   void tolerance(const Tolerance& t) override {
     // CYCLE832(_TOL, _TOLM): contour tolerance from the model; _TOLM
-    // 102001 finishing, 102003 roughing (units digit = machining type).
+    // 102001 finishing, 102003 roughing, as seed 000 and its NIST STEPNC++
+    // poster write them. Order and the units digit (1 finishing, 2 semi-
+    // finishing, 3 roughing) agree with the Autodesk 840D post, which
+    // writes CYCLE832(tol, 11200<digit>); the other digits of _TOLM select
+    // the control's smoothing functions and are kept as seed 000 has them.
     std::string call = "CYCLE832(";
     append_number(call, t.value, 4, false);
     call += t.roughing ? ",102003)" : ",102001)";
@@ -73,6 +83,7 @@ class Siemens840dPrinter final : public GcodePrinter {
     line("M6");
   }
   void spindle_on(const SpindleOn& s) override {
+    spindle_clockwise_ = s.clockwise;
     start_line();
     if (s.css) {
       word("G96");
@@ -119,37 +130,49 @@ class Siemens840dPrinter final : public GcodePrinter {
   void drill_cycle(const DrillCycle& c) override {
     using V = std::optional<double>;
     const V none;
-    // Common head: RTP retract plane, RFP reference plane (hole top), SDIS
-    // safety distance (R - RFP), DP absolute depth, DPR relative (unused).
+    // Common head: RTP retract plane (the operation's retract plane), RFP
+    // reference plane (hole top), SDIS safety distance (R - RFP), DP
+    // absolute depth (hole bottom), DPR relative depth (left out).
     std::vector<V> p{c.clear, c.top, c.r - c.top, c.bottom, none};
     switch (c.kind) {
       case DrillKind::drill:
         if (c.dwell > 0) {
-          p.push_back(c.dwell);  // CYCLE82: DTB dwell at depth (s)
+          // CYCLE82(RTP, RFP, SDIS, DP, DPR, DTB): DTB = dwell_time_bottom (s).
+          p.push_back(c.dwell);
           return call("CYCLE82", p);
         }
-        return call("CYCLE81", p);
+        return call("CYCLE81", p);  // CYCLE81(RTP, RFP, SDIS, DP, DPR)
       case DrillKind::peck:
-        // CYCLE83(.., FDEP first depth, FDPR, DAM degression, DTB, DTS, FRF,
-        // VARI): FDEP one peck below RFP and DAM = peck give equal pecks;
-        // VARI=1 retracts to RFP+SDIS after each, as LinuxCNC G83 does.
+        // CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF,
+        // VARI): FDEP first depth one depth_of_step below RFP, DAM
+        // degression = depth_of_step (equal pecks), DTB dwell_time_bottom,
+        // DTS dwell at the start 0, FRF feed factor 1, VARI 1 = retract to
+        // RFP + SDIS after each peck, as LinuxCNC G83 does.
         p.insert(p.end(), {c.top - c.peck, none, c.peck, c.dwell, 0.0, 1.0, 1.0});
         return call("CYCLE83", p);
       case DrillKind::tap: {
-        // CYCLE84(.., DTB, SDAC spindle direction after the cycle, MPIT,
-        // PIT thread lead, POSS, SST tapping speed, SST1 retract speed).
+        // CYCLE84(RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST,
+        // SST1): DTB dwell_time_bottom, SDAC the spindle direction to
+        // restore after the cycle, MPIT (thread size) left out, PIT the
+        // tap's thread_pitch, negative for a left-hand (M4) tap as the
+        // Autodesk post writes it, POSS (oriented stop angle) left out,
+        // SST and SST1 tapping and retract speed = the operation's spindle.
         const double rpm = c.pitch > 0 ? c.feed / c.pitch : 0;
-        p.insert(p.end(), {c.dwell, 3.0, none, c.pitch, none, rpm, rpm});
+        const double pitch = spindle_clockwise_ ? c.pitch : -c.pitch;
+        p.insert(p.end(), {c.dwell, spindle_direction(), none, pitch, none, rpm, rpm});
         return call("CYCLE84", p);
       }
       case DrillKind::bore_feed_out:
-        // CYCLE85(.., DTB, FFR feed in, RFF feed out)
+        // CYCLE85(RTP, RFP, SDIS, DP, DPR, DTB, FFR, RFF): FFR the
+        // operation's feed, RFF feed_on_retract (else the feed).
         p.insert(p.end(), {c.dwell, c.feed, c.retract_feed > 0 ? c.retract_feed : c.feed});
         return call("CYCLE85", p);
       case DrillKind::bore_spindle_stop:
-        // CYCLE86(.., DTB, SDIR 3 = M3, RPA, RPO, RPAP lift-off 0, POSS):
-        // spindle stop at depth, rapid out along the axis.
-        p.insert(p.end(), {c.dwell, 3.0, 0.0, 0.0, 0.0});
+        // CYCLE86(RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS):
+        // spindle_stop_at_bottom. SDIR the spindle direction restored after
+        // the stop, lift-off RPA/RPO/RPAP 0 (straight out, as G86), POSS
+        // (oriented stop angle) left out.
+        p.insert(p.end(), {c.dwell, spindle_direction(), 0.0, 0.0, 0.0});
         return call("CYCLE86", p);
     }
   }
@@ -161,6 +184,8 @@ class Siemens840dPrinter final : public GcodePrinter {
     call(cycle.name, values);
     return true;
   }
+
+  bool spindle_clockwise_ = true;  // the last SpindleOn's direction
 };
 
 }  // namespace

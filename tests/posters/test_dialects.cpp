@@ -52,9 +52,35 @@ TEST_CASE("hole cycles in each dialect") {
   // ..., DTB, SDIR, RPA, RPO, RPAP
   CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,3,0,0,0)\n") != std::string::npos);
   CHECK(siemens.find(" CYCLE85(5,0,2,-15,,0.2,300,300)\n") != std::string::npos);
-  // Round-ended slot as SLOT1, circular pocket as POCKET2.
-  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,1,0,2,3,1200,2400)\n") != std::string::npos);
-  CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,1200,1200,3,0,0.5,1)\n") != std::string::npos);
+  // Round-ended slot as SLOT1, circular pocket as POCKET2. CDIR is G2/G3:
+  // conventional (the STEP-NC default) with M3 runs G2, climb G3.
+  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,2,0,2,3,1200,2400)\n") != std::string::npos);
+  CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,1200,1200,3,3,0.5,1)\n") != std::string::npos);
+}
+
+TEST_CASE("840D tapping and boring restore the spindle direction; a left-hand tap has a negative PIT") {
+  auto project = testing::milling_features();
+  for (auto& op : project.operations)
+    if (op.technology && op.technology->spindle_rpm) *op.technology->spindle_rpm = -*op.technology->spindle_rpm;
+  const std::string siemens = posted(project, Dialect::siemens840d);
+  // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
+  CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,4,,-1.5,,300,300)\n") != std::string::npos);
+  // ..., DTB, SDIR, RPA, RPO, RPAP
+  CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,4,0,0,0)\n") != std::string::npos);
+  // Conventional milling with M4 runs counter-clockwise: G3.
+  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,3,0,2,3,1200,2400)\n") != std::string::npos);
+}
+
+TEST_CASE("840D CYCLE71 keeps _STA in [0, 180): a face whose axis points the other way gets negative sides") {
+  // Example 1's face (x 0..100, y 0..120) described from its other corner,
+  // its course of travel pointing along -y (270 degrees).
+  auto project = testing::example1();
+  for (auto& feature : project.features)
+    if (std::holds_alternative<PlanarFace>(feature.shape))
+      feature.placement = Placement::from_ref_direction({0, 120, 5}, 0, -1);
+  const std::string siemens = posted(project, Dialect::siemens840d);
+  // _RTP, _RFP, _SDIS, _DP, _PA, _PO, _LENG, _WID, _STA, _MID, _MIDA, _FDP, _FALD, _FFP1, _VARI
+  CHECK(siemens.find(" CYCLE71(15,5,2,0,0,120,-120,-100,90,2.5,19,1,0,2400,32)\n") != std::string::npos);
 }
 
 TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is constant") {
