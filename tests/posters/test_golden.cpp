@@ -99,7 +99,7 @@ TEST_CASE("POCKET1 parameters come from the model as in seed 000 Table 1") {
       {"FFD", 2400, "\"MillingOp\"/its_technology/feedrate (depth infeed feed is not in approach_retract_strategy)"},
       {"FFP1", 2400, "\"MillingOp\"/its_technology/feedrate"},
       {"MID", 2, "\"MillingOp\"/axial_cutting_depth"},
-      {"CDIR", 2, "\"MillingOp\"/its_machining_strategy/cutmode"},
+      {"CDIR", 2, "\"MillingOp\"/its_machining_strategy/cutmode (or rotation) with the spindle sign: 2 G2, 3 G3"},
       {"FAL", 0, "\"MillingOp\"/allowance_side"},
       {"VARI", 2, "classname of its_operations[i]: 1 roughing, 2 finishing"},
       {"MIDF", 2, "\"MillingOp\"/axial_cutting_depth (finishing)"},
