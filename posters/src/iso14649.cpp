@@ -1,6 +1,7 @@
 #include "stepnc/post/iso14649.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,11 @@ class Describer {
     return v;
   }
   static double size(const ms::toleranced_length_measure* m) { return m ? m->theoretical_size : 0; }
+  // The angle of a direction in its frame's XY plane, degrees.
+  static double direction_angle(const ms::direction& d) {
+    const auto& r = d.direction_ratios;
+    return std::atan2(r.size() > 1 ? r[1] : 0, r.size() > 0 ? r[0] : 1) * 180 / 3.14159265358979323846;
+  }
 
   // A feature placement: location and the angle of ref_direction; the axis
   // must be +Z (2.5D milling on the setup's XY plane).
@@ -135,7 +141,7 @@ class Describer {
       if (!p.its_workpieces.empty() && p.its_workpieces.front()) bar_stock(*p.its_workpieces.front());
       groove_outer_radii();
     } else {
-      workpiece_block();
+      workpiece_block(p.its_workpieces.empty() ? nullptr : p.its_workpieces.front());
     }
   }
 
@@ -176,8 +182,13 @@ class Describer {
 
   // The block: the workpiece's bounding block when given, else the extent
   // of the features (top = highest feature top, bottom = deepest bottom).
-  void workpiece_block() {
+  void workpiece_block(const ms::workpiece* workpiece) {
     Workpiece& w = out_.project.workpiece;
+    if (auto box = block(workpiece)) {
+      w.block_min = box->min;
+      w.block_max = box->max;
+      return;
+    }
     double lo_x = 1e300, lo_y = 1e300, hi_x = -1e300, hi_y = -1e300, top = -1e300, bottom = 1e300;
     for (const Feature& f : out_.project.features) {
       for (const Vec2 v : feature_outline(f)) {
@@ -260,6 +271,10 @@ class Describer {
         out.shape = shape;
       } else if (auto* pocket = as<ms::closed_pocket>(&f)) {
         closed_pocket(*pocket, out);
+      } else if (auto* open = as<ms::open_pocket>(&f)) {
+        open_pocket(*open, out);
+      } else if (auto* wall = as<ms::step>(&f)) {
+        step(*wall, out);
       } else if (auto* groove = as<ms::slot>(&f)) {
         slot(*groove, out);
       } else {
@@ -350,8 +365,7 @@ class Describer {
         return;
       }
     }
-    const auto& d = path->its_direction->direction_ratios;
-    out.placement.angle_deg += std::atan2(d.size() > 1 ? d[1] : 0, d.size() > 0 ? d[0] : 1) * 180 / 3.14159265358979323846;
+    out.placement.angle_deg += direction_angle(*path->its_direction);
     out.shape = Slot{size(path->distance), size(width), rounded_ends};
   }
 
@@ -381,6 +395,238 @@ class Describer {
       error(pocket, pocket.its_id, "pocket outline must be a rectangular, circular or polyline profile");
     }
     out.shape = std::move(shape);
+  }
+
+  // ------------------------------------------------ open pockets and steps --
+  // ISO 14649-10 bounds an open pocket's U profile only by its width and a
+  // step only by its wall: the material they remove runs out to the edge of
+  // the workpiece. The adapter takes that extent from the feature's
+  // workpiece BLOCK, and reports the feature when it cannot.
+
+  struct Box {
+    Vec3 min, max;
+  };
+
+  // A workpiece's bounding block in workpiece coordinates; its edges must
+  // run along X and Y (the posters' stock is an axis-aligned block).
+  std::optional<Box> block(const ms::workpiece* w) {
+    if (!w) return std::nullopt;
+    if (auto known = blocks_.find(w); known != blocks_.end()) return known->second;
+    std::optional<Box> box;
+    if (const ms::block* b = w->its_bounding_geometry.as_block()) {
+      if (auto frame = placement(b->position, *b, b->name)) {
+        const double quarter_turns = frame->angle_deg / 90;
+        if (std::abs(quarter_turns - std::round(quarter_turns)) > 1e-9) {
+          error(*b, b->name, "the workpiece block's edges must run along X and Y");
+        } else {
+          Box edges{{1e300, 1e300, frame->location.z}, {-1e300, -1e300, frame->location.z + b->z}};
+          for (const Vec2 corner : {Vec2{0, 0}, Vec2{b->x, 0}, Vec2{b->x, b->y}, Vec2{0, b->y}}) {
+            const Vec3 c = frame->to_global(corner);
+            edges.min.x = std::min(edges.min.x, c.x);
+            edges.min.y = std::min(edges.min.y, c.y);
+            edges.max.x = std::max(edges.max.x, c.x);
+            edges.max.y = std::max(edges.max.y, c.y);
+          }
+          box = edges;
+        }
+      }
+    }
+    blocks_[w] = box;
+    return box;
+  }
+
+  // A profile's or path's own placement inside its feature's frame (none:
+  // the feature's frame). The feature's top stays its z = 0.
+  std::optional<Placement> nested(const Placement& outer, const ms::axis2_placement_3d* inner,
+                                  const meta::Instance& owner) {
+    if (!inner) return outer;
+    const auto local = placement(inner, owner, "");
+    if (!local) return std::nullopt;
+    Vec3 origin = outer.to_global({local->location.x, local->location.y});
+    origin.z = outer.location.z;
+    return Placement{origin, outer.angle_deg + local->angle_deg};
+  }
+
+  // How far the workpiece block reaches from a wall into the removed
+  // material. `wall` is a frame whose x axis runs along the wall and whose
+  // +y points into the material the feature removes; the wall covers local
+  // x in [from_x, to_x]. A wall `across_block` (a step, a linear profile) must
+  // span the block along its direction, as its open ends lie in air; a U
+  // profile's base and legs must lie inside the block.
+  std::optional<double> reach_to_block_edge(const ms::machining_feature& f, const Placement& wall, double from_x,
+                                            double to_x, bool across_block) {
+    const auto box = block(f.its_workpiece);
+    if (!box) {
+      error(f, f.its_id,
+            fmt::format("{} needs its workpiece's BLOCK bounding geometry: ISO 14649-10 does not bound the removed "
+                        "material, which runs to the block's edge",
+                        f.entity_info().name));
+      return std::nullopt;
+    }
+    constexpr double eps = 1e-6;
+    const double a = wall.angle_deg * 3.14159265358979323846 / 180;
+    const Vec2 along{std::cos(a), std::sin(a)}, into{-std::sin(a), std::cos(a)};
+    if (std::abs(along.x) > eps && std::abs(along.y) > eps) {
+      error(f, f.its_id,
+            fmt::format("the wall runs at {:g} degrees, not along an edge of the workpiece block: the feature's "
+                        "extent to the block's edge is not a rectangle",
+                        wall.angle_deg));
+      return std::nullopt;
+    }
+    // The block's extent along a direction, measured from the wall's origin.
+    auto extent = [&](Vec2 d) {
+      double lo = 1e300, hi = -1e300;
+      for (const Vec2 c : {Vec2{box->min.x, box->min.y}, Vec2{box->max.x, box->min.y}, Vec2{box->max.x, box->max.y},
+                           Vec2{box->min.x, box->max.y}}) {
+        const double t = (c.x - wall.location.x) * d.x + (c.y - wall.location.y) * d.y;
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+      }
+      return std::pair{lo, hi};
+    };
+    const auto [behind, ahead] = extent(into);
+    const auto [first, last] = extent(along);
+    if (behind > -eps || ahead < eps) {
+      error(f, f.its_id,
+            fmt::format("the wall through ({:g}, {:g}) does not lie inside the workpiece block", wall.location.x,
+                        wall.location.y));
+      return std::nullopt;
+    }
+    if (across_block && (from_x > first + eps || to_x < last - eps)) {
+      error(f, f.its_id,
+            fmt::format("the wall covers {:g} to {:g} along its direction but the workpiece block spans {:g} to {:g}: "
+                        "its open ends would not lie in air",
+                        from_x, to_x, first, last));
+      return std::nullopt;
+    }
+    if (!across_block && (from_x < first - eps || to_x > last + eps)) {
+      error(f, f.its_id,
+            fmt::format("the profile covers {:g} to {:g} across but the workpiece block spans {:g} to {:g}", from_x,
+                        to_x, first, last));
+      return std::nullopt;
+    }
+    return ahead;
+  }
+
+  // What the posters' open pocket cannot carry (bosses, slope, shaped walls,
+  // a floor fillet, a floor neither flat nor through) is an error, never
+  // dropped.
+  bool plain_open_pocket(const ms::open_pocket& pocket) {
+    std::vector<std::string> problems;
+    if (!pocket.its_boss.empty()) problems.emplace_back("bosses (islands)");
+    if (pocket.slope && std::abs(*pocket.slope) > 1e-9)
+      problems.push_back(fmt::format("a slope of {:g} degrees", *pocket.slope));
+    if (pocket.wall_boundary) problems.push_back(fmt::format("a wall_boundary (#{})", pocket.wall_boundary->id()));
+    if (size(pocket.planar_radius) > 0) problems.emplace_back("a planar_radius (floor fillet)");
+    if (!as<ms::planar_pocket_bottom_condition>(pocket.bottom_condition) &&
+        !as<ms::through_pocket_bottom_condition>(pocket.bottom_condition))
+      problems.push_back(pocket.bottom_condition
+                             ? fmt::format("a {} (#{})", pocket.bottom_condition->entity_info().name,
+                                           pocket.bottom_condition->id())
+                             : std::string("no bottom condition"));
+    if (problems.empty()) return true;
+    error(pocket, pocket.its_id, fmt::format("open pocket with {} is not supported", fmt::join(problems, ", ")));
+    return false;
+  }
+
+  // open_pocket: the open boundary lies in the feature's XY plane, placed
+  // by its own placement (else the feature's frame). A U profile's base
+  // runs along local x centred on the origin, its legs along +y out of the
+  // workpiece (the open side); a linear profile is one wall along local x
+  // from the origin with the pocket on its +y side, open at both ends.
+  // The pocket's extent along +y is the block's (reach_to_block_edge).
+  void open_pocket(const ms::open_pocket& pocket, Feature& out) {
+    if (!plain_open_pocket(pocket)) return;
+    const ms::open_profile* boundary = pocket.open_boundary;
+    if (!boundary) {
+      error(pocket, pocket.its_id, "open pocket without an open boundary");
+      return;
+    }
+    auto frame = nested(out.placement, boundary->placement, *boundary);
+    if (!frame) return;
+    double from_x = 0, to_x = 0, radius = 0;
+    unsigned open = open_max_y;
+    bool across_block = false;
+    auto inconsistent = [&](std::string what) {
+      error(pocket, pocket.its_id, fmt::format("open boundary #{}: {}", boundary->id(), what));
+    };
+    if (auto* u = as<ms::square_u_profile>(boundary)) {
+      if (std::abs(u->first_angle - 90) > 1e-9 || std::abs(u->second_angle - 90) > 1e-9)
+        return inconsistent(fmt::format("U profile walls at {:g} and {:g} degrees: only 90 (a rectangle) is supported",
+                                        u->first_angle, u->second_angle));
+      radius = size(u->first_radius);
+      if (std::abs(size(u->second_radius) - radius) > 1e-9)
+        return inconsistent(fmt::format("U profile corner radii {:g} and {:g} differ", radius, size(u->second_radius)));
+      to_x = size(u->width) / 2;
+    } else if (auto* rounded = as<ms::rounded_u_profile>(boundary)) {
+      to_x = size(rounded->width) / 2;
+      radius = to_x;  // a half-circle base
+    } else if (auto* line = as<ms::linear_profile>(boundary)) {
+      if (!line->profile_length) return inconsistent("linear profile without a length");
+      to_x = line->profile_length->its_parameter_value;
+      open = open_min_x | open_max_x | open_max_y;
+      across_block = true;
+    } else {
+      return inconsistent(fmt::format("{} is not supported: the posters' open pocket is a rectangle "
+                                      "(square_u_profile, rounded_u_profile or linear_profile)",
+                                      boundary->entity_info().name));
+    }
+    if (!across_block) {
+      from_x = -to_x;
+      if (to_x <= 0 || 2 * radius > to_x - from_x + 1e-9)
+        return inconsistent(fmt::format("U profile width {:g} with corner radius {:g}", to_x - from_x, radius));
+      if (pocket.orthogonal_radius && std::abs(size(pocket.orthogonal_radius) - radius) > 1e-9)
+        return inconsistent(fmt::format("the pocket's orthogonal_radius {:g} differs from the profile's corner "
+                                        "radius {:g}",
+                                        size(pocket.orthogonal_radius), radius));
+    } else if (to_x <= 0) {
+      return inconsistent(fmt::format("linear profile length {:g}", to_x));
+    }
+    const auto reach = reach_to_block_edge(pocket, *frame, from_x, to_x, across_block);
+    if (!reach) return;
+    // The posters' open pocket is centred on its placement.
+    Vec3 centre = frame->to_global({(from_x + to_x) / 2, *reach / 2});
+    centre.z = out.placement.location.z;
+    out.placement = Placement{centre, frame->angle_deg};
+    out.shape = OpenPocket{RectangularProfile{to_x - from_x, *reach, radius}, open};
+  }
+
+  // step: the open boundary is the foot of the wall, a linear path from its
+  // placement (else the feature origin) along its direction in the
+  // feature's frame. ISO 14649-10 gives no width: the step removes the
+  // material on the left of the path (+y of the wall, as the posters' Step)
+  // out to the block's edge, and the path must span the block. A wall
+  // boundary (a vee profile: its radius is positive by the schema) shapes
+  // the wall's foot, which the posters' Step cannot hold: an error.
+  void step(const ms::step& s, Feature& out) {
+    if (!s.its_boss.empty()) {
+      error(s, s.its_id, "steps with bosses are not supported");
+      return;
+    }
+    const ms::linear_path* path = s.open_boundary;
+    if (!path || !path->its_direction) {
+      error(s, s.its_id, "step without an open boundary direction");
+      return;
+    }
+    if (const ms::vee_profile* wall = s.wall_boundary) {
+      error(s, s.its_id,
+            fmt::format("wall boundary #{} (angle {:g}, tilt {:g}, radius {:g}) is not supported: the posters' step "
+                        "has a plain vertical wall",
+                        wall->id(), wall->profile_angle, wall->tilt_angle, size(wall->profile_radius)));
+      return;
+    }
+    auto frame = nested(out.placement, path->placement, *path);
+    if (!frame) return;
+    frame->angle_deg += direction_angle(*path->its_direction);
+    const double length = size(path->distance);
+    if (length <= 0) {
+      error(s, s.its_id, fmt::format("step wall length {:g}", length));
+      return;
+    }
+    const auto width = reach_to_block_edge(s, *frame, 0, length, true);
+    if (!width) return;
+    out.placement = *frame;
+    out.shape = Step{length, *width};
   }
 
   int tool(const ms::machining_tool& t) {
@@ -642,6 +888,7 @@ class Describer {
   std::map<const ms::manufacturing_feature*, int> features_;
   std::map<const ms::machining_operation*, int> operations_;
   std::map<const ms::machining_tool*, int> tools_;
+  std::map<const ms::workpiece*, std::optional<Box>> blocks_;
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The adapter: samples/milling/example1.stp read into the typed model,
 // described, and posted.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "machining_schema.h"
 #include "milling_schema.h"
@@ -221,4 +222,247 @@ TEST_CASE("a slot from the typed model: course of travel, U profile, radiused en
   const auto generated = generate(described.project);
   REQUIRE_FALSE(generated.ok());
   CHECK(generated.diagnostics.front().where.name == "MILL SLOT");
+}
+
+TEST_CASE("an open pocket and a step from their Part 21 file: extents run to the block's edge") {
+  const DescribeResult described = testing::describe_sample("milling/open_pocket_step.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const MachiningProject& p = described.project;
+  CHECK(p.security_plane == 50);
+  // The block from the workpiece's BLOCK, not from the features.
+  CHECK(p.workpiece.block_min.x == 0);
+  CHECK(p.workpiece.block_min.z == 0);
+  CHECK(p.workpiece.block_max.x == Approx(120));
+  CHECK(p.workpiece.block_max.y == Approx(80));
+  CHECK(p.workpiece.block_max.z == Approx(30));
+
+  REQUIRE(p.features.size() == 2);
+  const Feature& pocket = p.features[0];
+  CHECK(pocket.source.id == 40);
+  CHECK(pocket.depth == 10);
+  // U base at (60, 50), legs along -Y to the front face: a 40 x 50
+  // rectangle centred at (60, 25), open on its local +y side.
+  CHECK(pocket.placement.location.x == Approx(60));
+  CHECK(pocket.placement.location.y == Approx(25));
+  CHECK(pocket.placement.location.z == 30);
+  CHECK(pocket.placement.angle_deg == Approx(180));
+  const auto& open = std::get<OpenPocket>(pocket.shape);
+  CHECK(open.profile.length == 40);
+  CHECK(open.profile.width == Approx(50));
+  CHECK(open.profile.corner_radius == 6);
+  CHECK(open.open_sides == open_max_y);
+
+  const Feature& step = p.features[1];
+  CHECK(step.source.id == 50);
+  CHECK(step.depth == 8);
+  CHECK(step.placement.location.x == 0);
+  CHECK(step.placement.location.y == 60);
+  CHECK(step.placement.angle_deg == Approx(0));
+  const auto& shape = std::get<Step>(step.shape);
+  CHECK(shape.length == 120);
+  CHECK(shape.width == Approx(20));  // wall at Y 60 to the back face at Y 80
+
+  REQUIRE(p.tools.size() == 2);
+  CHECK(p.tools[0].diameter == 10);
+  CHECK(p.tools[1].diameter == 16);
+  REQUIRE(p.operations.size() == 4);
+  CHECK(p.operations[0].kind == OperationKind::bottom_and_side_rough_milling);
+  CHECK(std::holds_alternative<ContourBidirectional>(p.operations[0].strategy));
+  CHECK(p.operations[0].allowance_side == 0.5);
+  CHECK(std::get<ContourParallel>(p.operations[1].strategy).cutmode == CutMode::climb);
+  CHECK(*std::get<BidirectionalMilling>(p.operations[2].strategy).stepover == Approx(11.2));  // 16 x (1 - 0.3)
+  CHECK(p.operations[3].kind == OperationKind::bottom_and_side_finish_milling);
+
+  const auto generated = generate(p);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const auto report = testing::simulate_milling(p, generated.program);
+  std::string problems;
+  for (const auto& problem : report.problems) problems += problem + "\n";
+  CHECK(problems == "");
+  CHECK(report.cells_checked > 0);
+}
+
+namespace {
+
+// A typed model with a 100 x 60 x 20 block workpiece and one feature in a
+// workingstep, for the open-feature diagnostics. Ids are the model's own.
+std::string id(const meta::Instance& instance) { return fmt::format("#{}", instance.id()); }
+
+struct OpenFeatureModel {
+  meta::Model model;
+  machining_schema::workpiece* workpiece = nullptr;
+  machining_schema::direction* up = nullptr;
+
+  OpenFeatureModel() {
+    namespace ms = machining_schema;
+    up = &model.create<ms::direction>();
+    up->direction_ratios = {0.0, 0.0, 1.0};
+    auto& block = model.create<ms::block>();
+    block.position = placement(0, 0, 0);
+    block.x = 100;
+    block.y = 60;
+    block.z = 20;
+    workpiece = &model.create<ms::workpiece>();
+    workpiece->its_id = "BLOCK";
+    workpiece->its_bounding_geometry = ms::bounding_geometry_select(&block);
+  }
+  machining_schema::axis2_placement_3d* placement(double x, double y, double z) {
+    auto& p = model.create<machining_schema::cartesian_point>();
+    p.coordinates = {x, y, z};
+    auto& a = model.create<machining_schema::axis2_placement_3d>();
+    a.location = &p;
+    a.axis = up;
+    return &a;
+  }
+  machining_schema::toleranced_length_measure* measure(double v) {
+    auto& m = model.create<machining_schema::toleranced_length_measure>();
+    m.theoretical_size = v;
+    return &m;
+  }
+  void place(machining_schema::machining_feature& f, double x, double y, double depth) {
+    f.its_workpiece = workpiece;
+    f.feature_placement = placement(x, y, 20);
+    auto& plane = model.create<machining_schema::plane>();
+    plane.position = placement(0, 0, -depth);
+    f.depth = &plane;
+    auto& project = model.create<machining_schema::project>();
+    project.its_id = "P";
+    auto& plan = model.create<machining_schema::workplan>();
+    project.main_workplan = &plan;
+    auto& ws = model.create<machining_schema::machining_workingstep>();
+    ws.its_feature = &f;
+    ws.its_operation = &model.create<milling_schema::bottom_and_side_finish_milling>();
+    plan.its_elements.push_back(&ws);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a step whose wall stops inside the block is reported by its #id") {
+  namespace ms = machining_schema;
+  OpenFeatureModel m;
+  auto& along_x = m.model.create<ms::direction>();
+  along_x.direction_ratios = {1.0, 0.0, 0.0};
+  auto& path = m.model.create<ms::linear_path>();
+  path.distance = m.measure(70);  // the block is 100 long: the step's end would cut into material
+  path.its_direction = &along_x;
+  auto& step = m.model.create<ms::step>();
+  step.its_id = "SHORT STEP";
+  step.open_boundary = &path;
+  m.place(step, 0, 45, 5);
+  const auto described = describe_project(m.model);
+  REQUIRE_FALSE(described.ok());
+  CHECK(described.diagnostics.at(0).to_string() ==
+        id(step) +
+            " 'SHORT STEP': error: the wall covers 0 to 70 along its direction but the workpiece block spans 0 to 100:"
+            " its open ends would not lie in air");
+
+  path.distance = m.measure(100);  // across the block: 15 mm from Y 45 to the edge at Y 60
+  const auto fixed = describe_project(m.model);
+  for (const auto& d : fixed.diagnostics) INFO(d.to_string());
+  REQUIRE(fixed.ok());
+  CHECK(std::get<Step>(fixed.project.features.at(0).shape).width == Approx(15));
+
+  // A vee wall boundary (a filleted foot) is more than the posters' step holds.
+  auto& vee = m.model.create<ms::vee_profile>();
+  vee.profile_radius = m.measure(2);
+  vee.profile_angle = 90;
+  step.wall_boundary = &vee;
+  const auto shaped = describe_project(m.model);
+  REQUIRE_FALSE(shaped.ok());
+  CHECK(shaped.diagnostics.at(0).to_string() ==
+        id(step) + " 'SHORT STEP': error: wall boundary " + id(vee) +
+            " (angle 90, tilt 0, radius 2) is not supported: the posters' step has a plain vertical wall");
+}
+
+TEST_CASE("open pockets the description cannot hold are reported by their #id") {
+  namespace ms = machining_schema;
+  OpenFeatureModel m;
+  auto& pocket = m.model.create<ms::open_pocket>();
+  pocket.its_id = "OPEN POCKET";
+  pocket.bottom_condition = &m.model.create<ms::planar_pocket_bottom_condition>();
+  auto& arc = m.model.create<ms::partial_circular_profile>();
+  arc.radius = m.measure(15);
+  arc.sweep_angle = 180;
+  pocket.open_boundary = &arc;
+  m.place(pocket, 50, 30, 5);
+  auto described = describe_project(m.model);
+  REQUIRE_FALSE(described.ok());
+  CHECK(described.diagnostics.at(0).to_string() ==
+        id(pocket) + " 'OPEN POCKET': error: open boundary " + id(arc) +
+            ": partial_circular_profile is not supported: the posters' open pocket is a rectangle"
+            " (square_u_profile, rounded_u_profile or linear_profile)");
+
+  // A U profile whose corners disagree with the pocket's orthogonal radius.
+  auto& u = m.model.create<ms::square_u_profile>();
+  u.width = m.measure(20);
+  u.first_radius = m.measure(4);
+  u.second_radius = m.measure(4);
+  u.first_angle = 90;
+  u.second_angle = 90;
+  pocket.open_boundary = &u;
+  pocket.orthogonal_radius = m.measure(5);
+  described = describe_project(m.model);
+  REQUIRE_FALSE(described.ok());
+  CHECK(described.diagnostics.at(0).to_string() ==
+        id(pocket) + " 'OPEN POCKET': error: open boundary " + id(u) +
+            ": the pocket's orthogonal_radius 5 differs from the profile's corner radius 4");
+
+  // Without a block, the pocket's extent is unknown: reported, not guessed.
+  pocket.orthogonal_radius = nullptr;
+  m.workpiece->its_bounding_geometry = {};
+  described = describe_project(m.model);
+  REQUIRE_FALSE(described.ok());
+  CHECK(described.diagnostics.at(0).message.find("needs its workpiece's BLOCK bounding geometry") != std::string::npos);
+}
+
+TEST_CASE("open pocket boundaries: a rounded U in its own placement, a linear profile") {
+  namespace ms = machining_schema;
+  OpenFeatureModel m;
+  auto& pocket = m.model.create<ms::open_pocket>();
+  pocket.its_id = "ROUNDED U";
+  pocket.bottom_condition = &m.model.create<ms::through_pocket_bottom_condition>();
+  auto& u = m.model.create<ms::rounded_u_profile>();
+  u.width = m.measure(20);
+  // The U's base 5 mm in from the feature origin, its legs along -Y.
+  auto& minus_x = m.model.create<ms::direction>();
+  minus_x.direction_ratios = {-1.0, 0.0, 0.0};
+  u.placement = m.placement(0, 5, 0);
+  u.placement->ref_direction = &minus_x;
+  pocket.open_boundary = &u;
+  m.place(pocket, 50, 10, 5);
+  auto described = describe_project(m.model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const Feature& rounded = described.project.features.at(0);
+  CHECK(rounded.placement.location.x == Approx(50));
+  CHECK(rounded.placement.location.y == Approx(7.5));  // base at Y 15, front face at Y 0
+  CHECK(rounded.placement.location.z == 20);
+  CHECK(rounded.placement.angle_deg == Approx(180));
+  const auto& shape = std::get<OpenPocket>(rounded.shape);
+  CHECK(shape.profile.length == 20);
+  CHECK(shape.profile.width == Approx(15));
+  CHECK(shape.profile.corner_radius == 10);  // a half-circle base
+  CHECK(shape.open_sides == open_max_y);
+
+  // One wall along +X at Y 40, across the block: open at both ends and
+  // towards the back face at Y 60.
+  auto& length = m.model.create<ms::numeric_parameter>();
+  length.its_parameter_value = 100;
+  auto& line = m.model.create<ms::linear_profile>();
+  line.profile_length = &length;
+  pocket.open_boundary = &line;
+  pocket.feature_placement = m.placement(0, 40, 20);
+  described = describe_project(m.model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const Feature& wall = described.project.features.at(0);
+  CHECK(wall.placement.location.x == Approx(50));
+  CHECK(wall.placement.location.y == Approx(50));
+  const auto& open = std::get<OpenPocket>(wall.shape);
+  CHECK(open.profile.length == 100);
+  CHECK(open.profile.width == Approx(20));
+  CHECK(open.open_sides == (open_min_x | open_max_x | open_max_y));
 }

@@ -117,3 +117,10 @@ TEST_CASE("LinuxCNC runs explicit toolpaths read from the typed model") {
   REQUIRE(described.ok());
   check_with_linuxcnc("explicit_model", described.project);
 }
+
+TEST_CASE("LinuxCNC runs the open pocket and step read from samples/milling/open_pocket_step.stp") {
+  const auto described = testing::describe_sample("milling/open_pocket_step.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  check_with_linuxcnc("open_pocket_step_sample", described.project);
+}
