@@ -369,8 +369,25 @@ class Describer {
     out.shape = Slot{size(path->distance), size(width), rounded_ends};
   }
 
+  // What the posters' pockets cannot carry (bosses, a slope, a floor
+  // neither flat nor through) is an error, never dropped.
+  std::vector<std::string> unsupported_pocket_parts(const ms::pocket& pocket) {
+    std::vector<std::string> problems;
+    if (!pocket.its_boss.empty()) problems.emplace_back("bosses (islands)");
+    if (pocket.slope && std::abs(*pocket.slope) > 1e-9)
+      problems.push_back(fmt::format("a slope of {:g} degrees", *pocket.slope));
+    if (!as<ms::planar_pocket_bottom_condition>(pocket.bottom_condition) &&
+        !as<ms::through_pocket_bottom_condition>(pocket.bottom_condition))
+      problems.push_back(pocket.bottom_condition
+                             ? fmt::format("a {} (#{})", pocket.bottom_condition->entity_info().name,
+                                           pocket.bottom_condition->id())
+                             : std::string("no bottom condition"));
+    return problems;
+  }
+
   void closed_pocket(const ms::closed_pocket& pocket, Feature& out) {
-    if (!pocket.its_boss.empty()) error(pocket, pocket.its_id, "pockets with bosses (islands) are not supported");
+    if (const auto problems = unsupported_pocket_parts(pocket); !problems.empty())
+      error(pocket, pocket.its_id, fmt::format("closed pocket with {} is not supported", fmt::join(problems, ", ")));
     const double corner = size(pocket.orthogonal_radius);
     ClosedPocket shape;
     shape.planar_radius = size(pocket.planar_radius);
@@ -508,22 +525,11 @@ class Describer {
     return ahead;
   }
 
-  // What the posters' open pocket cannot carry (bosses, slope, shaped walls,
-  // a floor fillet, a floor neither flat nor through) is an error, never
-  // dropped.
+  // The open pocket also cannot carry shaped walls or a floor fillet.
   bool plain_open_pocket(const ms::open_pocket& pocket) {
-    std::vector<std::string> problems;
-    if (!pocket.its_boss.empty()) problems.emplace_back("bosses (islands)");
-    if (pocket.slope && std::abs(*pocket.slope) > 1e-9)
-      problems.push_back(fmt::format("a slope of {:g} degrees", *pocket.slope));
+    std::vector<std::string> problems = unsupported_pocket_parts(pocket);
     if (pocket.wall_boundary) problems.push_back(fmt::format("a wall_boundary (#{})", pocket.wall_boundary->id()));
     if (size(pocket.planar_radius) > 0) problems.emplace_back("a planar_radius (floor fillet)");
-    if (!as<ms::planar_pocket_bottom_condition>(pocket.bottom_condition) &&
-        !as<ms::through_pocket_bottom_condition>(pocket.bottom_condition))
-      problems.push_back(pocket.bottom_condition
-                             ? fmt::format("a {} (#{})", pocket.bottom_condition->entity_info().name,
-                                           pocket.bottom_condition->id())
-                             : std::string("no bottom condition"));
     if (problems.empty()) return true;
     error(pocket, pocket.its_id, fmt::format("open pocket with {} is not supported", fmt::join(problems, ", ")));
     return false;

@@ -403,11 +403,16 @@ meta::Model explicit_toolpath_model(std::size_t points) {
   return model;
 }
 
-DescribeResult describe_sample(const std::string& relative_path) {
+namespace {
+
+const meta::Registry& iso14649_registry() {
   static const meta::Registry registry{&machining_schema::meta_schema, &milling_schema::meta_schema,
                                        &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,
                                        &turning_machine_tool_schema::meta_schema};
-  auto read = exchange::read_model_file(std::string(STEPNC_SOURCE_DIR) + "/samples/" + relative_path, registry);
+  return registry;
+}
+
+DescribeResult describe_read(exchange::ModelReadResult read) {
   if (!read.ok()) {
     DescribeResult failed;
     Diagnostic d;
@@ -416,6 +421,20 @@ DescribeResult describe_sample(const std::string& relative_path) {
     return failed;
   }
   return describe_project(read.file->model);
+}
+
+}  // namespace
+
+DescribeResult describe_sample(const std::string& relative_path) {
+  return describe_read(exchange::read_model_file(sample_path(relative_path), iso14649_registry()));
+}
+
+DescribeResult describe_text(const std::string& part21_text) {
+  return describe_read(exchange::read_model_text(part21_text, "edited.stp", iso14649_registry()));
+}
+
+std::string sample_path(const std::string& relative_path) {
+  return std::string(STEPNC_SOURCE_DIR) + "/samples/" + relative_path;
 }
 
 }  // namespace stepnc::post::testing

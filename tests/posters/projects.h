@@ -32,5 +32,8 @@ meta::Model explicit_toolpath_model(std::size_t points);
 // A Part 21 file under samples/, read into the typed ISO 14649 model and
 // described by the adapter. Empty project and a diagnostic if unreadable.
 DescribeResult describe_sample(const std::string& relative_path);
+// The same for Part 21 text (e.g. a sample edited by a test).
+DescribeResult describe_text(const std::string& part21_text);
+std::string sample_path(const std::string& relative_path);
 
 }  // namespace stepnc::post::testing

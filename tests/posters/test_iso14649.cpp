@@ -1,6 +1,7 @@
 // The adapter: samples/milling/example1.stp read into the typed model,
 // described, and posted.
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <fmt/format.h>
 
 #include "machining_schema.h"
@@ -465,4 +466,33 @@ TEST_CASE("open pocket boundaries: a rounded U in its own placement, a linear pr
   CHECK(open.profile.length == 100);
   CHECK(open.profile.width == Approx(20));
   CHECK(open.open_sides == (open_min_x | open_max_x | open_max_y));
+}
+
+TEST_CASE("closed pocket parts the posters cannot machine are errors naming the pocket") {
+  std::ifstream in(testing::sample_path("milling/example1.stp"));
+  const std::string original((std::istreambuf_iterator<char>(in)), {});
+  const std::string pocket = "#18=CLOSED_POCKET('POCKET1',#4,(#22,#23),#84,#65,(),$,#27,#35,#37,#28);";
+  REQUIRE(original.find(pocket) != std::string::npos);
+
+  auto with_pocket = [&](const std::string& replacement) {
+    std::string text = original;
+    text.replace(text.find(pocket), pocket.size(), replacement);
+    return testing::describe_text(text);
+  };
+  auto messages = [](const DescribeResult& described) {
+    std::string out;
+    for (const auto& d : described.diagnostics) out += d.to_string() + "\n";
+    return out;
+  };
+
+  const DescribeResult sloped = with_pocket("#18=CLOSED_POCKET('POCKET1',#4,(#22,#23),#84,#65,(),5.,#27,#35,#37,#28);");
+  CHECK_FALSE(sloped.ok());
+  CHECK_THAT(messages(sloped), Catch::Contains("#18 'POCKET1': error: closed pocket with a slope of 5 degrees is not "
+                                               "supported"));
+
+  const DescribeResult through = with_pocket(
+      "#18=CLOSED_POCKET('POCKET1',#4,(#22,#23),#84,#65,(),$,#900,#35,#37,#28);\n"
+      "#900=THROUGH_POCKET_BOTTOM_CONDITION();");
+  for (const auto& d : through.diagnostics) INFO(d.to_string());
+  CHECK(through.ok());
 }
