@@ -391,13 +391,23 @@ class Filler {
       kept = static_cast<std::size_t>(type.upper);
       target.resize(kept);
     }
+    // Elements are addressed directly, and numbers (the bulk of most
+    // files: coordinates) are stored without going through read().
+    const AggregateOps& ops = *type.aggregate;
+    auto* const elements = static_cast<std::byte*>(ops.data(target.slot()));
+    const TypeInfo& element_type = *type.underlying;
+    const TypeKind element_kind = element_type.resolved().kind;
+    const bool numbers = element_kind == TypeKind::Real || element_kind == TypeKind::Number;
     std::size_t i = 0;
     for (p21::Value element : v.children()) {
       if (i == kept) break;
-      if (element.is(p21::ParamKind::null)) {
+      void* slot = elements + i * ops.element_size;
+      if (numbers && (element.is(p21::ParamKind::real) || element.is(p21::ParamKind::integer))) {
+        *static_cast<double*>(slot) = element.number();
+      } else if (element.is(p21::ParamKind::null)) {
         fail(element, "`$` inside an aggregate");
       } else {
-        read(target.element(i), element);
+        read(ValueRef(element_type, slot), element);
       }
       ++i;
     }

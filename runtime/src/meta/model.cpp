@@ -53,7 +53,8 @@ void* Model::allocate(std::size_t size, std::size_t alignment) {
   if (!fits()) {
     const std::size_t previous = blocks_.empty() ? kFirstBlock / 2 : blocks_.back().size;
     const std::size_t block_size = std::max(std::min(previous * 2, kLargestBlock), size + alignment);
-    blocks_.push_back({std::make_unique<std::byte[]>(block_size), block_size});
+    // Not zeroed: every instance is constructed in place before use.
+    blocks_.push_back({std::make_unique_for_overwrite<std::byte[]>(block_size), block_size});
     cursor_ = blocks_.back().bytes.get();
     remaining_ = block_size;
     arena_bytes_ += block_size;

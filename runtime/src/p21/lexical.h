@@ -73,10 +73,12 @@ inline const char* find_statement_stop(const char* p, const char* end) {
 
 // Parses the digits of an instance id at p (advancing p past all digits).
 // Returns 0 (never a valid id) when there are none or the value overflows.
-inline std::uint64_t parse_id(const char*& p, const char* end) {
+inline std::uint64_t parse_id(const char*& cursor, const char* end) {
   std::uint64_t id = 0;
-  const char* start = p;
+  const char* const start = cursor;
+  const char* p = cursor;  // a local copy: `cursor` may be a member (see RecordParser::keyword)
   while (p < end && is_digit(*p)) id = id * 10 + static_cast<unsigned>(*p++ - '0');
+  cursor = p;
   // Up to 19 digits always fit in 64 bits; longer spellings are checked.
   if (p - start > 19) {
     const char* first = start;

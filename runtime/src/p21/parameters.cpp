@@ -26,16 +26,6 @@ std::string_view to_string(ParamKind kind) {
 
 // ---------------------------------------------------------------- Value
 
-const ParamNode& Value::node() const { return tree_->nodes_[index_]; }
-ParamKind Value::kind() const { return node().kind; }
-std::int64_t Value::integer() const { return node().value.integer; }
-double Value::real() const { return node().value.real; }
-double Value::number() const {
-  const ParamNode& n = node();
-  return n.kind == ParamKind::integer ? static_cast<double>(n.value.integer) : n.value.real;
-}
-std::uint64_t Value::reference() const { return node().value.reference; }
-Logical Value::logical() const { return node().value.logical; }
 
 std::string_view Value::source() const {
   const ParamNode& n = node();
@@ -57,13 +47,6 @@ std::string_view Value::text() const {
   }
 }
 
-std::uint64_t Value::offset() const { return tree_->base_offset_ + node().source_offset; }
-
-Value::Children Value::children() const {
-  const ParamNode& n = node();
-  if (n.kind != ParamKind::list && n.kind != ParamKind::typed) return Children(*tree_, index_, index_);
-  return Children(*tree_, index_ + 1, n.end);
-}
 
 std::size_t Value::size() const {
   std::size_t count = 0;
@@ -71,10 +54,6 @@ std::size_t Value::size() const {
   return count;
 }
 
-Value::Children::iterator& Value::Children::iterator::operator++() {
-  index_ = tree_->nodes()[index_].end;
-  return *this;
-}
 
 std::optional<Value> Value::Children::at(std::size_t i) const {
   for (Value child : *this) {
@@ -181,13 +160,27 @@ class RecordParser {
     node.source_length = offset_of(p_) - node.source_offset;
   }
 
+  // The scanning loops below work on a local copy of the cursor: through
+  // the member, every byte read (a char, which may alias anything, the
+  // cursor included) would make the compiler store and reload the cursor
+  // once per byte.
   std::string_view keyword() {
     const char* start = p_;
-    if (detail::is_keyword_start(*p_)) {
-      ++p_;
-      while (detail::is_keyword_char(*p_)) ++p_;
+    const char* p = p_;
+    if (detail::is_keyword_start(*p)) {
+      ++p;
+      while (detail::is_keyword_char(*p)) ++p;
     }
-    return {start, static_cast<std::size_t>(p_ - start)};
+    p_ = p;
+    return {start, static_cast<std::size_t>(p - start)};
+  }
+
+  // Appends the decimal digits at the cursor to `value`.
+  std::uint64_t accumulate_digits(std::uint64_t value) {
+    const char* p = p_;
+    while (detail::is_digit(*p)) value = value * 10 + static_cast<unsigned>(*p++ - '0');
+    p_ = p;
+    return value;
   }
 
   bool parse_part() {
@@ -279,7 +272,7 @@ class RecordParser {
     if (*p_ == '+' || *p_ == '-') ++p_;
     std::uint64_t mantissa = 0;
     const char* digits = p_;
-    while (detail::is_digit(*p_)) mantissa = mantissa * 10 + static_cast<unsigned>(*p_++ - '0');
+    mantissa = accumulate_digits(mantissa);
     if (p_ == digits) {
       fail(start, "expected digits in number");
       return false;
@@ -289,7 +282,7 @@ class RecordParser {
     if (*p_ == '.') {
       is_real = true;
       const char* fraction = ++p_;
-      while (detail::is_digit(*p_)) mantissa = mantissa * 10 + static_cast<unsigned>(*p_++ - '0');
+      mantissa = accumulate_digits(mantissa);
       fraction_digits = static_cast<std::size_t>(p_ - fraction);
     }
     const std::size_t mantissa_digits = static_cast<std::size_t>(p_ - digits) - (is_real ? 1 : 0);

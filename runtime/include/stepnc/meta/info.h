@@ -95,6 +95,11 @@ struct AggregateOps {
   std::size_t (*size)(const void* slot);
   void* (*element)(void* slot, std::size_t index);
   bool (*resize)(void* slot, std::size_t size);  // false: beyond an inline capacity
+  // The elements are contiguous (std::vector and InlineVector), so readers
+  // can walk them without a call per element: element i is at
+  // data(slot) + i * element_size.
+  void* (*data)(void* slot);
+  std::size_t element_size;
 };
 struct ReferenceOps {
   Instance* (*get)(const void* slot);
@@ -282,6 +287,8 @@ inline constexpr AggregateOps aggregate_ops{
       c.resize(n);
       return true;
     },
+    .data = [](void* slot) -> void* { return static_cast<Container*>(slot)->data(); },
+    .element_size = sizeof(typename Container::value_type),
 };
 
 template <class Entity>

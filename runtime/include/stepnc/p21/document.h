@@ -165,6 +165,9 @@ struct ReadResult {
 };
 
 // Reads and indexes a file. Errors (I/O included) come back as diagnostics.
+// Regular files of 64 KiB and more are mapped read-only rather than copied
+// (see Document::release_text_before); the file must not be truncated
+// while the Document lives.
 ReadResult read_file(const std::filesystem::path& path, const ReadOptions& options = {});
 // Same, from text already in memory; `file_name` is used in diagnostics.
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options = {});

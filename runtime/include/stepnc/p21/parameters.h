@@ -192,4 +192,26 @@ class ParamTree {
   std::string scratch_;  // decoded strings that differ from their spelling
 };
 
+// The accessors readers call per value, inline: they are a load or two.
+inline const ParamNode& Value::node() const { return tree_->nodes_[index_]; }
+inline ParamKind Value::kind() const { return node().kind; }
+inline std::int64_t Value::integer() const { return node().value.integer; }
+inline double Value::real() const { return node().value.real; }
+inline double Value::number() const {
+  const ParamNode& n = node();
+  return n.kind == ParamKind::integer ? static_cast<double>(n.value.integer) : n.value.real;
+}
+inline std::uint64_t Value::reference() const { return node().value.reference; }
+inline Logical Value::logical() const { return node().value.logical; }
+inline std::uint64_t Value::offset() const { return tree_->base_offset_ + node().source_offset; }
+inline Value::Children Value::children() const {
+  const ParamNode& n = node();
+  if (n.kind != ParamKind::list && n.kind != ParamKind::typed) return Children(*tree_, index_, index_);
+  return Children(*tree_, index_ + 1, n.end);
+}
+inline Value::Children::iterator& Value::Children::iterator::operator++() {
+  index_ = tree_->nodes()[index_].end;
+  return *this;
+}
+
 }  // namespace stepnc::p21
