@@ -3,17 +3,11 @@
 #include <fmt/format.h>
 
 #include "machining_schema.h"
-#include "milling_machine_tool_schema.h"
-#include "milling_schema.h"
-#include "turning_machine_tool_schema.h"
-#include "turning_schema.h"
 
 namespace stepnc::cli {
 
 const meta::Registry& iso14649_registry() {
-  static const meta::Registry registry{&machining_schema::meta_schema, &milling_schema::meta_schema,
-                                       &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,
-                                       &turning_machine_tool_schema::meta_schema};
+  static const meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
   return registry;
 }
 

@@ -13,6 +13,13 @@
 #include "turning_schema.h"
 #include "turning_machine_tool_schema.h"
 
+// The schemas generated together with this one (SchemaInfo::schema_set).
+namespace machining_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+
 namespace machining_schema {
 
 // Tables behind the TypeInfo, EntityInfo and SchemaInfo definitions below.
@@ -6472,6 +6479,13 @@ constexpr const EntityInfo* schema_entities[] = {
     &machining_schema::bezier_surface_and_rational_b_spline_surface::meta_entity,
     &machining_schema::loop_and_path::meta_entity,
 };
+constexpr const stepnc::meta::SchemaInfo* schema_set[] = {
+    &::machining_schema::meta_schema,
+    &::milling_schema::meta_schema,
+    &::milling_machine_tool_schema::meta_schema,
+    &::turning_schema::meta_schema,
+    &::turning_machine_tool_schema::meta_schema,
+};
 constexpr const TypeInfo* schema_types[] = {
     &machining_schema::type_info::identifier,
     &machining_schema::type_info::label,
@@ -6540,6 +6554,7 @@ constinit const stepnc::meta::SchemaInfo meta_schema{
     .name = "machining_schema",
     .entities = meta_tables::schema_entities,
     .types = meta_tables::schema_types,
+    .schema_set = meta_tables::schema_set,
 };
 
 namespace type_info {

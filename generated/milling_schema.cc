@@ -7,6 +7,13 @@
 
 #include "stepnc/meta/model.h"
 
+// The schemas generated together with this one (SchemaInfo::schema_set).
+namespace machining_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+
 namespace milling_schema {
 
 // Tables behind the TypeInfo, EntityInfo and SchemaInfo definitions below.
@@ -2036,6 +2043,13 @@ constexpr const EntityInfo* schema_entities[] = {
     &milling_schema::tapping::meta_entity,
     &milling_schema::thread_drilling::meta_entity,
 };
+constexpr const stepnc::meta::SchemaInfo* schema_set[] = {
+    &::machining_schema::meta_schema,
+    &::milling_schema::meta_schema,
+    &::milling_machine_tool_schema::meta_schema,
+    &::turning_schema::meta_schema,
+    &::turning_machine_tool_schema::meta_schema,
+};
 constexpr const TypeInfo* schema_types[] = {
     &milling_schema::type_info::pathmode_type,
     &milling_schema::type_info::cutmode_type,
@@ -2053,6 +2067,7 @@ constinit const stepnc::meta::SchemaInfo meta_schema{
     .name = "milling_schema",
     .entities = meta_tables::schema_entities,
     .types = meta_tables::schema_types,
+    .schema_set = meta_tables::schema_set,
 };
 
 namespace type_info {

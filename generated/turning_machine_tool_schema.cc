@@ -7,6 +7,13 @@
 
 #include "stepnc/meta/model.h"
 
+// The schemas generated together with this one (SchemaInfo::schema_set).
+namespace machining_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+
 namespace turning_machine_tool_schema {
 
 // Tables behind the TypeInfo, EntityInfo and SchemaInfo definitions below.
@@ -325,6 +332,13 @@ constexpr const EntityInfo* schema_entities[] = {
     &turning_machine_tool_schema::knurling_tool::meta_entity,
     &turning_machine_tool_schema::user_defined_turning_tool::meta_entity,
 };
+constexpr const stepnc::meta::SchemaInfo* schema_set[] = {
+    &::machining_schema::meta_schema,
+    &::milling_schema::meta_schema,
+    &::milling_machine_tool_schema::meta_schema,
+    &::turning_schema::meta_schema,
+    &::turning_machine_tool_schema::meta_schema,
+};
 constexpr const TypeInfo* schema_types[] = {
     &turning_machine_tool_schema::type_info::hand_of_tool_type,
     &turning_machine_tool_schema::type_info::knurl_pattern,
@@ -340,6 +354,7 @@ constinit const stepnc::meta::SchemaInfo meta_schema{
     .name = "turning_machine_tool_schema",
     .entities = meta_tables::schema_entities,
     .types = meta_tables::schema_types,
+    .schema_set = meta_tables::schema_set,
 };
 
 namespace type_info {

@@ -7,6 +7,13 @@
 
 #include "stepnc/meta/model.h"
 
+// The schemas generated together with this one (SchemaInfo::schema_set).
+namespace machining_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace milling_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+namespace turning_machine_tool_schema { extern const stepnc::meta::SchemaInfo meta_schema; }
+
 namespace turning_schema {
 
 // Tables behind the TypeInfo, EntityInfo and SchemaInfo definitions below.
@@ -1616,6 +1623,13 @@ constexpr const EntityInfo* schema_entities[] = {
     &turning_schema::threading_finish::meta_entity,
     &turning_schema::knurling::meta_entity,
 };
+constexpr const stepnc::meta::SchemaInfo* schema_set[] = {
+    &::machining_schema::meta_schema,
+    &::milling_schema::meta_schema,
+    &::milling_machine_tool_schema::meta_schema,
+    &::turning_schema::meta_schema,
+    &::turning_machine_tool_schema::meta_schema,
+};
 constexpr const TypeInfo* schema_types[] = {
     &turning_schema::type_info::speed_select,
     &turning_schema::type_info::coolant_select,
@@ -1634,6 +1648,7 @@ constinit const stepnc::meta::SchemaInfo meta_schema{
     .name = "turning_schema",
     .entities = meta_tables::schema_entities,
     .types = meta_tables::schema_types,
+    .schema_set = meta_tables::schema_set,
 };
 
 namespace type_info {

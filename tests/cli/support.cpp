@@ -4,18 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include "machining_schema.h"
-#include "milling_machine_tool_schema.h"
-#include "milling_schema.h"
 #include "stepnc/meta/io.h"
-#include "turning_machine_tool_schema.h"
-#include "turning_schema.h"
 
 namespace stepnc_test {
 
 const stepnc::meta::Registry& registry() {
-  static const stepnc::meta::Registry schemas{&machining_schema::meta_schema, &milling_schema::meta_schema,
-                                              &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,
-                                              &turning_machine_tool_schema::meta_schema};
+  static const stepnc::meta::Registry schemas = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
   return schemas;
 }
 

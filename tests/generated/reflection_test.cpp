@@ -119,6 +119,18 @@ TEST_CASE("the registry finds names case-insensitively", "[generated][reflection
   CHECK(registry.find_entity("no_such_entity") == nullptr);
 }
 
+TEST_CASE("a registry made from any schema of the set knows the whole set", "[generated][reflection]") {
+  for (const meta::SchemaInfo* start : {&machining_schema::meta_schema, &milling_machine_tool_schema::meta_schema}) {
+    const meta::Registry registry = meta::Registry::of_set(*start);
+    std::vector<std::string_view> names;
+    for (const meta::SchemaInfo* schema : registry.schemas()) names.push_back(schema->name);
+    CHECK(names == std::vector<std::string_view>{"machining_schema", "milling_schema", "milling_machine_tool_schema",
+                                                 "turning_schema", "turning_machine_tool_schema"});
+    CHECK(registry.find_entity("general_turning_tool") != nullptr);  // Part 121
+    CHECK(registry.find_entity("closed_pocket") == &machining_schema::closed_pocket::meta_entity);
+  }
+}
+
 TEST_CASE("walking the milling_cutting_tool hierarchy", "[generated][reflection]") {
   const meta::Registry& registry = iso14649_registry();
   const meta::EntityInfo* tool = registry.find_entity("milling_cutting_tool");

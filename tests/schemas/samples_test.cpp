@@ -12,21 +12,15 @@
 #include <vector>
 
 #include "machining_schema.h"
-#include "milling_machine_tool_schema.h"
-#include "milling_schema.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/validate.h"
-#include "turning_machine_tool_schema.h"
-#include "turning_schema.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 const stepnc::meta::Registry& registry() {
-  static const stepnc::meta::Registry schemas{&machining_schema::meta_schema, &milling_schema::meta_schema,
-                                              &milling_machine_tool_schema::meta_schema, &turning_schema::meta_schema,
-                                              &turning_machine_tool_schema::meta_schema};
+  static const stepnc::meta::Registry schemas = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
   return schemas;
 }
 

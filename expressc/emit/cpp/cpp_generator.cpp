@@ -883,6 +883,11 @@ std::string SchemaEmitter::source() {
   const auto dependencies = source_dependencies();
   if (!dependencies.empty()) p.print("\n// Schemas declaring subtypes or inverse owners of entities here.\n");
   for (const Schema* s : dependencies) p.print("#include \"$name$.h\"\n", {{"name", s->name}});
+  p.print("\n// The schemas generated together with this one (SchemaInfo::schema_set).\n");
+  for (const auto& s : model_.schemas) {
+    p.print("namespace $name$ { extern const stepnc::meta::SchemaInfo meta_schema; }\n",
+            {{"name", ns(s.get())}});
+  }
   p.print(
       "\nnamespace $ns$ {\n"
       "\n"
@@ -903,6 +908,9 @@ std::string SchemaEmitter::source() {
   for (const Entity* e : entities) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
   for (const Combination& c : combinations) p.print("    &$e$::meta_entity,\n", {{"e", qualified(&schema_, c.name)}});
   p.print("};\n");
+  p.print("constexpr const stepnc::meta::SchemaInfo* schema_set[] = {\n");
+  for (const auto& s : model_.schemas) p.print("    &::$name$::meta_schema,\n", {{"name", ns(s.get())}});
+  p.print("};\n");
   if (!schema_.types.empty()) {
     p.print("constexpr const TypeInfo* schema_types[] = {\n");
     for (const auto& type : schema_.types)
@@ -921,6 +929,7 @@ std::string SchemaEmitter::source() {
       "    .entities = meta_tables::schema_entities,\n",
       {{"schema", schema_.name}});
   if (!schema_.types.empty()) p.print("    .types = meta_tables::schema_types,\n");
+  p.print("    .schema_set = meta_tables::schema_set,\n");
   p.print("};\n\nnamespace type_info {\n\n$text$\n}  // namespace type_info\n", {{"text", type_tables}});
 
   for (const EntityTables& entity_tables : classes) print_entity_info(p, entity_tables);

@@ -22,6 +22,13 @@ Registry::Registry(std::initializer_list<const SchemaInfo*> schemas) {
   for (const SchemaInfo* s : schemas) add(*s);
 }
 
+Registry Registry::of_set(const SchemaInfo& schema) {
+  Registry registry;
+  if (schema.schema_set.empty()) registry.add(schema);
+  for (const SchemaInfo* member : schema.schema_set) registry.add(*member);
+  return registry;
+}
+
 void Registry::insert(std::vector<Entry>& table, std::string_view name, const void* info) {
   auto at = std::lower_bound(table.begin(), table.end(), name,
                              [](const Entry& e, std::string_view n) { return less_names(e.name, n); });

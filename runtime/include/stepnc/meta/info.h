@@ -225,6 +225,10 @@ struct SchemaInfo {
   std::string_view name{};
   std::span<const EntityInfo* const> entities{};  // declared here, in source order, then complex combinations
   std::span<const TypeInfo* const> types{};       // named types declared here, in source order
+  // Every schema generated together with this one, itself included, in
+  // generation order: the closed set whose subtype tables refer to each
+  // other, and so what a Registry needs (Registry::of_set).
+  std::span<const SchemaInfo* const> schema_set{};
 };
 
 // ---------------------------------------------------------------- casts

@@ -1,7 +1,7 @@
 // Registry: finds entities and named types by name across the schemas a
 // program links, case-insensitively (Part 21 writes names in upper case).
 //
-//   meta::Registry registry({&machining_schema::meta_schema, &milling_schema::meta_schema});
+//   meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
 //   const meta::EntityInfo* e = registry.find_entity("CLOSED_POCKET");
 //   meta::Instance* pocket = e->create(model, 0);
 #pragma once
@@ -19,6 +19,9 @@ class Registry {
  public:
   Registry() = default;
   Registry(std::initializer_list<const SchemaInfo*> schemas);
+  // Every schema generated together with `schema` (SchemaInfo::schema_set),
+  // e.g. Registry::of_set(machining_schema::meta_schema) for all of ISO 14649.
+  static Registry of_set(const SchemaInfo& schema);
 
   // Adds a schema; entity and type names of later schemas do not shadow
   // earlier ones (the first registration wins).
