@@ -1,5 +1,7 @@
 // Reading Part 21 files into the typed model, and writing them back.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
+#include <fstream>
 
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
@@ -162,4 +164,27 @@ TEST_CASE("writing a file is atomic: a failed write leaves nothing behind", "[ex
   auto again = stepnc::exchange::read_model_file(out, registry());
   CHECK(again.ok());
   std::filesystem::remove(out);
+}
+
+TEST_CASE("a file large enough to be mapped reads exactly like the same text in memory", "[exchange]") {
+  // Files of 64 KiB and more are memory-mapped and released page by page
+  // while reading; the result must not depend on that.
+  std::string data;
+  for (int i = 1; i <= 4000; ++i) {
+    data += fmt::format("#{0}=CARTESIAN_POINT('P{0}',({0}.5,-2.25,1.E-3));\n", i);
+  }
+  data += "#5000=POLYLINE('path',(#1,#2,#3999,#4000));\n";
+  const std::string text = file_with(data);
+  REQUIRE(text.size() > 128 * 1024);
+  const auto path = std::filesystem::temp_directory_path() / "stepnc-mapped-read-test.stp";
+  { std::ofstream(path, std::ios::binary) << text; }
+
+  auto mapped = stepnc::exchange::read_model_file(path, registry());
+  auto in_memory = read_model_text(text, path.string(), registry());
+  REQUIRE(mapped.ok());
+  REQUIRE(in_memory.ok());
+  CHECK(mapped.file->model.size() == 4001);
+  CHECK(stepnc::exchange::to_text(*mapped.file) == stepnc::exchange::to_text(*in_memory.file));
+  CHECK(stepnc_test::dump_all(mapped.file->model) == stepnc_test::dump_all(in_memory.file->model));
+  std::filesystem::remove(path);
 }
