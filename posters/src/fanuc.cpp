@@ -93,19 +93,7 @@ class FanucPrinter final : public GcodePrinter {
   }
   void drill_cycle(const DrillCycle& c) override {
     start_line();
-    word("G99");
-    switch (c.kind) {
-      case DrillKind::drill: word(c.dwell > 0 ? "G82" : "G81"); break;
-      case DrillKind::peck: word("G83"); break;
-      case DrillKind::tap: word("G84"); break;
-      case DrillKind::bore_feed_out: word(c.dwell > 0 ? "G89" : "G85"); break;
-      case DrillKind::bore_spindle_stop: word("G86"); break;
-    }
-    word('X', c.x);
-    word('Y', c.y);
-    word('Z', c.bottom);
-    word('R', c.r);
-    if (c.kind == DrillKind::peck) word('Q', c.peck);
+    drill_cycle_words(c);
     if (c.dwell > 0) word(milliseconds(c.dwell));
     word('F', c.feed);
     finish_line();

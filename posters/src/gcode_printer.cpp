@@ -237,4 +237,20 @@ void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
   known_ = true;
 }
 
+void GcodePrinter::drill_cycle_words(const DrillCycle& c) {
+  word("G99");
+  switch (c.kind) {
+    case DrillKind::drill: word(c.dwell > 0 ? "G82" : "G81"); break;
+    case DrillKind::peck: word("G83"); break;
+    case DrillKind::tap: word("G84"); break;
+    case DrillKind::bore_feed_out: word(c.dwell > 0 ? "G89" : "G85"); break;
+    case DrillKind::bore_spindle_stop: word("G86"); break;
+  }
+  word('X', c.x);
+  word('Y', c.y);
+  word('Z', c.bottom);
+  word('R', c.r);
+  if (c.kind == DrillKind::peck) word('Q', c.peck);
+}
+
 }  // namespace stepnc::post::detail

@@ -41,6 +41,10 @@ class GcodePrinter {
   virtual void spindle_on(const SpindleOn& s) = 0;
   virtual void feed_rate(const FeedRate& f) = 0;
   virtual void drill_cycle(const DrillCycle& c) = 0;
+  // The canned drilling cycle words both ISO 6983 dialects share: G99
+  // (return to R), the cycle's G code, X Y Z R, and Q for pecks. Dialects
+  // add their own dwell word and the feed.
+  void drill_cycle_words(const DrillCycle& c);
   virtual void tolerance(const Tolerance&) {}
   virtual void dwell(const Dwell& d) = 0;
   // Print the cycle and return true, or return false to print its motion.
