@@ -24,49 +24,16 @@
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/writer.h"
+#include "support.h"
 
 namespace p21 = stepnc::p21;
+using stepnc_bench::peak_rss;
+using stepnc_bench::read_whole;
+using stepnc_bench::reset_peak_rss;
 
 namespace {
 
 constexpr int kRuns = 3;
-
-// Best of kRuns times, in seconds of CPU time of this (single-threaded)
-// process: on a shared machine, wall time also counts the time other
-// processes hold the core.
-double best_time(const std::function<void()>& body) {
-  double best = 1e300;
-  for (int i = 0; i < kRuns; ++i) {
-    const std::clock_t start = std::clock();
-    body();
-    best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
-  }
-  return best;
-}
-
-void reset_peak_rss() { std::ofstream("/proc/self/clear_refs") << "5"; }
-
-// Peak resident set size since the last reset (VmHWM), in bytes.
-double peak_rss() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) * 1024;
-  return 0;
-}
-
-// The trivial baseline: the whole file into memory, as fast as stdio goes.
-std::string_view read_whole(const std::string& path, std::unique_ptr<char[]>& storage) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return {};
-  std::fseek(f, 0, SEEK_END);
-  const auto size = static_cast<std::size_t>(std::max(0L, std::ftell(f)));
-  std::rewind(f);
-  storage = std::make_unique_for_overwrite<char[]>(size);
-  const std::size_t got = std::fread(storage.get(), 1, size, f);
-  std::fclose(f);
-  return {storage.get(), got};
-}
 
 std::size_t file_size(const std::string& path) {
   std::error_code ignored;
@@ -157,21 +124,15 @@ void write_values(const Values& values, p21::Writer& w) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string path = argc > 1 ? argv[1] : "p21_bench_big.stp";
-  if (argc <= 1) {
-    const std::string command = fmt::format("python3 '{}/bench/gen_big_p21.py' '{}'", STEPNC_SHARED_DIR, path);
-    if (std::system(command.c_str()) != 0) {
-      fmt::print(stderr, "cannot generate {} with: {}\n", path, command);
-      return 1;
-    }
-  }
+  const std::string path = stepnc_bench::big_input(argc, argv, STEPNC_SHARED_DIR);
+  if (path.empty()) return 1;
   const std::string out_path = path + ".out.stp";
 
   // Baseline: read the file and count its newlines.
   std::size_t bytes = 0;
   std::size_t lines = 0;
   reset_peak_rss();
-  const double t_baseline = best_time([&] {
+  const double t_baseline = stepnc_bench::best_time(kRuns, [&] {
     std::unique_ptr<char[]> storage;
     const std::string_view text = read_whole(path, storage);
     bytes = text.size();
@@ -196,14 +157,14 @@ int main(int argc, char** argv) {
     records = result.document->records().size();
   };
   reset_peak_rss();
-  const double t_index = best_time([&] { read_phase(false); });
+  const double t_index = stepnc_bench::best_time(kRuns, [&] { read_phase(false); });
   const double rss_index = peak_rss();
   reset_peak_rss();
-  const double t_full = best_time([&] { read_phase(true); });
+  const double t_full = stepnc_bench::best_time(kRuns, [&] { read_phase(true); });
   const double rss_full = peak_rss();
 
   reset_peak_rss();
-  const double t_stream = best_time([&] {
+  const double t_stream = stepnc_bench::best_time(kRuns, [&] {
     ParseAll handler;
     const p21::Diagnostics diagnostics = p21::stream_file(path, {}, handler);
     if (diagnostics.has_errors() || handler.records != records) std::exit(1);
@@ -212,18 +173,18 @@ int main(int argc, char** argv) {
 
   p21::ReadResult kept = p21::read_file(path);
   const p21::Document& doc = *kept.document;
-  const double t_visit = best_time([&] {
+  const double t_visit = stepnc_bench::best_time(kRuns, [&] {
     p21::ParamTree tree;
     for (const p21::RecordEntry& r : doc.records()) doc.parse(r, tree);
   });
 
-  const double t_round_trip = best_time([&] {
+  const double t_round_trip = stepnc_bench::best_time(kRuns, [&] {
     if (auto error = p21::write_file(doc, out_path)) fmt::print(stderr, "{}\n", *error);
   });
   const double round_trip_mb = static_cast<double>(file_size(out_path)) / 1e6;
 
   const Values values = extract(doc);
-  const double t_tokens = best_time([&] {
+  const double t_tokens = stepnc_bench::best_time(kRuns, [&] {
     p21::AtomicFile file;
     if (auto error = file.open(out_path)) fmt::print(stderr, "{}\n", *error);
     p21::Writer writer(file);

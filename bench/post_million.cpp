@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 
+#include "support.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/generate.h"
 
@@ -62,31 +63,20 @@ MachiningProject million_point_project() {
   return p;
 }
 
-template <class F>
-double best_of(int runs, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return best;
-}
-
 }  // namespace
 
 int main() {
   const MachiningProject project = million_point_project();
   std::size_t sink = 0;
 
-  const double baseline = best_of(3, [&] {
+  const double baseline = stepnc_bench::best_time(3, [&] {
     const auto& pts = std::get<Polyline>(project.operations[0].toolpaths[0].elements[0]).points;
     fmt::memory_buffer out;
     for (const Vec3& p : pts) fmt::format_to(std::back_inserter(out), "G1 X{:.4f} Y{:.4f} Z{:.4f}\n", p.x, p.y, p.z);
     sink += out.size();
   });
   GenerateResult result;
-  const double generate_s = best_of(3, [&] {
+  const double generate_s = stepnc_bench::best_time(3, [&] {
     result = generate(project);
     sink += result.program.blocks.size();
   });
@@ -94,8 +84,8 @@ int main() {
     for (const auto& d : result.diagnostics) std::fprintf(stderr, "%s\n", d.to_string().c_str());
     return 1;
   }
-  const double rs274_s = best_of(3, [&] { sink += print(result.program, Dialect::rs274ngc).text.size(); });
-  const double siemens_s = best_of(3, [&] { sink += print(result.program, Dialect::siemens840d).text.size(); });
+  const double rs274_s = stepnc_bench::best_time(3, [&] { sink += print(result.program, Dialect::rs274ngc).text.size(); });
+  const double siemens_s = stepnc_bench::best_time(3, [&] { sink += print(result.program, Dialect::siemens840d).text.size(); });
 
   std::printf("posting %zu explicit toolpath points (best of 3):\n", points);
   std::printf("  baseline: fmt, %zu \"G1 X Y Z\" lines        %8.1f ms  1.00x\n", points, baseline * 1e3);
