@@ -9,6 +9,7 @@ namespace expressc::test {
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
+  INFO("cannot read " << path.string() << " (the reference schema lives in ../shared beside the checkout)");
   REQUIRE(in);
   std::ostringstream text;
   text << in.rdbuf();

@@ -89,6 +89,7 @@ std::vector<fs::path> project_schema_files() {
 std::string reference_standard_text() {
   const fs::path path = fs::path(STEPNC_SHARED_DIR) / "reference" / "iso14649-combined.exp";
   std::ifstream in(path);
+  INFO("cannot read " << path.string() << " (the reference schema lives in ../shared beside the checkout)");
   REQUIRE(in);
   std::string text;
   std::string line;
