@@ -48,12 +48,11 @@ int main(int argc, char** argv) {
   fmt::print("typed read peak RSS   : {:8.1f} MB  = {:.2f}x file size, {:.0f} bytes/instance\n", rss_read / 1e6,
              static_cast<double>(rss_read) / (megabytes * 1e6), static_cast<double>(rss_read) / instances);
   // Where the peak goes (what is left is aggregates on the heap, the id
-  // table and the mapped window of the file).
+  // table and the read buffer).
   const stepnc::meta::Model& model = result.file->model;
-  fmt::print("  of which            : {:.1f} MB instance arena, {:.1f} MB instance list, {:.1f} MB Part 21 record index\n",
+  fmt::print("  of which            : {:.1f} MB instance arena, {:.1f} MB instance list\n",
              static_cast<double>(model.arena_bytes()) / 1e6,
-             static_cast<double>(model.size() * sizeof(stepnc::meta::Instance*)) / 1e6,
-             static_cast<double>(result.file->document.records().size_bytes()) / 1e6);
+             static_cast<double>(model.size() * sizeof(stepnc::meta::Instance*)) / 1e6);
   fmt::print("typed write (memory)  : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write,
              write / baseline);
   return 0;

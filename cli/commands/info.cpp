@@ -33,7 +33,7 @@ int run_info(const InfoOptions& options) {
   if (!file) return exit_invalid_input;
 
   fmt::print("file: {}\n", options.file);
-  fmt::print("schemas: {}\n", fmt::join(file->document.header().schema_names(), ", "));
+  fmt::print("schemas: {}\n", fmt::join(file->header.schema_names(), ", "));
   fmt::print("instances: {} typed, {} generic\n", file->model.size(), file->generic_records.size());
 
   const query::QueryResult projects = query::evaluate("/project", file->model, iso14649_registry());

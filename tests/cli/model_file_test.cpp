@@ -31,7 +31,7 @@ TEST_CASE("every sample reads into the typed model and round-trips", "[exchange]
     DYNAMIC_SECTION(name) {
       const auto first = stepnc_test::read_valid(stepnc_test::sample(name));
       CHECK(first->generic_records.empty());
-      CHECK(first->model.size() == first->document.records().size());
+      CHECK(first->model.size() == first->record_count);
 
       // read -> write -> read gives an equal model (compared through reflection)
       const std::string written = stepnc::exchange::to_text(*first);
@@ -65,6 +65,48 @@ TEST_CASE("references are bound to typed objects, forward references included", 
   REQUIRE(placement->axis != nullptr);
   CHECK(placement->axis->id() == 3);
   CHECK(placement->ref_direction == nullptr);
+}
+
+TEST_CASE("forward references are bound in lists and selects too, or reported in place", "[exchange]") {
+  // Instances are created as the file is read: these references all name
+  // instances further down, so they are bound at the end.
+  auto result = read_model_text(file_with("#1=TRIMMED_CURVE('arc',#2,(#6),(#7),.T.,.CARTESIAN.);\n"
+                                          "#2=POLYLINE('path',(#6,#7));\n"
+                                          "#6=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                                          "#7=CARTESIAN_POINT('',(1.,0.,0.));\n"),
+                                "forward_lists.stp", registry());
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  const auto instances = result.file->model.instances();
+  REQUIRE(instances.size() == 4);
+  auto* curve = stepnc::meta::instance_cast<machining_schema::trimmed_curve>(instances[0]);
+  REQUIRE(curve != nullptr);
+  REQUIRE(curve->basis_curve != nullptr);
+  CHECK(curve->basis_curve->id() == 2);
+  REQUIRE(curve->trim_1.size() == 1);
+  REQUIRE(curve->trim_1[0].as_cartesian_point() != nullptr);
+  CHECK(curve->trim_1[0].as_cartesian_point()->id() == 6);
+  REQUIRE(curve->trim_2.size() == 1);
+  REQUIRE(curve->trim_2[0].as_cartesian_point() != nullptr);
+  CHECK(curve->trim_2[0].as_cartesian_point()->id() == 7);
+  auto* path = stepnc::meta::instance_cast<machining_schema::polyline>(instances[1]);
+  REQUIRE(path != nullptr);
+  REQUIRE(path->points.size() == 2);
+  CHECK(path->points[0]->id() == 6);
+  CHECK(path->points[1]->id() == 7);
+
+  auto wrong = read_model_text(file_with("#1=TRIMMED_CURVE('arc',#2,(#2),(#7),.T.,.CARTESIAN.);\n"
+                                         "#2=POLYLINE('path',(#6,#7));\n"
+                                         "#6=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                                         "#7=CARTESIAN_POINT('',(1.,0.,0.));\n"),
+                               "forward_wrong.stp", registry());
+  CHECK_FALSE(wrong.ok());
+  REQUIRE(wrong.diagnostics.items().size() == 1);
+  const auto& d = wrong.diagnostics.items()[0];
+  CHECK(d.location.line == 8);
+  CHECK(d.location.column == 28);
+  CHECK(d.instance_id == 1);
+  CHECK_THAT(d.message, Catch::Contains("#2 is polyline, which select trimming_select does not allow"));
 }
 
 TEST_CASE("an unknown entity is kept as a generic record, with a warning, and written back", "[exchange]") {
@@ -110,6 +152,13 @@ TEST_CASE("conformance problems are reported with line:col and #id", "[exchange]
     CHECK(d.location.column == 26);
     CHECK(d.instance_id == 1);
     CHECK_THAT(d.message, Catch::Contains("direction"));
+  }
+  SECTION("a duplicate id") {
+    auto result = read_model_text(file_with("#1=DIRECTION('',(1.,0.,0.));\n#1=DIRECTION('',(0.,1.,0.));\n"),
+                                  "duplicate.stp", registry());
+    CHECK_FALSE(result.ok());
+    CHECK(messages(result.diagnostics) ==
+          std::vector<std::string>{"duplicate.stp:9:1: error: #1: duplicate instance id (first defined at line 8)"});
   }
   SECTION("an id beyond the typed model's 32-bit ids") {
     auto result = read_model_text(file_with("#4294967296=DIRECTION('',(1.,0.,0.));\n"), "bigid.stp", registry());

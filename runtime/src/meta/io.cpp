@@ -237,6 +237,39 @@ std::string_view describe(const TypeInfo& type) {
   return "a value";
 }
 
+std::string entity_name(const Instance& instance) {
+  const EntityInfo& e = instance.entity_info();
+  if (!e.is_complex()) return std::string(e.name);
+  std::string names;
+  for (const EntityInfo* p : e.parts) {
+    if (!names.empty()) names += '+';
+    names += p->name;
+  }
+  return names;
+}
+
+std::string attribute_problem(const AttributeInfo& attribute, std::string_view message) {
+  return fmt::format("attribute '{}' of {}: {}", attribute.name, attribute.owner->name, message);
+}
+
+// Puts `instance` (the one with Part 21 id `id`, null if none) into the
+// entity or SELECT slot `target`; returns why it cannot go there, if so.
+std::optional<std::string> bind(const ValueRef& target, std::uint64_t id, Instance* instance) {
+  if (instance == nullptr) return fmt::format("#{} does not exist", id);
+  const TypeInfo& type = target.resolved();
+  if (type.kind == TypeKind::Select) {
+    for (const TypeInfo* member : type.members) {
+      if (member->kind == TypeKind::Entity && instance->entity_info().is_a(*member->entity)) {
+        target.select().set_instance(instance);
+        return std::nullopt;
+      }
+    }
+    return fmt::format("#{} is {}, which select {} does not allow", id, entity_name(*instance), type.name);
+  }
+  if (target.set_instance(instance)) return std::nullopt;
+  return fmt::format("#{} is {}, not {}", id, entity_name(*instance), type.entity->name);
+}
+
 // Reads parameter values into typed storage, reporting each problem with
 // the attribute it belongs to.
 class Filler {
@@ -280,7 +313,8 @@ class Filler {
         if (v.is(ParamKind::reference)) return read_reference(target, v);
         break;
       case TypeKind::Select:
-        if (v.is(ParamKind::reference) || v.is(ParamKind::typed)) return read_select(target.select(), type, v);
+        if (v.is(ParamKind::reference)) return read_reference(target, v);
+        if (v.is(ParamKind::typed)) return read_select(target.select(), type, v);
         break;
       case TypeKind::Alias: break;
       case TypeKind::Array:
@@ -295,46 +329,20 @@ class Filler {
 
   void fail(const p21::Value& v, std::string_view message) {
     ++problems_;
-    context_.error(v.offset(), fmt::format("attribute '{}' of {}: {}", attribute_.name,
-                                           attribute_.owner->name, message));
+    context_.error(v.offset(), attribute_problem(attribute_, message));
   }
 
  private:
-  Instance* resolve(const p21::Value& v) {
-    Instance* target = context_.resolve(v.reference());
-    if (target == nullptr) fail(v, fmt::format("#{} does not exist", v.reference()));
-    return target;
-  }
-
+  // `target` is an entity or a SELECT slot.
   void read_reference(const ValueRef& target, const p21::Value& v) {
-    Instance* instance = resolve(v);
-    if (instance == nullptr) return;
-    if (!target.set_instance(instance))
-      fail(v, fmt::format("#{} is {}, not {}", v.reference(), entity_name(*instance),
-                          target.resolved().entity->name));
+    Instance* instance = context_.resolve(v.reference());
+    if (instance == nullptr && context_.defer(PendingReference{target, &attribute_, v.reference(), v.offset()}))
+      return;
+    if (auto problem = bind(target, v.reference(), instance)) fail(v, *problem);
   }
 
-  static std::string entity_name(const Instance& instance) {
-    const EntityInfo& e = instance.entity_info();
-    if (!e.is_complex()) return std::string(e.name);
-    std::string names;
-    for (const EntityInfo* p : e.parts) {
-      if (!names.empty()) names += '+';
-      names += p->name;
-    }
-    return names;
-  }
-
+  // A typed parameter naming a non-entity member of the select.
   void read_select(Select& select, const TypeInfo& type, const p21::Value& v) {
-    if (v.is(p21::ParamKind::reference)) {
-      Instance* instance = resolve(v);
-      if (instance == nullptr) return;
-      for (const TypeInfo* member : type.members)
-        if (member->kind == TypeKind::Entity && instance->entity_info().is_a(*member->entity))
-          return select.set_instance(instance);
-      return fail(v, fmt::format("#{} is {}, which select {} does not allow", v.reference(),
-                                 entity_name(*instance), type.name));
-    }
     const TypeInfo* member = nullptr;
     for (const TypeInfo* m : type.members)
       if (m->kind != TypeKind::Entity && equal_names(m->name, v.text())) member = m;
@@ -482,6 +490,13 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
     fill_part(part, match->entity);
   }
   return problems;
+}
+
+std::optional<std::string> bind_reference(const PendingReference& reference, Instance* instance) {
+  if (auto problem = bind(reference.target, reference.id, instance)) {
+    return attribute_problem(*reference.attribute, *problem);
+  }
+  return std::nullopt;
 }
 
 // ---------------------------------------------------------------- dump

@@ -1,10 +1,17 @@
 // A Part 21 file read into the typed model, and written back.
 //
-// Reading composes the two lower layers: the Part 21 layer indexes the file
-// (p21::Document), then every record becomes a typed instance through the
-// registry's factories, and is filled from its parsed parameters with
-// references bound (forward references included, since every instance is
-// created before any is filled).
+// Reading composes the two lower layers: every record of the Part 21 file
+// becomes a typed instance through the registry's factories and is filled
+// from its parsed parameters, with references bound (forward references
+// included).
+//
+// A file is first streamed: each record is created and filled as it is
+// read, forward references are bound at the end, and neither the file nor
+// an index of its records is held, so memory is about that of the model.
+// That pass stops at the first problem of any kind; the file is then read
+// again through the Part 21 layer's record index (p21::Document), which
+// reports every problem with its position. Files with problems are rare
+// and usually small, and this keeps a single source for every diagnostic.
 //
 //   meta::Registry registry = iso14649::registry();
 //   ModelReadResult result = read_model_file("part.stp", registry);
@@ -38,16 +45,25 @@
 #include "stepnc/meta/model.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/diagnostic.h"
-#include "stepnc/p21/document.h"
+#include "stepnc/p21/document.h"  // p21::Header
 
 namespace stepnc::exchange {
 
+// A record no schema of the registry defines, kept to be written back.
+struct GenericRecord {
+  std::uint64_t id = 0;
+  std::string text;  // `#id=...;` as in the file
+};
+
 struct ModelFile {
-  p21::Document document;  // header, sections and source text
-  meta::Model model;       // the typed instances
+  p21::Header header;
+  meta::Model model;  // the typed instances
   // Records kept as generic records (unknown entities or combinations),
   // in file order.
-  std::vector<const p21::RecordEntry*> generic_records;
+  std::vector<GenericRecord> generic_records;
+  // Instance records of the file, typed or not (a lenient read does not
+  // count those the Part 21 layer dropped, such as duplicate ids).
+  std::size_t record_count = 0;
 };
 
 struct ModelReadOptions {

@@ -10,7 +10,9 @@
 // Reading is split the way the Part 21 layer reads files: the caller
 // creates every instance first (Registry + EntityInfo::create, with the
 // file's ids) so that forward references resolve, then fills each one from
-// its parsed record with fill_instance().
+// its parsed record with fill_instance(). A caller that creates and fills
+// each instance as it reads instead defers forward references
+// (FillContext::defer) and binds them at the end (bind_reference).
 #pragma once
 
 #include <cstdint>
@@ -61,12 +63,27 @@ std::optional<std::string> write_file(const Model& model, const FileHeader& head
 
 // ---------------------------------------------------------------- reading
 
+// A reference fill_instance() left unbound because the context deferred
+// it: a reader that creates instances as it goes meets forward references
+// before their targets exist. Its slot stays valid while the instance does
+// (fill_instance() sizes each aggregate once).
+struct PendingReference {
+  ValueRef target;  // the attribute or element slot: an entity or a SELECT
+  const AttributeInfo* attribute = nullptr;
+  std::uint64_t id = 0;      // the #id referred to
+  std::uint64_t offset = 0;  // of the reference in the file
+};
+
 // What fill_instance() needs from the reader around it.
 class FillContext {
  public:
   virtual ~FillContext() = default;
   // The instance with Part 21 id `id`, or null if the file has none.
   virtual Instance* resolve(std::uint64_t id) = 0;
+  // Called when resolve() returned null. Returning true takes the
+  // reference over (to bind later with bind_reference()); false reports
+  // the instance as missing now.
+  virtual bool defer(const PendingReference& /*reference*/) { return false; }
   // A problem with the value at absolute file offset `offset`.
   virtual void error(std::uint64_t offset, std::string message) = 0;
 };
@@ -79,6 +96,11 @@ class FillContext {
 // aggregate outside its bounds, an unknown enumeration item. Returns the
 // number of problems reported.
 std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, FillContext& context);
+
+// Binds a deferred reference to `instance` (null: the file has no such
+// instance). Returns the problem, worded as fill_instance() reports it,
+// when the instance is missing or of a type the slot does not allow.
+std::optional<std::string> bind_reference(const PendingReference& reference, Instance* instance);
 
 // ---------------------------------------------------------------- inspection
 
