@@ -66,28 +66,18 @@ bool family_has_attribute(const Entity& entity, std::string_view name) {
   return false;
 }
 
-// `entity` and its ancestors.
-std::unordered_set<const Entity*> ancestors_and_self(const Entity& entity) {
+// `entity` and every entity reached from it through `relatives`
+// (&Entity::supertypes for its ancestors, &Entity::subtypes for its
+// descendants).
+std::unordered_set<const Entity*> closure(const Entity& entity,
+                                          std::vector<const Entity*> Entity::*relatives) {
   std::unordered_set<const Entity*> result;
   std::vector<const Entity*> pending{&entity};
   while (!pending.empty()) {
     const Entity* e = pending.back();
     pending.pop_back();
     if (!result.insert(e).second) continue;
-    for (const Entity* supertype : e->supertypes) pending.push_back(supertype);
-  }
-  return result;
-}
-
-// `entity` and its descendants.
-std::unordered_set<const Entity*> descendants_and_self(const Entity& entity) {
-  std::unordered_set<const Entity*> result;
-  std::vector<const Entity*> pending{&entity};
-  while (!pending.empty()) {
-    const Entity* e = pending.back();
-    pending.pop_back();
-    if (!result.insert(e).second) continue;
-    for (const Entity* subtype : e->subtypes) pending.push_back(subtype);
+    for (const Entity* relative : e->*relatives) pending.push_back(relative);
   }
   return result;
 }
@@ -130,11 +120,11 @@ bool oneof_separates(const SupertypeExpression& expression, const std::unordered
 // them below different operands of a ONEOF.
 bool can_be_both(const Entity& a, const Entity& b) {
   if (&a == &b) return true;
-  const auto above_a = ancestors_and_self(a);
-  const auto above_b = ancestors_and_self(b);
+  const auto above_a = closure(a, &Entity::supertypes);
+  const auto above_b = closure(b, &Entity::supertypes);
   if (above_a.contains(&b) || above_b.contains(&a)) return true;
-  const auto below_b = descendants_and_self(b);
-  for (const Entity* e : descendants_and_self(a))
+  const auto below_b = closure(b, &Entity::subtypes);
+  for (const Entity* e : closure(a, &Entity::subtypes))
     if (below_b.contains(e)) return true;  // a common subtype
   bool common_ancestor = false;
   for (const Entity* root : above_a) {

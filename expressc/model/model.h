@@ -52,6 +52,11 @@ struct Bound {
   bool unbounded() const { return !value && !expression; }
 };
 
+// EXPRESS spelling of types, shared by every emitter and message.
+std::string_view keyword(SimpleKind kind);     // "INTEGER", "REAL", ...
+std::string_view keyword(AggregateKind kind);  // "ARRAY", "LIST", "BAG", "SET"
+std::string to_string(const Bound& bound);     // the folded value, the expression, or "?"
+
 // An underlying type as written in an attribute, a defined type, a
 // parameter or an aggregate element, with names resolved.
 struct TypeRef {

@@ -144,29 +144,6 @@ std::string_view simple_cpp(model::SimpleKind kind) {
   return "";
 }
 
-std::string_view simple_express(model::SimpleKind kind) {
-  switch (kind) {
-    case model::SimpleKind::Integer: return "INTEGER";
-    case model::SimpleKind::Real: return "REAL";
-    case model::SimpleKind::Number: return "NUMBER";
-    case model::SimpleKind::Boolean: return "BOOLEAN";
-    case model::SimpleKind::Logical: return "LOGICAL";
-    case model::SimpleKind::String: return "STRING";
-    case model::SimpleKind::Binary: return "BINARY";
-  }
-  return "";
-}
-
-std::string_view aggregate_express(model::AggregateKind kind) {
-  switch (kind) {
-    case model::AggregateKind::Array: return "ARRAY";
-    case model::AggregateKind::List: return "LIST";
-    case model::AggregateKind::Bag: return "BAG";
-    case model::AggregateKind::Set: return "SET";
-  }
-  return "";
-}
-
 std::string_view aggregate_kind_cpp(model::AggregateKind kind) {
   switch (kind) {
     case model::AggregateKind::Array: return "TypeKind::Array";
@@ -175,11 +152,6 @@ std::string_view aggregate_kind_cpp(model::AggregateKind kind) {
     case model::AggregateKind::Set: return "TypeKind::Set";
   }
   return "";
-}
-
-std::string bound_text(const model::Bound& b) {
-  if (b.value) return std::to_string(*b.value);
-  return b.expression != nullptr ? ast::to_string(*b.expression) : "?";
 }
 
 // The C++ storage type (see runtime/include/stepnc/meta/info.h).
@@ -205,14 +177,14 @@ std::string member_type(const TypeRef& t, bool optional) {
 std::string express_text(const TypeRef& t) {
   switch (t.kind) {
     case TypeRef::Kind::Simple: {
-      std::string s(simple_express(t.simple));
+      std::string s(model::keyword(t.simple));
       if (t.width) s += concat({"(", std::to_string(*t.width), ")", t.fixed ? " FIXED" : ""});
       return s;
     }
     case TypeRef::Kind::Defined: return t.defined->name;
     case TypeRef::Kind::Entity: return t.entity->name;
     case TypeRef::Kind::Aggregate:
-      return concat({aggregate_express(t.aggregate), " [", bound_text(t.lower), ":", bound_text(t.upper), "] OF ",
+      return concat({model::keyword(t.aggregate), " [", model::to_string(t.lower), ":", model::to_string(t.upper), "] OF ",
                      t.optional_elements ? "OPTIONAL " : "", t.unique ? "UNIQUE " : "", express_text(*t.element)});
     default: return "GENERIC";
   }
@@ -220,7 +192,7 @@ std::string express_text(const TypeRef& t) {
 
 // A name describing an anonymous aggregate type by its structure.
 std::string aggregate_name(const TypeRef& t) {
-  std::string name(aggregate_express(t.aggregate));
+  std::string name(model::keyword(t.aggregate));
   std::transform(name.begin(), name.end(), name.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
   if (t.unique) name += "_unique";
   name += '_';
@@ -231,7 +203,7 @@ std::string aggregate_name(const TypeRef& t) {
   const TypeRef& e = *t.element;
   switch (e.kind) {
     case TypeRef::Kind::Simple: {
-      std::string s(simple_express(e.simple));
+      std::string s(model::keyword(e.simple));
       std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
       return name + s;
     }
@@ -627,7 +599,7 @@ void SchemaEmitter::print_combination_class(Printer& p, const Combination& combi
 std::string SchemaEmitter::type_info_ref(const TypeRef& t) {
   switch (t.kind) {
     case TypeRef::Kind::Simple: {
-      std::string s(simple_express(t.simple));
+      std::string s(model::keyword(t.simple));
       std::transform(s.begin(), s.end(), s.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
       return concat({"&stepnc::meta::", s, "_type"});
     }

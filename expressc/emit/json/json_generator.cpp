@@ -11,35 +11,6 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-std::string bound_text(const model::Bound& bound) {
-  if (bound.value) return std::to_string(*bound.value);
-  if (bound.expression) return ast::to_string(*bound.expression);
-  return "?";
-}
-
-const char* simple_name(model::SimpleKind kind) {
-  switch (kind) {
-    case model::SimpleKind::Integer: return "INTEGER";
-    case model::SimpleKind::Real: return "REAL";
-    case model::SimpleKind::Number: return "NUMBER";
-    case model::SimpleKind::Boolean: return "BOOLEAN";
-    case model::SimpleKind::Logical: return "LOGICAL";
-    case model::SimpleKind::String: return "STRING";
-    case model::SimpleKind::Binary: return "BINARY";
-  }
-  return "?";
-}
-
-const char* aggregate_name(model::AggregateKind kind) {
-  switch (kind) {
-    case model::AggregateKind::Array: return "ARRAY";
-    case model::AggregateKind::List: return "LIST";
-    case model::AggregateKind::Bag: return "BAG";
-    case model::AggregateKind::Set: return "SET";
-  }
-  return "?";
-}
-
 std::string labelled(const char* keyword, const std::string& label) {
   return label.empty() ? keyword : fmt::format("{}:{}", keyword, label);
 }
@@ -180,7 +151,7 @@ std::string to_string(const model::TypeRef& type) {
   using K = model::TypeRef::Kind;
   switch (type.kind) {
     case K::Simple: {
-      std::string out = simple_name(type.simple);
+      std::string out(model::keyword(type.simple));
       if (type.width) out += fmt::format("({})", *type.width);
       if (type.fixed) out += " FIXED";
       return out;
@@ -188,9 +159,9 @@ std::string to_string(const model::TypeRef& type) {
     case K::Defined: return type.defined ? type.defined->name : "?";
     case K::Entity: return type.entity ? type.entity->name : "?";
     case K::Aggregate: {
-      std::string out = aggregate_name(type.aggregate);
+      std::string out(model::keyword(type.aggregate));
       if (type.lower.value || type.lower.expression || type.upper.value || type.upper.expression)
-        out += fmt::format(" [{}:{}]", bound_text(type.lower), bound_text(type.upper));
+        out += fmt::format(" [{}:{}]", model::to_string(type.lower), model::to_string(type.upper));
       out += " OF ";
       if (type.optional_elements) out += "OPTIONAL ";
       if (type.unique) out += "UNIQUE ";
