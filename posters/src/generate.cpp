@@ -446,16 +446,8 @@ bool Generator::prepare(const Executable& executable, Job& job) {
 Vec2 pocket_extent(const ClosedProfile& profile) {
   if (auto* rect = std::get_if<RectangularProfile>(&profile)) return {rect->length, rect->width};
   if (auto* circle = std::get_if<CircularProfile>(&profile)) return {circle->diameter, circle->diameter};
-  const auto& v = std::get<PolygonProfile>(profile).vertices;
-  if (v.empty()) return {0, 0};
-  double lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
-  for (const Vec2 p : v) {
-    lo_x = std::min(lo_x, p.x);
-    hi_x = std::max(hi_x, p.x);
-    lo_y = std::min(lo_y, p.y);
-    hi_y = std::max(hi_y, p.y);
-  }
-  return {hi_x - lo_x, hi_y - lo_y};
+  const geom::Bounds box = geom::bounds(std::get<PolygonProfile>(profile).vertices);
+  return box.max - box.min;
 }
 
 // Sizes that would make a wrong program, or an endless one, are refused

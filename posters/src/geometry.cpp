@@ -30,6 +30,16 @@ namespace stepnc::post::geom {
 
 double length(Vec2 a) { return std::hypot(a.x, a.y); }
 
+Bounds bounds(const std::vector<Vec2>& points) {
+  if (points.empty()) return {};
+  Bounds box{points.front(), points.front()};
+  for (const Vec2 p : points) {
+    box.min = {std::min(box.min.x, p.x), std::min(box.min.y, p.y)};
+    box.max = {std::max(box.max.x, p.x), std::max(box.max.y, p.y)};
+  }
+  return box;
+}
+
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 ab = b - a;
   const double len2 = dot(ab, ab);

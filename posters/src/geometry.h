@@ -27,6 +27,13 @@ inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 double length(Vec2 a);
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
 
+// The axis-aligned box around `points` (both corners at the origin when
+// there are none).
+struct Bounds {
+  Vec2 min, max;
+};
+Bounds bounds(const std::vector<Vec2>& points);
+
 // One piece of a planar path: a line, or an arc about `centre`.
 struct Segment {
   Vec2 to;

@@ -39,15 +39,10 @@ std::optional<RectangularProfile> as_rectangle(const PolygonProfile& polygon, Ve
     const Vec2 f = v[(i + 2) % 4] - v[(i + 1) % 4];
     if (std::abs(geom::dot(e, f)) > 1e-9) return std::nullopt;
   }
-  double lo_x = v[0].x, hi_x = v[0].x, lo_y = v[0].y, hi_y = v[0].y;
-  for (const Vec2 p : v) {
-    lo_x = std::min(lo_x, p.x);
-    hi_x = std::max(hi_x, p.x);
-    lo_y = std::min(lo_y, p.y);
-    hi_y = std::max(hi_y, p.y);
-  }
-  centre = {(lo_x + hi_x) / 2, (lo_y + hi_y) / 2};
-  return RectangularProfile{hi_x - lo_x, hi_y - lo_y, polygon.corner_radius};
+  const geom::Bounds box = geom::bounds(v);
+  centre = (box.min + box.max) * 0.5;
+  const Vec2 size = box.max - box.min;
+  return RectangularProfile{size.x, size.y, polygon.corner_radius};
 }
 
 std::optional<MillingRegion> milling_region(const Feature& feature, double open_extension, std::string& problem) {
