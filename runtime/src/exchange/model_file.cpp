@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <span>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -17,6 +18,32 @@ namespace stepnc::exchange {
 namespace {
 
 // ------------------------------------------------------------ streaming
+
+// The typed entity of a record, for both readers below. Entity names
+// repeat across a file and are numbered in order of first appearance, so
+// each is looked up in the registry once.
+class EntityLookup {
+ public:
+  explicit EntityLookup(const meta::Registry& registry) : registry_(registry) {}
+
+  // A simple record, by its name number; null when no schema defines it.
+  const meta::EntityInfo* simple(std::uint32_t name_index, std::span<const std::string_view> names) {
+    while (entities_.size() <= name_index) entities_.push_back(registry_.find_entity(names[entities_.size()]));
+    return entities_[name_index];
+  }
+
+  // A complex record, by the parts of its parsed parameters (left in
+  // `parts`); null when no schema defines the combination.
+  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
+    parts.clear();
+    for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
+    return registry_.find_complex(parts);
+  }
+
+ private:
+  const meta::Registry& registry_;
+  std::vector<const meta::EntityInfo*> entities_;  // by name number
+};
 
 // Part 21 ids to the instances created for them. Ids are usually dense
 // (1..n, a few gaps), so a vector indexed by id serves them; an id far
@@ -63,7 +90,7 @@ class InstanceTable {
 class StreamingBuilder final : public p21::RecordHandler, public meta::FillContext {
  public:
   StreamingBuilder(ModelFile& file, const meta::Registry& registry, std::size_t expected_records)
-      : file_(file), registry_(registry), instances_(expected_records) {
+      : file_(file), entities_(registry), instances_(expected_records) {
     file_.model.reserve(expected_records);
   }
 
@@ -112,22 +139,14 @@ class StreamingBuilder final : public p21::RecordHandler, public meta::FillConte
 
   // The typed entity of a parsed record; null when no schema defines it.
   const meta::EntityInfo* entity_of(const p21::RecordView& record, p21::StreamContext& context) {
-    if (record.entity == p21::RecordEntry::complex_entity) {
-      parts_.clear();
-      for (const p21::EntityPart& part : tree_.parts()) parts_.push_back(part.entity());
-      return registry_.find_complex(parts_);
-    }
-    // Names are numbered in order of first appearance: look each up once.
-    const auto names = context.entity_names();
-    while (entities_.size() <= record.entity) entities_.push_back(registry_.find_entity(names[entities_.size()]));
-    return entities_[record.entity];
+    if (record.entity == p21::RecordEntry::complex_entity) return entities_.complex(tree_, parts_);
+    return entities_.simple(record.entity, context.entity_names());
   }
 
   ModelFile& file_;
-  const meta::Registry& registry_;
+  EntityLookup entities_;
   InstanceTable instances_;
-  std::vector<const meta::EntityInfo*> entities_;  // per StreamContext::entity_names() index
-  std::vector<std::string_view> parts_;            // of a complex instance
+  std::vector<std::string_view> parts_;  // of a complex instance
   std::vector<meta::PendingReference> pending_;
   p21::ParamTree tree_;
   bool failed_ = false;
@@ -162,14 +181,13 @@ class ModelBuilder final : public meta::FillContext {
  public:
   ModelBuilder(const p21::Document& document, ModelFile& file, const meta::Registry& registry,
                p21::Diagnostics& diagnostics)
-      : document_(document), file_(file), registry_(registry), diagnostics_(diagnostics) {}
+      : document_(document), file_(file), diagnostics_(diagnostics), entities_(registry) {}
 
   void run() {
     file_.header = document_.header();
     const auto records = document_.records();
     file_.record_count = records.size();
     file_.model.reserve(records.size());
-    resolve_entity_names();
     for (; created_ < records.size() && !diagnostics_.limit_reached(); ++created_) create(created_);
     // Instances are filled in record order, so the instance of the next
     // typed record is always the next one in the model.
@@ -196,11 +214,6 @@ class ModelBuilder final : public meta::FillContext {
   }
 
  private:
-  // Entity names repeat across a file; look each distinct one up once.
-  void resolve_entity_names() {
-    for (std::string_view name : document_.entity_names()) entities_.push_back(registry_.find_entity(name));
-  }
-
   void create(std::size_t index) {
     const p21::RecordEntry& record = document_.records()[index];
     current_id_ = record.id;
@@ -217,15 +230,14 @@ class ModelBuilder final : public meta::FillContext {
         skip(index);
         return;
       }
-      for (const p21::EntityPart& part : tree_.parts()) parts.push_back(part.entity());
-      entity = registry_.find_complex(parts);
+      entity = entities_.complex(tree_, parts);
       if (entity == nullptr) {
         keep_generic(index, fmt::format("no schema defines the combination {}; kept as a generic record",
                                         display_name()));
         return;
       }
     } else {
-      entity = entities_[record.entity];
+      entity = entities_.simple(record.entity, document_.entity_names());
       if (entity == nullptr) {
         keep_generic(index, fmt::format("unknown entity {}; kept as a generic record", display_name()));
         return;
@@ -289,9 +301,8 @@ class ModelBuilder final : public meta::FillContext {
 
   const p21::Document& document_;
   ModelFile& file_;
-  const meta::Registry& registry_;
   p21::Diagnostics& diagnostics_;
-  std::vector<const meta::EntityInfo*> entities_;  // per Document::entity_names() index
+  EntityLookup entities_;
   std::size_t created_ = 0;                        // records [0, created_) went through create()
   std::vector<std::size_t> skipped_;               // records without an instance, ascending
   p21::ParamTree tree_;
