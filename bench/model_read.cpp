@@ -1,5 +1,6 @@
 // Full typed read of the 64 MB benchmark file: parse every record, create
-// every typed instance, bind every reference; then write it back.
+// every typed instance, bind every reference; then write it back, to a
+// file and to memory.
 //
 //   model_read_bench [FILE.stp]
 //
@@ -37,9 +38,17 @@ int main(int argc, char** argv) {
     auto again = exchange::read_model_file(path, registry);
     if (!again.ok()) std::abort();
   });
+  // Writing to a file is what `stepnc format` does: the writer streams
+  // through a fixed buffer. Writing to memory also pays for growing one
+  // string of the whole output (and the page faults of fresh memory).
+  const std::filesystem::path written = std::filesystem::temp_directory_path() / "stepnc_model_read_bench.stp";
+  const double write_file = best_time(runs, [&] {
+    if (exchange::write_model_file(*result.file, written)) std::abort();
+  });
+  const double written_megabytes = static_cast<double>(std::filesystem::file_size(written)) / 1e6;
+  std::filesystem::remove(written);
   std::string text;
-  const double write = best_time(runs, [&] { text = exchange::to_text(*result.file); });
-  const double written_megabytes = static_cast<double>(text.size()) / 1e6;
+  const double write_memory = best_time(runs, [&] { text = exchange::to_text(*result.file); });
 
   fmt::print("input: {} ({:.1f} MB, {} instances)\n", path, megabytes, instances);
   fmt::print("baseline newline scan : {:8.1f} MB/s\n", megabytes / baseline);
@@ -53,7 +62,9 @@ int main(int argc, char** argv) {
   fmt::print("  of which            : {:.1f} MB instance arena, {:.1f} MB instance list\n",
              static_cast<double>(model.arena_bytes()) / 1e6,
              static_cast<double>(model.size() * sizeof(stepnc::meta::Instance*)) / 1e6);
-  fmt::print("typed write (memory)  : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write,
-             write / baseline);
+  fmt::print("typed write (file)    : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write_file,
+             write_file / baseline);
+  fmt::print("typed write (memory)  : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write_memory,
+             write_memory / baseline);
   return 0;
 }

@@ -656,9 +656,9 @@ constexpr const EntityInfo* axis1_placement_supertypes[] = {
 };
 constexpr AttributeInfo axis1_placement_attributes[] = {
     {.name = "name", .owner = &machining_schema::placement::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::placement, &machining_schema::placement::name>},
+     .locate = &stepnc::meta::field<machining_schema::axis1_placement, &machining_schema::placement::name>},
     {.name = "location", .owner = &machining_schema::placement::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::placement, &machining_schema::placement::location>},
+     .locate = &stepnc::meta::field<machining_schema::axis1_placement, &machining_schema::placement::location>},
     {.name = "axis", .owner = &machining_schema::axis1_placement::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::axis1_placement, &machining_schema::axis1_placement::axis>},
 };
@@ -678,9 +678,9 @@ constexpr const EntityInfo* axis2_placement_3d_supertypes[] = {
 };
 constexpr AttributeInfo axis2_placement_3d_attributes[] = {
     {.name = "name", .owner = &machining_schema::placement::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::placement, &machining_schema::placement::name>},
+     .locate = &stepnc::meta::field<machining_schema::axis2_placement_3d, &machining_schema::placement::name>},
     {.name = "location", .owner = &machining_schema::placement::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::placement, &machining_schema::placement::location>},
+     .locate = &stepnc::meta::field<machining_schema::axis2_placement_3d, &machining_schema::placement::location>},
     {.name = "axis", .owner = &machining_schema::axis2_placement_3d::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::axis2_placement_3d, &machining_schema::axis2_placement_3d::axis>},
     {.name = "ref_direction", .owner = &machining_schema::axis2_placement_3d::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
@@ -740,17 +740,17 @@ constexpr const EntityInfo* bezier_curve_supertypes[] = {
 };
 constexpr AttributeInfo bezier_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve, &machining_schema::b_spline_curve::self_intersect>},
 };
 constexpr Upcast bezier_curve_upcasts[] = {
     {&machining_schema::bezier_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::bezier_curve, machining_schema::bezier_curve>},
@@ -790,7 +790,7 @@ constexpr const EntityInfo* bounded_surface_subtypes[] = {
 };
 constexpr AttributeInfo bounded_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::bounded_surface, &machining_schema::surface::name>},
 };
 constexpr Upcast bounded_surface_upcasts[] = {
     {&machining_schema::bounded_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::bounded_surface, machining_schema::bounded_surface>},
@@ -812,7 +812,7 @@ constexpr const EntityInfo* b_spline_surface_subtypes[] = {
 };
 constexpr AttributeInfo b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
      .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
@@ -848,21 +848,21 @@ constexpr const EntityInfo* bezier_surface_supertypes[] = {
 };
 constexpr AttributeInfo bezier_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface, &machining_schema::b_spline_surface::self_intersect>},
 };
 constexpr Upcast bezier_surface_upcasts[] = {
     {&machining_schema::bezier_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::bezier_surface, machining_schema::bezier_surface>},
@@ -900,9 +900,9 @@ constexpr const EntityInfo* bounded_pcurve_supertypes[] = {
 };
 constexpr AttributeInfo bounded_pcurve_attributes[] = {
     {.name = "basis_surface", .owner = &machining_schema::pcurve::meta_entity, .type = &machining_schema::type_info::surface,
-     .locate = &stepnc::meta::field<machining_schema::pcurve, &machining_schema::pcurve::basis_surface>},
+     .locate = &stepnc::meta::field<machining_schema::bounded_pcurve, &machining_schema::pcurve::basis_surface>},
     {.name = "reference_to_curve", .owner = &machining_schema::pcurve::meta_entity, .type = &machining_schema::type_info::definitional_representation,
-     .locate = &stepnc::meta::field<machining_schema::pcurve, &machining_schema::pcurve::reference_to_curve>},
+     .locate = &stepnc::meta::field<machining_schema::bounded_pcurve, &machining_schema::pcurve::reference_to_curve>},
     {.name = "name", .owner = &machining_schema::bounded_pcurve::meta_entity, .type = &machining_schema::type_info::label,
      .locate = &stepnc::meta::field<machining_schema::bounded_pcurve, &machining_schema::bounded_pcurve::name>},
 };
@@ -921,17 +921,17 @@ constexpr const EntityInfo* b_spline_curve_with_knots_supertypes[] = {
 };
 constexpr AttributeInfo b_spline_curve_with_knots_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "knot_multiplicities", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
      .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::knot_multiplicities>},
     {.name = "knots", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_parameter_value,
@@ -958,21 +958,21 @@ constexpr const EntityInfo* b_spline_surface_with_knots_supertypes[] = {
 };
 constexpr AttributeInfo b_spline_surface_with_knots_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "u_multiplicities", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
      .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::u_multiplicities>},
     {.name = "v_multiplicities", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
@@ -1022,7 +1022,7 @@ constexpr const EntityInfo* cartesian_point_supertypes[] = {
 };
 constexpr AttributeInfo cartesian_point_attributes[] = {
     {.name = "name", .owner = &machining_schema::point::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::point, &machining_schema::point::name>},
+     .locate = &stepnc::meta::field<machining_schema::cartesian_point, &machining_schema::point::name>},
     {.name = "coordinates", .owner = &machining_schema::cartesian_point::meta_entity, .type = &meta_tables::list_1_3_of_length_measure,
      .locate = &stepnc::meta::field<machining_schema::cartesian_point, &machining_schema::cartesian_point::coordinates>},
 };
@@ -1062,9 +1062,9 @@ constexpr const EntityInfo* circle_supertypes[] = {
 };
 constexpr AttributeInfo circle_attributes[] = {
     {.name = "name", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::name>},
+     .locate = &stepnc::meta::field<machining_schema::circle, &machining_schema::conic::name>},
     {.name = "position", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::position>},
+     .locate = &stepnc::meta::field<machining_schema::circle, &machining_schema::conic::position>},
     {.name = "radius", .owner = &machining_schema::circle::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
      .locate = &stepnc::meta::field<machining_schema::circle, &machining_schema::circle::radius>},
 };
@@ -1102,7 +1102,7 @@ constexpr const EntityInfo* elementary_surface_subtypes[] = {
 };
 constexpr AttributeInfo elementary_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::surface::name>},
     {.name = "position", .owner = &machining_schema::elementary_surface::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::elementary_surface::position>},
 };
@@ -1119,9 +1119,9 @@ constexpr const EntityInfo* ellipse_supertypes[] = {
 };
 constexpr AttributeInfo ellipse_attributes[] = {
     {.name = "name", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::name>},
+     .locate = &stepnc::meta::field<machining_schema::ellipse, &machining_schema::conic::name>},
     {.name = "position", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::position>},
+     .locate = &stepnc::meta::field<machining_schema::ellipse, &machining_schema::conic::position>},
     {.name = "semi_axis_1", .owner = &machining_schema::ellipse::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
      .locate = &stepnc::meta::field<machining_schema::ellipse, &machining_schema::ellipse::semi_axis_1>},
     {.name = "semi_axis_2", .owner = &machining_schema::ellipse::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
@@ -1159,9 +1159,9 @@ constexpr const EntityInfo* geometric_representation_context_supertypes[] = {
 };
 constexpr AttributeInfo geometric_representation_context_attributes[] = {
     {.name = "context_identifier", .owner = &machining_schema::representation_context::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::representation_context, &machining_schema::representation_context::context_identifier>},
+     .locate = &stepnc::meta::field<machining_schema::geometric_representation_context, &machining_schema::representation_context::context_identifier>},
     {.name = "context_type", .owner = &machining_schema::representation_context::meta_entity, .type = &machining_schema::type_info::text,
-     .locate = &stepnc::meta::field<machining_schema::representation_context, &machining_schema::representation_context::context_type>},
+     .locate = &stepnc::meta::field<machining_schema::geometric_representation_context, &machining_schema::representation_context::context_type>},
     {.name = "coordinate_space_dimension", .owner = &machining_schema::geometric_representation_context::meta_entity, .type = &machining_schema::type_info::dimension_count,
      .locate = &stepnc::meta::field<machining_schema::geometric_representation_context, &machining_schema::geometric_representation_context::coordinate_space_dimension>},
 };
@@ -1176,9 +1176,9 @@ constexpr const EntityInfo* hyperbola_supertypes[] = {
 };
 constexpr AttributeInfo hyperbola_attributes[] = {
     {.name = "name", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::name>},
+     .locate = &stepnc::meta::field<machining_schema::hyperbola, &machining_schema::conic::name>},
     {.name = "position", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::position>},
+     .locate = &stepnc::meta::field<machining_schema::hyperbola, &machining_schema::conic::position>},
     {.name = "semi_axis", .owner = &machining_schema::hyperbola::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
      .locate = &stepnc::meta::field<machining_schema::hyperbola, &machining_schema::hyperbola::semi_axis>},
     {.name = "semi_imag_axis", .owner = &machining_schema::hyperbola::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
@@ -1238,7 +1238,7 @@ constexpr const EntityInfo* oriented_surface_supertypes[] = {
 };
 constexpr AttributeInfo oriented_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_surface, &machining_schema::surface::name>},
     {.name = "orientation", .owner = &machining_schema::oriented_surface::meta_entity, .type = &stepnc::meta::boolean_type,
      .locate = &stepnc::meta::field<machining_schema::oriented_surface, &machining_schema::oriented_surface::orientation>},
 };
@@ -1255,9 +1255,9 @@ constexpr const EntityInfo* parabola_supertypes[] = {
 };
 constexpr AttributeInfo parabola_attributes[] = {
     {.name = "name", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::name>},
+     .locate = &stepnc::meta::field<machining_schema::parabola, &machining_schema::conic::name>},
     {.name = "position", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::position>},
+     .locate = &stepnc::meta::field<machining_schema::parabola, &machining_schema::conic::position>},
     {.name = "focal_dist", .owner = &machining_schema::parabola::meta_entity, .type = &machining_schema::type_info::length_measure,
      .locate = &stepnc::meta::field<machining_schema::parabola, &machining_schema::parabola::focal_dist>},
 };
@@ -1275,9 +1275,9 @@ constexpr const EntityInfo* plane_supertypes[] = {
 };
 constexpr AttributeInfo plane_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::plane, &machining_schema::surface::name>},
     {.name = "position", .owner = &machining_schema::elementary_surface::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::elementary_surface::position>},
+     .locate = &stepnc::meta::field<machining_schema::plane, &machining_schema::elementary_surface::position>},
 };
 constexpr Upcast plane_upcasts[] = {
     {&machining_schema::plane::meta_entity, &stepnc::meta::upcast_to<machining_schema::plane, machining_schema::plane>},
@@ -1311,17 +1311,17 @@ constexpr const EntityInfo* quasi_uniform_curve_supertypes[] = {
 };
 constexpr AttributeInfo quasi_uniform_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve, &machining_schema::b_spline_curve::self_intersect>},
 };
 constexpr Upcast quasi_uniform_curve_upcasts[] = {
     {&machining_schema::quasi_uniform_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::quasi_uniform_curve, machining_schema::quasi_uniform_curve>},
@@ -1338,21 +1338,21 @@ constexpr const EntityInfo* quasi_uniform_surface_supertypes[] = {
 };
 constexpr AttributeInfo quasi_uniform_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface, &machining_schema::b_spline_surface::self_intersect>},
 };
 constexpr Upcast quasi_uniform_surface_upcasts[] = {
     {&machining_schema::quasi_uniform_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::quasi_uniform_surface, machining_schema::quasi_uniform_surface>},
@@ -1369,17 +1369,17 @@ constexpr const EntityInfo* rational_b_spline_curve_supertypes[] = {
 };
 constexpr AttributeInfo rational_b_spline_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_real,
      .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
@@ -1401,21 +1401,21 @@ constexpr const EntityInfo* rational_b_spline_surface_supertypes[] = {
 };
 constexpr AttributeInfo rational_b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_real,
      .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
@@ -1437,9 +1437,9 @@ constexpr const EntityInfo* spherical_surface_supertypes[] = {
 };
 constexpr AttributeInfo spherical_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_surface, &machining_schema::surface::name>},
     {.name = "position", .owner = &machining_schema::elementary_surface::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::elementary_surface::position>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_surface, &machining_schema::elementary_surface::position>},
     {.name = "radius", .owner = &machining_schema::spherical_surface::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
      .locate = &stepnc::meta::field<machining_schema::spherical_surface, &machining_schema::spherical_surface::radius>},
 };
@@ -1461,7 +1461,7 @@ constexpr const EntityInfo* swept_surface_subtypes[] = {
 };
 constexpr AttributeInfo swept_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::swept_surface, &machining_schema::surface::name>},
     {.name = "swept_curve", .owner = &machining_schema::swept_surface::meta_entity, .type = &machining_schema::type_info::curve,
      .locate = &stepnc::meta::field<machining_schema::swept_surface, &machining_schema::swept_surface::swept_curve>},
 };
@@ -1478,9 +1478,9 @@ constexpr const EntityInfo* surface_of_linear_extrusion_supertypes[] = {
 };
 constexpr AttributeInfo surface_of_linear_extrusion_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::surface_of_linear_extrusion, &machining_schema::surface::name>},
     {.name = "swept_curve", .owner = &machining_schema::swept_surface::meta_entity, .type = &machining_schema::type_info::curve,
-     .locate = &stepnc::meta::field<machining_schema::swept_surface, &machining_schema::swept_surface::swept_curve>},
+     .locate = &stepnc::meta::field<machining_schema::surface_of_linear_extrusion, &machining_schema::swept_surface::swept_curve>},
     {.name = "extrusion_axis", .owner = &machining_schema::surface_of_linear_extrusion::meta_entity, .type = &machining_schema::type_info::vector,
      .locate = &stepnc::meta::field<machining_schema::surface_of_linear_extrusion, &machining_schema::surface_of_linear_extrusion::extrusion_axis>},
 };
@@ -1498,9 +1498,9 @@ constexpr const EntityInfo* surface_of_revolution_supertypes[] = {
 };
 constexpr AttributeInfo surface_of_revolution_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::surface_of_revolution, &machining_schema::surface::name>},
     {.name = "swept_curve", .owner = &machining_schema::swept_surface::meta_entity, .type = &machining_schema::type_info::curve,
-     .locate = &stepnc::meta::field<machining_schema::swept_surface, &machining_schema::swept_surface::swept_curve>},
+     .locate = &stepnc::meta::field<machining_schema::surface_of_revolution, &machining_schema::swept_surface::swept_curve>},
     {.name = "axis_position", .owner = &machining_schema::surface_of_revolution::meta_entity, .type = &machining_schema::type_info::axis1_placement,
      .locate = &stepnc::meta::field<machining_schema::surface_of_revolution, &machining_schema::surface_of_revolution::axis_position>},
 };
@@ -1521,17 +1521,17 @@ constexpr const EntityInfo* uniform_curve_supertypes[] = {
 };
 constexpr AttributeInfo uniform_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve, &machining_schema::b_spline_curve::self_intersect>},
 };
 constexpr Upcast uniform_curve_upcasts[] = {
     {&machining_schema::uniform_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::uniform_curve, machining_schema::uniform_curve>},
@@ -1548,21 +1548,21 @@ constexpr const EntityInfo* uniform_surface_supertypes[] = {
 };
 constexpr AttributeInfo uniform_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface, &machining_schema::b_spline_surface::self_intersect>},
 };
 constexpr Upcast uniform_surface_upcasts[] = {
     {&machining_schema::uniform_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::uniform_surface, machining_schema::uniform_surface>},
@@ -1638,9 +1638,9 @@ constexpr const EntityInfo* closed_shell_subtypes[] = {
 };
 constexpr AttributeInfo closed_shell_attributes[] = {
     {.name = "name", .owner = &machining_schema::connected_face_set::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
+     .locate = &stepnc::meta::field<machining_schema::closed_shell, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::cfs_faces>},
+     .locate = &stepnc::meta::field<machining_schema::closed_shell, &machining_schema::connected_face_set::cfs_faces>},
 };
 constexpr Upcast closed_shell_upcasts[] = {
     {&machining_schema::closed_shell::meta_entity, &stepnc::meta::upcast_to<machining_schema::closed_shell, machining_schema::closed_shell>},
@@ -1678,11 +1678,11 @@ constexpr const EntityInfo* edge_curve_supertypes[] = {
 };
 constexpr AttributeInfo edge_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::edge, &machining_schema::edge::name>},
+     .locate = &stepnc::meta::field<machining_schema::edge_curve, &machining_schema::edge::name>},
     {.name = "edge_start", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::vertex,
-     .locate = &stepnc::meta::field<machining_schema::edge, &machining_schema::edge::edge_start>},
+     .locate = &stepnc::meta::field<machining_schema::edge_curve, &machining_schema::edge::edge_start>},
     {.name = "edge_end", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::vertex,
-     .locate = &stepnc::meta::field<machining_schema::edge, &machining_schema::edge::edge_end>},
+     .locate = &stepnc::meta::field<machining_schema::edge_curve, &machining_schema::edge::edge_end>},
     {.name = "edge_geometry", .owner = &machining_schema::edge_curve::meta_entity, .type = &machining_schema::type_info::curve,
      .locate = &stepnc::meta::field<machining_schema::edge_curve, &machining_schema::edge_curve::edge_geometry>},
     {.name = "same_sense", .owner = &machining_schema::edge_curve::meta_entity, .type = &stepnc::meta::boolean_type,
@@ -1738,9 +1738,9 @@ constexpr const EntityInfo* edge_loop_supertypes[] = {
 };
 constexpr AttributeInfo edge_loop_attributes[] = {
     {.name = "name", .owner = &machining_schema::path::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::name>},
+     .locate = &stepnc::meta::field<machining_schema::edge_loop, &machining_schema::path::name>},
     {.name = "edge_list", .owner = &machining_schema::path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge,
-     .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::edge_list>},
+     .locate = &stepnc::meta::field<machining_schema::edge_loop, &machining_schema::path::edge_list>},
 };
 constexpr AttributeInfo edge_loop_derived[] = {
     {.name = "ne", .owner = &machining_schema::edge_loop::meta_entity, .type = &stepnc::meta::integer_type, .kind = AttributeKind::Derived},
@@ -1800,11 +1800,11 @@ constexpr const EntityInfo* face_outer_bound_supertypes[] = {
 };
 constexpr AttributeInfo face_outer_bound_attributes[] = {
     {.name = "name", .owner = &machining_schema::face_bound::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::face_bound, &machining_schema::face_bound::name>},
+     .locate = &stepnc::meta::field<machining_schema::face_outer_bound, &machining_schema::face_bound::name>},
     {.name = "bound", .owner = &machining_schema::face_bound::meta_entity, .type = &machining_schema::type_info::loop,
-     .locate = &stepnc::meta::field<machining_schema::face_bound, &machining_schema::face_bound::bound>},
+     .locate = &stepnc::meta::field<machining_schema::face_outer_bound, &machining_schema::face_bound::bound>},
     {.name = "orientation", .owner = &machining_schema::face_bound::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::face_bound, &machining_schema::face_bound::orientation>},
+     .locate = &stepnc::meta::field<machining_schema::face_outer_bound, &machining_schema::face_bound::orientation>},
 };
 constexpr Upcast face_outer_bound_upcasts[] = {
     {&machining_schema::face_outer_bound::meta_entity, &stepnc::meta::upcast_to<machining_schema::face_outer_bound, machining_schema::face_outer_bound>},
@@ -1823,9 +1823,9 @@ constexpr const EntityInfo* face_surface_subtypes[] = {
 };
 constexpr AttributeInfo face_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::face::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::name>},
+     .locate = &stepnc::meta::field<machining_schema::face_surface, &machining_schema::face::name>},
     {.name = "bounds", .owner = &machining_schema::face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound,
-     .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::bounds>},
+     .locate = &stepnc::meta::field<machining_schema::face_surface, &machining_schema::face::bounds>},
     {.name = "face_geometry", .owner = &machining_schema::face_surface::meta_entity, .type = &machining_schema::type_info::surface,
      .locate = &stepnc::meta::field<machining_schema::face_surface, &machining_schema::face_surface::face_geometry>},
     {.name = "same_sense", .owner = &machining_schema::face_surface::meta_entity, .type = &stepnc::meta::boolean_type,
@@ -1849,9 +1849,9 @@ constexpr const EntityInfo* open_shell_subtypes[] = {
 };
 constexpr AttributeInfo open_shell_attributes[] = {
     {.name = "name", .owner = &machining_schema::connected_face_set::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
+     .locate = &stepnc::meta::field<machining_schema::open_shell, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::cfs_faces>},
+     .locate = &stepnc::meta::field<machining_schema::open_shell, &machining_schema::connected_face_set::cfs_faces>},
 };
 constexpr Upcast open_shell_upcasts[] = {
     {&machining_schema::open_shell::meta_entity, &stepnc::meta::upcast_to<machining_schema::open_shell, machining_schema::open_shell>},
@@ -1866,7 +1866,7 @@ constexpr const EntityInfo* oriented_closed_shell_supertypes[] = {
 };
 constexpr AttributeInfo oriented_closed_shell_attributes[] = {
     {.name = "name", .owner = &machining_schema::connected_face_set::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_closed_shell, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived},
     {.name = "closed_shell_element", .owner = &machining_schema::oriented_closed_shell::meta_entity, .type = &machining_schema::type_info::closed_shell,
      .locate = &stepnc::meta::field<machining_schema::oriented_closed_shell, &machining_schema::oriented_closed_shell::closed_shell_element>},
@@ -1890,7 +1890,7 @@ constexpr const EntityInfo* oriented_edge_supertypes[] = {
 };
 constexpr AttributeInfo oriented_edge_attributes[] = {
     {.name = "name", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::edge, &machining_schema::edge::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_edge, &machining_schema::edge::name>},
     {.name = "edge_start", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived},
     {.name = "edge_end", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::vertex, .kind = AttributeKind::Derived},
     {.name = "edge_element", .owner = &machining_schema::oriented_edge::meta_entity, .type = &machining_schema::type_info::edge,
@@ -1915,7 +1915,7 @@ constexpr const EntityInfo* oriented_face_supertypes[] = {
 };
 constexpr AttributeInfo oriented_face_attributes[] = {
     {.name = "name", .owner = &machining_schema::face::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_face, &machining_schema::face::name>},
     {.name = "bounds", .owner = &machining_schema::face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound, .kind = AttributeKind::Derived},
     {.name = "face_element", .owner = &machining_schema::oriented_face::meta_entity, .type = &machining_schema::type_info::face,
      .locate = &stepnc::meta::field<machining_schema::oriented_face, &machining_schema::oriented_face::face_element>},
@@ -1938,7 +1938,7 @@ constexpr const EntityInfo* oriented_open_shell_supertypes[] = {
 };
 constexpr AttributeInfo oriented_open_shell_attributes[] = {
     {.name = "name", .owner = &machining_schema::connected_face_set::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_open_shell, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face, .kind = AttributeKind::Derived},
     {.name = "open_shell_element", .owner = &machining_schema::oriented_open_shell::meta_entity, .type = &machining_schema::type_info::open_shell,
      .locate = &stepnc::meta::field<machining_schema::oriented_open_shell, &machining_schema::oriented_open_shell::open_shell_element>},
@@ -1962,7 +1962,7 @@ constexpr const EntityInfo* oriented_path_supertypes[] = {
 };
 constexpr AttributeInfo oriented_path_attributes[] = {
     {.name = "name", .owner = &machining_schema::path::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::name>},
+     .locate = &stepnc::meta::field<machining_schema::oriented_path, &machining_schema::path::name>},
     {.name = "edge_list", .owner = &machining_schema::path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge, .kind = AttributeKind::Derived},
     {.name = "path_element", .owner = &machining_schema::oriented_path::meta_entity, .type = &machining_schema::type_info::path,
      .locate = &stepnc::meta::field<machining_schema::oriented_path, &machining_schema::oriented_path::path_element>},
@@ -2037,7 +2037,7 @@ constexpr const EntityInfo* vertex_point_supertypes[] = {
 };
 constexpr AttributeInfo vertex_point_attributes[] = {
     {.name = "name", .owner = &machining_schema::vertex::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::vertex, &machining_schema::vertex::name>},
+     .locate = &stepnc::meta::field<machining_schema::vertex_point, &machining_schema::vertex::name>},
     {.name = "vertex_geometry", .owner = &machining_schema::vertex_point::meta_entity, .type = &machining_schema::type_info::point,
      .locate = &stepnc::meta::field<machining_schema::vertex_point, &machining_schema::vertex_point::vertex_geometry>},
 };
@@ -2097,7 +2097,7 @@ constexpr const EntityInfo* manifold_solid_brep_subtypes[] = {
 };
 constexpr AttributeInfo manifold_solid_brep_attributes[] = {
     {.name = "name", .owner = &machining_schema::solid_model::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::solid_model, &machining_schema::solid_model::name>},
+     .locate = &stepnc::meta::field<machining_schema::manifold_solid_brep, &machining_schema::solid_model::name>},
     {.name = "outer", .owner = &machining_schema::manifold_solid_brep::meta_entity, .type = &machining_schema::type_info::closed_shell,
      .locate = &stepnc::meta::field<machining_schema::manifold_solid_brep, &machining_schema::manifold_solid_brep::outer>},
 };
@@ -2114,9 +2114,9 @@ constexpr const EntityInfo* faceted_brep_supertypes[] = {
 };
 constexpr AttributeInfo faceted_brep_attributes[] = {
     {.name = "name", .owner = &machining_schema::solid_model::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::solid_model, &machining_schema::solid_model::name>},
+     .locate = &stepnc::meta::field<machining_schema::faceted_brep, &machining_schema::solid_model::name>},
     {.name = "outer", .owner = &machining_schema::manifold_solid_brep::meta_entity, .type = &machining_schema::type_info::closed_shell,
-     .locate = &stepnc::meta::field<machining_schema::manifold_solid_brep, &machining_schema::manifold_solid_brep::outer>},
+     .locate = &stepnc::meta::field<machining_schema::faceted_brep, &machining_schema::manifold_solid_brep::outer>},
 };
 constexpr Upcast faceted_brep_upcasts[] = {
     {&machining_schema::faceted_brep::meta_entity, &stepnc::meta::upcast_to<machining_schema::faceted_brep, machining_schema::faceted_brep>},
@@ -2169,11 +2169,11 @@ constexpr const EntityInfo* definitional_representation_supertypes[] = {
 };
 constexpr AttributeInfo definitional_representation_attributes[] = {
     {.name = "name", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::name>},
+     .locate = &stepnc::meta::field<machining_schema::definitional_representation, &machining_schema::representation::name>},
     {.name = "items", .owner = &machining_schema::representation::meta_entity, .type = &meta_tables::set_1_n_of_representation_item,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::items>},
+     .locate = &stepnc::meta::field<machining_schema::definitional_representation, &machining_schema::representation::items>},
     {.name = "context_of_items", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::representation_context,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::context_of_items>},
+     .locate = &stepnc::meta::field<machining_schema::definitional_representation, &machining_schema::representation::context_of_items>},
 };
 constexpr Upcast definitional_representation_upcasts[] = {
     {&machining_schema::definitional_representation::meta_entity, &stepnc::meta::upcast_to<machining_schema::definitional_representation, machining_schema::definitional_representation>},
@@ -2266,7 +2266,7 @@ constexpr const EntityInfo* calendar_date_supertypes[] = {
 };
 constexpr AttributeInfo calendar_date_attributes[] = {
     {.name = "year_component", .owner = &machining_schema::date::meta_entity, .type = &machining_schema::type_info::year_number,
-     .locate = &stepnc::meta::field<machining_schema::date, &machining_schema::date::year_component>},
+     .locate = &stepnc::meta::field<machining_schema::calendar_date, &machining_schema::date::year_component>},
     {.name = "day_component", .owner = &machining_schema::calendar_date::meta_entity, .type = &machining_schema::type_info::day_in_month_number,
      .locate = &stepnc::meta::field<machining_schema::calendar_date, &machining_schema::calendar_date::day_component>},
     {.name = "month_component", .owner = &machining_schema::calendar_date::meta_entity, .type = &machining_schema::type_info::month_in_year_number,
@@ -2283,7 +2283,7 @@ constexpr const EntityInfo* ordinal_date_supertypes[] = {
 };
 constexpr AttributeInfo ordinal_date_attributes[] = {
     {.name = "year_component", .owner = &machining_schema::date::meta_entity, .type = &machining_schema::type_info::year_number,
-     .locate = &stepnc::meta::field<machining_schema::date, &machining_schema::date::year_component>},
+     .locate = &stepnc::meta::field<machining_schema::ordinal_date, &machining_schema::date::year_component>},
     {.name = "day_component", .owner = &machining_schema::ordinal_date::meta_entity, .type = &machining_schema::type_info::day_in_year_number,
      .locate = &stepnc::meta::field<machining_schema::ordinal_date, &machining_schema::ordinal_date::day_component>},
 };
@@ -2298,7 +2298,7 @@ constexpr const EntityInfo* week_of_year_and_day_date_supertypes[] = {
 };
 constexpr AttributeInfo week_of_year_and_day_date_attributes[] = {
     {.name = "year_component", .owner = &machining_schema::date::meta_entity, .type = &machining_schema::type_info::year_number,
-     .locate = &stepnc::meta::field<machining_schema::date, &machining_schema::date::year_component>},
+     .locate = &stepnc::meta::field<machining_schema::week_of_year_and_day_date, &machining_schema::date::year_component>},
     {.name = "week_component", .owner = &machining_schema::week_of_year_and_day_date::meta_entity, .type = &machining_schema::type_info::week_in_year_number,
      .locate = &stepnc::meta::field<machining_schema::week_of_year_and_day_date, &machining_schema::week_of_year_and_day_date::week_component>},
     {.name = "day_component", .owner = &machining_schema::week_of_year_and_day_date::meta_entity, .type = &machining_schema::type_info::day_in_week_number, .optional = true,
@@ -2417,11 +2417,11 @@ constexpr const EntityInfo* shape_representation_subtypes[] = {
 };
 constexpr AttributeInfo shape_representation_attributes[] = {
     {.name = "name", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::name>},
+     .locate = &stepnc::meta::field<machining_schema::shape_representation, &machining_schema::representation::name>},
     {.name = "items", .owner = &machining_schema::representation::meta_entity, .type = &meta_tables::set_1_n_of_representation_item,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::items>},
+     .locate = &stepnc::meta::field<machining_schema::shape_representation, &machining_schema::representation::items>},
     {.name = "context_of_items", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::representation_context,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::context_of_items>},
+     .locate = &stepnc::meta::field<machining_schema::shape_representation, &machining_schema::representation::context_of_items>},
 };
 constexpr Upcast shape_representation_upcasts[] = {
     {&machining_schema::shape_representation::meta_entity, &stepnc::meta::upcast_to<machining_schema::shape_representation, machining_schema::shape_representation>},
@@ -2434,13 +2434,13 @@ constexpr const EntityInfo* advanced_face_supertypes[] = {
 };
 constexpr AttributeInfo advanced_face_attributes[] = {
     {.name = "name", .owner = &machining_schema::face::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::name>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_face, &machining_schema::face::name>},
     {.name = "bounds", .owner = &machining_schema::face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound,
-     .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::bounds>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_face, &machining_schema::face::bounds>},
     {.name = "face_geometry", .owner = &machining_schema::face_surface::meta_entity, .type = &machining_schema::type_info::surface,
-     .locate = &stepnc::meta::field<machining_schema::face_surface, &machining_schema::face_surface::face_geometry>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_face, &machining_schema::face_surface::face_geometry>},
     {.name = "same_sense", .owner = &machining_schema::face_surface::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::face_surface, &machining_schema::face_surface::same_sense>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_face, &machining_schema::face_surface::same_sense>},
 };
 constexpr Upcast advanced_face_upcasts[] = {
     {&machining_schema::advanced_face::meta_entity, &stepnc::meta::upcast_to<machining_schema::advanced_face, machining_schema::advanced_face>},
@@ -2457,11 +2457,11 @@ constexpr const EntityInfo* advanced_brep_shape_representation_supertypes[] = {
 };
 constexpr AttributeInfo advanced_brep_shape_representation_attributes[] = {
     {.name = "name", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::name>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_brep_shape_representation, &machining_schema::representation::name>},
     {.name = "items", .owner = &machining_schema::representation::meta_entity, .type = &meta_tables::set_1_n_of_representation_item,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::items>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_brep_shape_representation, &machining_schema::representation::items>},
     {.name = "context_of_items", .owner = &machining_schema::representation::meta_entity, .type = &machining_schema::type_info::representation_context,
-     .locate = &stepnc::meta::field<machining_schema::representation, &machining_schema::representation::context_of_items>},
+     .locate = &stepnc::meta::field<machining_schema::advanced_brep_shape_representation, &machining_schema::representation::context_of_items>},
 };
 constexpr Upcast advanced_brep_shape_representation_upcasts[] = {
     {&machining_schema::advanced_brep_shape_representation::meta_entity, &stepnc::meta::upcast_to<machining_schema::advanced_brep_shape_representation, machining_schema::advanced_brep_shape_representation>},
@@ -2591,7 +2591,7 @@ constexpr const EntityInfo* descriptive_parameter_supertypes[] = {
 };
 constexpr AttributeInfo descriptive_parameter_attributes[] = {
     {.name = "parameter_name", .owner = &machining_schema::property_parameter::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::property_parameter, &machining_schema::property_parameter::parameter_name>},
+     .locate = &stepnc::meta::field<machining_schema::descriptive_parameter, &machining_schema::property_parameter::parameter_name>},
     {.name = "descriptive_string", .owner = &machining_schema::descriptive_parameter::meta_entity, .type = &machining_schema::type_info::text,
      .locate = &stepnc::meta::field<machining_schema::descriptive_parameter, &machining_schema::descriptive_parameter::descriptive_string>},
 };
@@ -2606,7 +2606,7 @@ constexpr const EntityInfo* numeric_parameter_supertypes[] = {
 };
 constexpr AttributeInfo numeric_parameter_attributes[] = {
     {.name = "parameter_name", .owner = &machining_schema::property_parameter::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::property_parameter, &machining_schema::property_parameter::parameter_name>},
+     .locate = &stepnc::meta::field<machining_schema::numeric_parameter, &machining_schema::property_parameter::parameter_name>},
     {.name = "its_parameter_value", .owner = &machining_schema::numeric_parameter::meta_entity, .type = &machining_schema::type_info::parameter_value,
      .locate = &stepnc::meta::field<machining_schema::numeric_parameter, &machining_schema::numeric_parameter::its_parameter_value>},
     {.name = "its_parameter_unit", .owner = &machining_schema::numeric_parameter::meta_entity, .type = &machining_schema::type_info::label,
@@ -2643,11 +2643,11 @@ constexpr const EntityInfo* region_subtypes[] = {
 };
 constexpr AttributeInfo region_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::region::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::region::feature_placement>},
 };
@@ -2658,13 +2658,13 @@ constexpr const EntityInfo* region_projection_supertypes[] = {
 };
 constexpr AttributeInfo region_projection_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::region_projection, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::region_projection, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::region_projection, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::region::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::region::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::region_projection, &machining_schema::region::feature_placement>},
     {.name = "proj_curve", .owner = &machining_schema::region_projection::meta_entity, .type = &machining_schema::type_info::bounded_curve,
      .locate = &stepnc::meta::field<machining_schema::region_projection, &machining_schema::region_projection::proj_curve>},
     {.name = "proj_dir", .owner = &machining_schema::region_projection::meta_entity, .type = &machining_schema::type_info::direction,
@@ -2684,13 +2684,13 @@ constexpr const EntityInfo* region_surface_list_supertypes[] = {
 };
 constexpr AttributeInfo region_surface_list_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::region_surface_list, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::region_surface_list, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::region_surface_list, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::region::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::region::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::region_surface_list, &machining_schema::region::feature_placement>},
     {.name = "surface_list", .owner = &machining_schema::region_surface_list::meta_entity, .type = &meta_tables::list_1_n_of_bounded_surface,
      .locate = &stepnc::meta::field<machining_schema::region_surface_list, &machining_schema::region_surface_list::surface_list>},
 };
@@ -2707,17 +2707,17 @@ constexpr const EntityInfo* topological_region_supertypes[] = {
 };
 constexpr AttributeInfo topological_region_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::region::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::region::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::region::feature_placement>},
     {.name = "name", .owner = &machining_schema::connected_face_set::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face,
-     .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::cfs_faces>},
+     .locate = &stepnc::meta::field<machining_schema::topological_region, &machining_schema::connected_face_set::cfs_faces>},
 };
 constexpr Upcast topological_region_upcasts[] = {
     {&machining_schema::topological_region::meta_entity, &stepnc::meta::upcast_to<machining_schema::topological_region, machining_schema::topological_region>},
@@ -2741,11 +2741,11 @@ constexpr const EntityInfo* two5d_manufacturing_feature_subtypes[] = {
 };
 constexpr AttributeInfo two5d_manufacturing_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
 };
@@ -2769,13 +2769,13 @@ constexpr const EntityInfo* machining_feature_subtypes[] = {
 };
 constexpr AttributeInfo machining_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
      .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
 };
@@ -2786,15 +2786,15 @@ constexpr const EntityInfo* planar_face_supertypes[] = {
 };
 constexpr AttributeInfo planar_face_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::machining_feature::depth>},
     {.name = "course_of_travel", .owner = &machining_schema::planar_face::meta_entity, .type = &machining_schema::type_info::linear_path,
      .locate = &stepnc::meta::field<machining_schema::planar_face, &machining_schema::planar_face::course_of_travel>},
     {.name = "removal_boundary", .owner = &machining_schema::planar_face::meta_entity, .type = &machining_schema::type_info::linear_profile,
@@ -2821,15 +2821,15 @@ constexpr const EntityInfo* pocket_subtypes[] = {
 };
 constexpr AttributeInfo pocket_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::machining_feature::depth>},
     {.name = "its_boss", .owner = &machining_schema::pocket::meta_entity, .type = &meta_tables::set_0_n_of_boss,
      .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::its_boss>},
     {.name = "slope", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
@@ -2849,26 +2849,26 @@ constexpr const EntityInfo* closed_pocket_supertypes[] = {
 };
 constexpr AttributeInfo closed_pocket_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::machining_feature::depth>},
     {.name = "its_boss", .owner = &machining_schema::pocket::meta_entity, .type = &meta_tables::set_0_n_of_boss,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::its_boss>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::pocket::its_boss>},
     {.name = "slope", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::slope>,
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::pocket::slope>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::plane_angle_measure>>},
     {.name = "bottom_condition", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::pocket_bottom_condition,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::bottom_condition>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::pocket::bottom_condition>},
     {.name = "planar_radius", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::planar_radius>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::pocket::planar_radius>},
     {.name = "orthogonal_radius", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::orthogonal_radius>},
+     .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::pocket::orthogonal_radius>},
     {.name = "feature_boundary", .owner = &machining_schema::closed_pocket::meta_entity, .type = &machining_schema::type_info::closed_profile,
      .locate = &stepnc::meta::field<machining_schema::closed_pocket, &machining_schema::closed_pocket::feature_boundary>},
 };
@@ -2886,26 +2886,26 @@ constexpr const EntityInfo* open_pocket_supertypes[] = {
 };
 constexpr AttributeInfo open_pocket_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::machining_feature::depth>},
     {.name = "its_boss", .owner = &machining_schema::pocket::meta_entity, .type = &meta_tables::set_0_n_of_boss,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::its_boss>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::pocket::its_boss>},
     {.name = "slope", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::slope>,
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::pocket::slope>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::plane_angle_measure>>},
     {.name = "bottom_condition", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::pocket_bottom_condition,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::bottom_condition>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::pocket::bottom_condition>},
     {.name = "planar_radius", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::planar_radius>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::pocket::planar_radius>},
     {.name = "orthogonal_radius", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::orthogonal_radius>},
+     .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::pocket::orthogonal_radius>},
     {.name = "open_boundary", .owner = &machining_schema::open_pocket::meta_entity, .type = &machining_schema::type_info::open_profile,
      .locate = &stepnc::meta::field<machining_schema::open_pocket, &machining_schema::open_pocket::open_boundary>},
     {.name = "wall_boundary", .owner = &machining_schema::open_pocket::meta_entity, .type = &machining_schema::type_info::open_profile, .optional = true,
@@ -2979,15 +2979,15 @@ constexpr const EntityInfo* slot_supertypes[] = {
 };
 constexpr AttributeInfo slot_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::machining_feature::depth>},
     {.name = "course_of_travel", .owner = &machining_schema::slot::meta_entity, .type = &machining_schema::type_info::travel_path,
      .locate = &stepnc::meta::field<machining_schema::slot, &machining_schema::slot::course_of_travel>},
     {.name = "swept_shape", .owner = &machining_schema::slot::meta_entity, .type = &machining_schema::type_info::open_profile,
@@ -3072,15 +3072,15 @@ constexpr const EntityInfo* step_supertypes[] = {
 };
 constexpr AttributeInfo step_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::machining_feature::depth>},
     {.name = "open_boundary", .owner = &machining_schema::step::meta_entity, .type = &machining_schema::type_info::linear_path,
      .locate = &stepnc::meta::field<machining_schema::step, &machining_schema::step::open_boundary>},
     {.name = "wall_boundary", .owner = &machining_schema::step::meta_entity, .type = &machining_schema::type_info::vee_profile, .optional = true,
@@ -3105,15 +3105,15 @@ constexpr const EntityInfo* profile_feature_subtypes[] = {
 };
 constexpr AttributeInfo profile_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
      .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
 };
@@ -3124,17 +3124,17 @@ constexpr const EntityInfo* general_outside_profile_supertypes[] = {
 };
 constexpr AttributeInfo general_outside_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "feature_boundary", .owner = &machining_schema::general_outside_profile::meta_entity, .type = &machining_schema::type_info::profile,
      .locate = &stepnc::meta::field<machining_schema::general_outside_profile, &machining_schema::general_outside_profile::feature_boundary>},
 };
@@ -3159,17 +3159,17 @@ constexpr const EntityInfo* shape_profile_subtypes[] = {
 };
 constexpr AttributeInfo shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
      .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
@@ -3199,9 +3199,9 @@ constexpr const EntityInfo* general_profile_floor_supertypes[] = {
 };
 constexpr AttributeInfo general_profile_floor_attributes[] = {
     {.name = "floor_radius", .owner = &machining_schema::profile_floor::meta_entity, .type = &machining_schema::type_info::numeric_parameter, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::floor_radius>},
+     .locate = &stepnc::meta::field<machining_schema::general_profile_floor, &machining_schema::profile_floor::floor_radius>},
     {.name = "start_or_end", .owner = &machining_schema::profile_floor::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::start_or_end>},
+     .locate = &stepnc::meta::field<machining_schema::general_profile_floor, &machining_schema::profile_floor::start_or_end>},
     {.name = "floor", .owner = &machining_schema::general_profile_floor::meta_entity, .type = &machining_schema::type_info::face,
      .locate = &stepnc::meta::field<machining_schema::general_profile_floor, &machining_schema::general_profile_floor::floor>},
 };
@@ -3216,9 +3216,9 @@ constexpr const EntityInfo* planar_profile_floor_supertypes[] = {
 };
 constexpr AttributeInfo planar_profile_floor_attributes[] = {
     {.name = "floor_radius", .owner = &machining_schema::profile_floor::meta_entity, .type = &machining_schema::type_info::numeric_parameter, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::floor_radius>},
+     .locate = &stepnc::meta::field<machining_schema::planar_profile_floor, &machining_schema::profile_floor::floor_radius>},
     {.name = "start_or_end", .owner = &machining_schema::profile_floor::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::start_or_end>},
+     .locate = &stepnc::meta::field<machining_schema::planar_profile_floor, &machining_schema::profile_floor::start_or_end>},
     {.name = "floor", .owner = &machining_schema::planar_profile_floor::meta_entity, .type = &machining_schema::type_info::plane,
      .locate = &stepnc::meta::field<machining_schema::planar_profile_floor, &machining_schema::planar_profile_floor::floor>},
 };
@@ -3233,21 +3233,21 @@ constexpr const EntityInfo* general_shape_profile_supertypes[] = {
 };
 constexpr AttributeInfo general_shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
+     .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::shape_profile::removal_direction>},
     {.name = "profile_boundary", .owner = &machining_schema::general_shape_profile::meta_entity, .type = &machining_schema::type_info::profile,
      .locate = &stepnc::meta::field<machining_schema::general_shape_profile, &machining_schema::general_shape_profile::profile_boundary>},
 };
@@ -3266,21 +3266,21 @@ constexpr const EntityInfo* partial_circular_shape_profile_supertypes[] = {
 };
 constexpr AttributeInfo partial_circular_shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::shape_profile::removal_direction>},
     {.name = "open_boundary", .owner = &machining_schema::partial_circular_shape_profile::meta_entity, .type = &machining_schema::type_info::partial_circular_profile,
      .locate = &stepnc::meta::field<machining_schema::partial_circular_shape_profile, &machining_schema::partial_circular_shape_profile::open_boundary>},
 };
@@ -3299,21 +3299,21 @@ constexpr const EntityInfo* circular_closed_shape_profile_supertypes[] = {
 };
 constexpr AttributeInfo circular_closed_shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::shape_profile::removal_direction>},
     {.name = "closed_boundary", .owner = &machining_schema::circular_closed_shape_profile::meta_entity, .type = &machining_schema::type_info::circular_closed_profile,
      .locate = &stepnc::meta::field<machining_schema::circular_closed_shape_profile, &machining_schema::circular_closed_shape_profile::closed_boundary>},
 };
@@ -3332,21 +3332,21 @@ constexpr const EntityInfo* rectangular_open_shape_profile_supertypes[] = {
 };
 constexpr AttributeInfo rectangular_open_shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::shape_profile::removal_direction>},
     {.name = "open_boundary", .owner = &machining_schema::rectangular_open_shape_profile::meta_entity, .type = &machining_schema::type_info::square_u_profile,
      .locate = &stepnc::meta::field<machining_schema::rectangular_open_shape_profile, &machining_schema::rectangular_open_shape_profile::open_boundary>},
 };
@@ -3365,21 +3365,21 @@ constexpr const EntityInfo* rectangular_closed_shape_profile_supertypes[] = {
 };
 constexpr AttributeInfo rectangular_closed_shape_profile_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::machining_feature::depth>},
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
-     .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::profile_feature::profile_swept_shape>},
     {.name = "floor_condition", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::profile_select,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::floor_condition>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::shape_profile::floor_condition>},
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
-     .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::shape_profile::removal_direction>},
     {.name = "closed_boundary", .owner = &machining_schema::rectangular_closed_shape_profile::meta_entity, .type = &machining_schema::type_info::rectangular_closed_profile,
      .locate = &stepnc::meta::field<machining_schema::rectangular_closed_shape_profile, &machining_schema::rectangular_closed_shape_profile::closed_boundary>},
 };
@@ -3398,15 +3398,15 @@ constexpr const EntityInfo* round_hole_supertypes[] = {
 };
 constexpr AttributeInfo round_hole_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::machining_feature::depth>},
     {.name = "diameter", .owner = &machining_schema::round_hole::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::round_hole, &machining_schema::round_hole::diameter>},
     {.name = "change_in_diameter", .owner = &machining_schema::round_hole::meta_entity, .type = &machining_schema::type_info::taper_select, .optional = true,
@@ -3525,15 +3525,15 @@ constexpr const EntityInfo* toolpath_feature_supertypes[] = {
 };
 constexpr AttributeInfo toolpath_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::toolpath_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::toolpath_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::toolpath_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::toolpath_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::toolpath_feature, &machining_schema::machining_feature::depth>},
 };
 constexpr Upcast toolpath_feature_upcasts[] = {
     {&machining_schema::toolpath_feature::meta_entity, &stepnc::meta::upcast_to<machining_schema::toolpath_feature, machining_schema::toolpath_feature>},
@@ -3548,15 +3548,15 @@ constexpr const EntityInfo* boss_supertypes[] = {
 };
 constexpr AttributeInfo boss_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::machining_feature::depth>},
     {.name = "its_boundary", .owner = &machining_schema::boss::meta_entity, .type = &machining_schema::type_info::closed_profile,
      .locate = &stepnc::meta::field<machining_schema::boss, &machining_schema::boss::its_boundary>},
     {.name = "slope", .owner = &machining_schema::boss::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
@@ -3576,15 +3576,15 @@ constexpr const EntityInfo* spherical_cap_supertypes[] = {
 };
 constexpr AttributeInfo spherical_cap_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::machining_feature::depth>},
     {.name = "internal_angle", .owner = &machining_schema::spherical_cap::meta_entity, .type = &machining_schema::type_info::numeric_parameter,
      .locate = &stepnc::meta::field<machining_schema::spherical_cap, &machining_schema::spherical_cap::internal_angle>},
     {.name = "radius", .owner = &machining_schema::spherical_cap::meta_entity, .type = &machining_schema::type_info::numeric_parameter,
@@ -3603,15 +3603,15 @@ constexpr const EntityInfo* rounded_end_supertypes[] = {
 };
 constexpr AttributeInfo rounded_end_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::machining_feature::depth>},
     {.name = "course_of_travel", .owner = &machining_schema::rounded_end::meta_entity, .type = &machining_schema::type_info::linear_path,
      .locate = &stepnc::meta::field<machining_schema::rounded_end, &machining_schema::rounded_end::course_of_travel>},
     {.name = "partial_circular_boundary", .owner = &machining_schema::rounded_end::meta_entity, .type = &machining_schema::type_info::partial_circular_profile,
@@ -3634,13 +3634,13 @@ constexpr const EntityInfo* compound_feature_subtypes[] = {
 };
 constexpr AttributeInfo compound_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "elements", .owner = &machining_schema::compound_feature::meta_entity, .type = &meta_tables::set_2_n_of_compound_feature_select,
      .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::compound_feature::elements>},
 };
@@ -3656,15 +3656,15 @@ constexpr const EntityInfo* counterbore_hole_supertypes[] = {
 };
 constexpr AttributeInfo counterbore_hole_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::counterbore_hole, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::counterbore_hole, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::counterbore_hole, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::counterbore_hole, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "elements", .owner = &machining_schema::compound_feature::meta_entity, .type = &meta_tables::set_2_n_of_compound_feature_select,
-     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::compound_feature::elements>},
+     .locate = &stepnc::meta::field<machining_schema::counterbore_hole, &machining_schema::compound_feature::elements>},
 };
 constexpr Upcast counterbore_hole_upcasts[] = {
     {&machining_schema::counterbore_hole::meta_entity, &stepnc::meta::upcast_to<machining_schema::counterbore_hole, machining_schema::counterbore_hole>},
@@ -3679,15 +3679,15 @@ constexpr const EntityInfo* countersunk_hole_supertypes[] = {
 };
 constexpr AttributeInfo countersunk_hole_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::countersunk_hole, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::countersunk_hole, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::countersunk_hole, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::countersunk_hole, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "elements", .owner = &machining_schema::compound_feature::meta_entity, .type = &meta_tables::set_2_n_of_compound_feature_select,
-     .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::compound_feature::elements>},
+     .locate = &stepnc::meta::field<machining_schema::countersunk_hole, &machining_schema::compound_feature::elements>},
 };
 constexpr Upcast countersunk_hole_upcasts[] = {
     {&machining_schema::countersunk_hole::meta_entity, &stepnc::meta::upcast_to<machining_schema::countersunk_hole, machining_schema::countersunk_hole>},
@@ -3707,13 +3707,13 @@ constexpr const EntityInfo* replicate_feature_subtypes[] = {
 };
 constexpr AttributeInfo replicate_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "replicate_base_feature", .owner = &machining_schema::replicate_feature::meta_entity, .type = &machining_schema::type_info::two5d_manufacturing_feature,
      .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::replicate_feature::replicate_base_feature>},
 };
@@ -3724,15 +3724,15 @@ constexpr const EntityInfo* circular_pattern_supertypes[] = {
 };
 constexpr AttributeInfo circular_pattern_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "replicate_base_feature", .owner = &machining_schema::replicate_feature::meta_entity, .type = &machining_schema::type_info::two5d_manufacturing_feature,
-     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::replicate_feature::replicate_base_feature>},
+     .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::replicate_feature::replicate_base_feature>},
     {.name = "angle_increment", .owner = &machining_schema::circular_pattern::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
      .locate = &stepnc::meta::field<machining_schema::circular_pattern, &machining_schema::circular_pattern::angle_increment>},
     {.name = "number_of_feature", .owner = &machining_schema::circular_pattern::meta_entity, .type = &stepnc::meta::integer_type,
@@ -3779,15 +3779,15 @@ constexpr const EntityInfo* rectangular_pattern_supertypes[] = {
 };
 constexpr AttributeInfo rectangular_pattern_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "replicate_base_feature", .owner = &machining_schema::replicate_feature::meta_entity, .type = &machining_schema::type_info::two5d_manufacturing_feature,
-     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::replicate_feature::replicate_base_feature>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::replicate_feature::replicate_base_feature>},
     {.name = "spacing", .owner = &machining_schema::rectangular_pattern::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::rectangular_pattern, &machining_schema::rectangular_pattern::spacing>},
     {.name = "its_direction", .owner = &machining_schema::rectangular_pattern::meta_entity, .type = &machining_schema::type_info::direction,
@@ -3845,15 +3845,15 @@ constexpr const EntityInfo* general_pattern_supertypes[] = {
 };
 constexpr AttributeInfo general_pattern_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "replicate_base_feature", .owner = &machining_schema::replicate_feature::meta_entity, .type = &machining_schema::type_info::two5d_manufacturing_feature,
-     .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::replicate_feature::replicate_base_feature>},
+     .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::replicate_feature::replicate_base_feature>},
     {.name = "replicate_locations", .owner = &machining_schema::general_pattern::meta_entity, .type = &meta_tables::list_2_n_of_axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::general_pattern, &machining_schema::general_pattern::replicate_locations>},
 };
@@ -3874,11 +3874,11 @@ constexpr const EntityInfo* transition_feature_subtypes[] = {
 };
 constexpr AttributeInfo transition_feature_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "first_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
      .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::first_feature>},
     {.name = "second_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
@@ -3891,15 +3891,15 @@ constexpr const EntityInfo* chamfer_supertypes[] = {
 };
 constexpr AttributeInfo chamfer_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "first_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::first_feature>},
+     .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::transition_feature::first_feature>},
     {.name = "second_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::second_feature>},
+     .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::transition_feature::second_feature>},
     {.name = "angle_to_plane", .owner = &machining_schema::chamfer::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
      .locate = &stepnc::meta::field<machining_schema::chamfer, &machining_schema::chamfer::angle_to_plane>},
     {.name = "first_offset_amount", .owner = &machining_schema::chamfer::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
@@ -3917,15 +3917,15 @@ constexpr const EntityInfo* edge_round_supertypes[] = {
 };
 constexpr AttributeInfo edge_round_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "first_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::first_feature>},
+     .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::transition_feature::first_feature>},
     {.name = "second_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::second_feature>},
+     .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::transition_feature::second_feature>},
     {.name = "radius", .owner = &machining_schema::edge_round::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::edge_round, &machining_schema::edge_round::radius>},
     {.name = "first_offset_amount", .owner = &machining_schema::edge_round::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
@@ -3949,15 +3949,15 @@ constexpr const EntityInfo* thread_subtypes[] = {
 };
 constexpr AttributeInfo thread_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::machining_feature::depth>},
     {.name = "partial_profile", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::partial_area_definition,
      .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::partial_profile>},
     {.name = "applied_shape", .owner = &machining_schema::thread::meta_entity, .type = &meta_tables::set_1_n_of_machining_feature,
@@ -3998,33 +3998,33 @@ constexpr const EntityInfo* catalogue_thread_supertypes[] = {
 };
 constexpr AttributeInfo catalogue_thread_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::machining_feature::depth>},
     {.name = "partial_profile", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::partial_area_definition,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::partial_profile>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::partial_profile>},
     {.name = "applied_shape", .owner = &machining_schema::thread::meta_entity, .type = &meta_tables::set_1_n_of_machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::applied_shape>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::applied_shape>},
     {.name = "inner_or_outer_thread", .owner = &machining_schema::thread::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::inner_or_outer_thread>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::inner_or_outer_thread>},
     {.name = "qualifier", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::qualifier>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::qualifier>},
     {.name = "fit_class", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::fit_class>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::fit_class>},
     {.name = "form", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::form>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::form>},
     {.name = "major_diameter", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::length_measure,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::major_diameter>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::major_diameter>},
     {.name = "number_of_threads", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::numeric_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::number_of_threads>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::number_of_threads>},
     {.name = "thread_hand", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::thread_hand>},
+     .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::thread::thread_hand>},
     {.name = "documentation", .owner = &machining_schema::catalogue_thread::meta_entity, .type = &machining_schema::type_info::specification,
      .locate = &stepnc::meta::field<machining_schema::catalogue_thread, &machining_schema::catalogue_thread::documentation>},
 };
@@ -4070,33 +4070,33 @@ constexpr const EntityInfo* defined_thread_supertypes[] = {
 };
 constexpr AttributeInfo defined_thread_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::manufacturing_feature::its_id>},
     {.name = "its_workpiece", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &machining_schema::type_info::workpiece,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_workpiece>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::manufacturing_feature::its_workpiece>},
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
-     .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
-     .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::machining_feature::depth>},
     {.name = "partial_profile", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::partial_area_definition,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::partial_profile>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::partial_profile>},
     {.name = "applied_shape", .owner = &machining_schema::thread::meta_entity, .type = &meta_tables::set_1_n_of_machining_feature,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::applied_shape>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::applied_shape>},
     {.name = "inner_or_outer_thread", .owner = &machining_schema::thread::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::inner_or_outer_thread>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::inner_or_outer_thread>},
     {.name = "qualifier", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::qualifier>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::qualifier>},
     {.name = "fit_class", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::fit_class>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::fit_class>},
     {.name = "form", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::form>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::form>},
     {.name = "major_diameter", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::length_measure,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::major_diameter>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::major_diameter>},
     {.name = "number_of_threads", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::numeric_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::number_of_threads>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::number_of_threads>},
     {.name = "thread_hand", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
-     .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::thread_hand>},
+     .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::thread::thread_hand>},
     {.name = "pitch_diameter", .owner = &machining_schema::defined_thread::meta_entity, .type = &machining_schema::type_info::length_measure,
      .locate = &stepnc::meta::field<machining_schema::defined_thread, &machining_schema::defined_thread::pitch_diameter>},
     {.name = "minor_diameter", .owner = &machining_schema::defined_thread::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
@@ -4139,7 +4139,7 @@ constexpr const EntityInfo* open_profile_subtypes[] = {
 };
 constexpr AttributeInfo open_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::open_profile, &machining_schema::profile::placement>},
 };
 
 // linear_profile
@@ -4148,7 +4148,7 @@ constexpr const EntityInfo* linear_profile_supertypes[] = {
 };
 constexpr AttributeInfo linear_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::linear_profile, &machining_schema::profile::placement>},
     {.name = "profile_length", .owner = &machining_schema::linear_profile::meta_entity, .type = &machining_schema::type_info::numeric_parameter,
      .locate = &stepnc::meta::field<machining_schema::linear_profile, &machining_schema::linear_profile::profile_length>},
 };
@@ -4164,7 +4164,7 @@ constexpr const EntityInfo* square_u_profile_supertypes[] = {
 };
 constexpr AttributeInfo square_u_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::square_u_profile, &machining_schema::profile::placement>},
     {.name = "width", .owner = &machining_schema::square_u_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::square_u_profile, &machining_schema::square_u_profile::width>},
     {.name = "first_radius", .owner = &machining_schema::square_u_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
@@ -4188,7 +4188,7 @@ constexpr const EntityInfo* rounded_u_profile_supertypes[] = {
 };
 constexpr AttributeInfo rounded_u_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::rounded_u_profile, &machining_schema::profile::placement>},
     {.name = "width", .owner = &machining_schema::rounded_u_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::rounded_u_profile, &machining_schema::rounded_u_profile::width>},
 };
@@ -4204,7 +4204,7 @@ constexpr const EntityInfo* tee_profile_supertypes[] = {
 };
 constexpr AttributeInfo tee_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::tee_profile, &machining_schema::profile::placement>},
     {.name = "first_angle", .owner = &machining_schema::tee_profile::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
      .locate = &stepnc::meta::field<machining_schema::tee_profile, &machining_schema::tee_profile::first_angle>},
     {.name = "second_angle", .owner = &machining_schema::tee_profile::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
@@ -4234,7 +4234,7 @@ constexpr const EntityInfo* vee_profile_supertypes[] = {
 };
 constexpr AttributeInfo vee_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::vee_profile, &machining_schema::profile::placement>},
     {.name = "profile_radius", .owner = &machining_schema::vee_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::vee_profile, &machining_schema::vee_profile::profile_radius>},
     {.name = "profile_angle", .owner = &machining_schema::vee_profile::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
@@ -4254,7 +4254,7 @@ constexpr const EntityInfo* partial_circular_profile_supertypes[] = {
 };
 constexpr AttributeInfo partial_circular_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_profile, &machining_schema::profile::placement>},
     {.name = "radius", .owner = &machining_schema::partial_circular_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::partial_circular_profile, &machining_schema::partial_circular_profile::radius>},
     {.name = "sweep_angle", .owner = &machining_schema::partial_circular_profile::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
@@ -4272,7 +4272,7 @@ constexpr const EntityInfo* general_profile_supertypes[] = {
 };
 constexpr AttributeInfo general_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_profile, &machining_schema::profile::placement>},
     {.name = "its_profile", .owner = &machining_schema::general_profile::meta_entity, .type = &machining_schema::type_info::bounded_curve,
      .locate = &stepnc::meta::field<machining_schema::general_profile, &machining_schema::general_profile::its_profile>},
 };
@@ -4294,7 +4294,7 @@ constexpr const EntityInfo* closed_profile_subtypes[] = {
 };
 constexpr AttributeInfo closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::closed_profile, &machining_schema::profile::placement>},
 };
 
 // rectangular_closed_profile
@@ -4303,7 +4303,7 @@ constexpr const EntityInfo* rectangular_closed_profile_supertypes[] = {
 };
 constexpr AttributeInfo rectangular_closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::rectangular_closed_profile, &machining_schema::profile::placement>},
     {.name = "profile_width", .owner = &machining_schema::rectangular_closed_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::rectangular_closed_profile, &machining_schema::rectangular_closed_profile::profile_width>},
     {.name = "profile_length", .owner = &machining_schema::rectangular_closed_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
@@ -4321,7 +4321,7 @@ constexpr const EntityInfo* circular_closed_profile_supertypes[] = {
 };
 constexpr AttributeInfo circular_closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::circular_closed_profile, &machining_schema::profile::placement>},
     {.name = "diameter", .owner = &machining_schema::circular_closed_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::circular_closed_profile, &machining_schema::circular_closed_profile::diameter>},
 };
@@ -4337,7 +4337,7 @@ constexpr const EntityInfo* ngon_closed_profile_supertypes[] = {
 };
 constexpr AttributeInfo ngon_closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::ngon_closed_profile, &machining_schema::profile::placement>},
     {.name = "diameter", .owner = &machining_schema::ngon_closed_profile::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::ngon_closed_profile, &machining_schema::ngon_closed_profile::diameter>},
     {.name = "number_of_sides", .owner = &machining_schema::ngon_closed_profile::meta_entity, .type = &stepnc::meta::integer_type,
@@ -4357,7 +4357,7 @@ constexpr const EntityInfo* general_closed_profile_supertypes[] = {
 };
 constexpr AttributeInfo general_closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_closed_profile, &machining_schema::profile::placement>},
     {.name = "closed_profile_shape", .owner = &machining_schema::general_closed_profile::meta_entity, .type = &machining_schema::type_info::bounded_curve,
      .locate = &stepnc::meta::field<machining_schema::general_closed_profile, &machining_schema::general_closed_profile::closed_profile_shape>},
 };
@@ -4384,7 +4384,7 @@ constexpr const EntityInfo* general_path_supertypes[] = {
 };
 constexpr AttributeInfo general_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
+     .locate = &stepnc::meta::field<machining_schema::general_path, &machining_schema::travel_path::placement>},
     {.name = "swept_path", .owner = &machining_schema::general_path::meta_entity, .type = &machining_schema::type_info::bounded_curve,
      .locate = &stepnc::meta::field<machining_schema::general_path, &machining_schema::general_path::swept_path>},
 };
@@ -4399,7 +4399,7 @@ constexpr const EntityInfo* linear_path_supertypes[] = {
 };
 constexpr AttributeInfo linear_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
+     .locate = &stepnc::meta::field<machining_schema::linear_path, &machining_schema::travel_path::placement>},
     {.name = "distance", .owner = &machining_schema::linear_path::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::linear_path, &machining_schema::linear_path::distance>},
     {.name = "its_direction", .owner = &machining_schema::linear_path::meta_entity, .type = &machining_schema::type_info::direction,
@@ -4420,7 +4420,7 @@ constexpr const EntityInfo* circular_path_subtypes[] = {
 };
 constexpr AttributeInfo circular_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
+     .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::travel_path::placement>},
     {.name = "radius", .owner = &machining_schema::circular_path::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::circular_path::radius>},
 };
@@ -4431,9 +4431,9 @@ constexpr const EntityInfo* complete_circular_path_supertypes[] = {
 };
 constexpr AttributeInfo complete_circular_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
+     .locate = &stepnc::meta::field<machining_schema::complete_circular_path, &machining_schema::travel_path::placement>},
     {.name = "radius", .owner = &machining_schema::circular_path::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
-     .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::circular_path::radius>},
+     .locate = &stepnc::meta::field<machining_schema::complete_circular_path, &machining_schema::circular_path::radius>},
 };
 constexpr Upcast complete_circular_path_upcasts[] = {
     {&machining_schema::complete_circular_path::meta_entity, &stepnc::meta::upcast_to<machining_schema::complete_circular_path, machining_schema::complete_circular_path>},
@@ -4447,9 +4447,9 @@ constexpr const EntityInfo* partial_circular_path_supertypes[] = {
 };
 constexpr AttributeInfo partial_circular_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_path, &machining_schema::travel_path::placement>},
     {.name = "radius", .owner = &machining_schema::circular_path::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
-     .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::circular_path::radius>},
+     .locate = &stepnc::meta::field<machining_schema::partial_circular_path, &machining_schema::circular_path::radius>},
     {.name = "sweep_angle", .owner = &machining_schema::partial_circular_path::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
      .locate = &stepnc::meta::field<machining_schema::partial_circular_path, &machining_schema::partial_circular_path::sweep_angle>},
 };
@@ -4511,7 +4511,7 @@ constexpr const EntityInfo* workingstep_subtypes[] = {
 };
 constexpr AttributeInfo workingstep_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
      .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
 };
@@ -4522,9 +4522,9 @@ constexpr const EntityInfo* machining_workingstep_supertypes[] = {
 };
 constexpr AttributeInfo machining_workingstep_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::machining_workingstep, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::machining_workingstep, &machining_schema::workingstep::its_secplane>},
     {.name = "its_feature", .owner = &machining_schema::machining_workingstep::meta_entity, .type = &machining_schema::type_info::manufacturing_feature,
      .locate = &stepnc::meta::field<machining_schema::machining_workingstep, &machining_schema::machining_workingstep::its_feature>},
     {.name = "its_operation", .owner = &machining_schema::machining_workingstep::meta_entity, .type = &machining_schema::type_info::machining_operation,
@@ -4574,13 +4574,13 @@ constexpr const EntityInfo* rapid_movement_subtypes[] = {
 };
 constexpr AttributeInfo rapid_movement_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::rapid_movement, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::rapid_movement, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::rapid_movement, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::rapid_movement, &machining_schema::operation::its_tool_direction>},
 };
 constexpr Upcast rapid_movement_upcasts[] = {
     {&machining_schema::rapid_movement::meta_entity, &stepnc::meta::upcast_to<machining_schema::rapid_movement, machining_schema::rapid_movement>},
@@ -4595,13 +4595,13 @@ constexpr const EntityInfo* return_home_supertypes[] = {
 };
 constexpr AttributeInfo return_home_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::return_home, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::return_home, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::return_home, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::return_home, &machining_schema::operation::its_tool_direction>},
 };
 constexpr Upcast return_home_upcasts[] = {
     {&machining_schema::return_home::meta_entity, &stepnc::meta::upcast_to<machining_schema::return_home, machining_schema::return_home>},
@@ -4623,13 +4623,13 @@ constexpr const EntityInfo* touch_probing_subtypes[] = {
 };
 constexpr AttributeInfo touch_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
      .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
 };
@@ -4640,15 +4640,15 @@ constexpr const EntityInfo* workpiece_probing_supertypes[] = {
 };
 constexpr AttributeInfo workpiece_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::touch_probing::measured_offset>},
     {.name = "start_position", .owner = &machining_schema::workpiece_probing::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::workpiece_probing, &machining_schema::workpiece_probing::start_position>},
     {.name = "its_workpiece", .owner = &machining_schema::workpiece_probing::meta_entity, .type = &machining_schema::type_info::workpiece,
@@ -4674,15 +4674,15 @@ constexpr const EntityInfo* workpiece_complete_probing_supertypes[] = {
 };
 constexpr AttributeInfo workpiece_complete_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+     .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::touch_probing::measured_offset>},
     {.name = "its_workpiece", .owner = &machining_schema::workpiece_complete_probing::meta_entity, .type = &machining_schema::type_info::workpiece,
      .locate = &stepnc::meta::field<machining_schema::workpiece_complete_probing, &machining_schema::workpiece_complete_probing::its_workpiece>},
     {.name = "probing_distance", .owner = &machining_schema::workpiece_complete_probing::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
@@ -4731,15 +4731,15 @@ constexpr const EntityInfo* tool_probing_subtypes[] = {
 };
 constexpr AttributeInfo tool_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::touch_probing::measured_offset>},
     {.name = "offset", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::cartesian_point,
      .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::offset>},
     {.name = "max_wear", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::length_measure,
@@ -4767,7 +4767,7 @@ constexpr const EntityInfo* cutting_tool_subtypes[] = {
 };
 constexpr AttributeInfo cutting_tool_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::machining_tool::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::machining_tool, &machining_schema::machining_tool::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::cutting_tool, &machining_schema::machining_tool::its_id>},
     {.name = "its_tool_body", .owner = &machining_schema::cutting_tool::meta_entity, .type = &machining_schema::type_info::tool_body,
      .locate = &stepnc::meta::field<machining_schema::cutting_tool, &machining_schema::cutting_tool::its_tool_body>},
     {.name = "its_cutting_edge", .owner = &machining_schema::cutting_tool::meta_entity, .type = &meta_tables::list_1_n_of_cutting_component,
@@ -4823,21 +4823,21 @@ constexpr const EntityInfo* tool_length_probing_supertypes[] = {
 };
 constexpr AttributeInfo tool_length_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::touch_probing::measured_offset>},
     {.name = "offset", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::offset>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::tool_probing::offset>},
     {.name = "max_wear", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::length_measure,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::max_wear>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::tool_probing::max_wear>},
     {.name = "its_tool", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::machining_tool,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::its_tool>},
+     .locate = &stepnc::meta::field<machining_schema::tool_length_probing, &machining_schema::tool_probing::its_tool>},
 };
 constexpr Upcast tool_length_probing_upcasts[] = {
     {&machining_schema::tool_length_probing::meta_entity, &stepnc::meta::upcast_to<machining_schema::tool_length_probing, machining_schema::tool_length_probing>},
@@ -4854,21 +4854,21 @@ constexpr const EntityInfo* tool_radius_probing_supertypes[] = {
 };
 constexpr AttributeInfo tool_radius_probing_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
-     .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::workingstep::its_secplane>},
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::touch_probing::measured_offset>},
     {.name = "offset", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::offset>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::tool_probing::offset>},
     {.name = "max_wear", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::length_measure,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::max_wear>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::tool_probing::max_wear>},
     {.name = "its_tool", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::machining_tool,
-     .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::its_tool>},
+     .locate = &stepnc::meta::field<machining_schema::tool_radius_probing, &machining_schema::tool_probing::its_tool>},
 };
 constexpr Upcast tool_radius_probing_upcasts[] = {
     {&machining_schema::tool_radius_probing::meta_entity, &stepnc::meta::upcast_to<machining_schema::tool_radius_probing, machining_schema::tool_radius_probing>},
@@ -4897,7 +4897,7 @@ constexpr const EntityInfo* nc_function_subtypes[] = {
 };
 constexpr AttributeInfo nc_function_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::nc_function, &machining_schema::executable::its_id>},
 };
 
 // display_message
@@ -4906,7 +4906,7 @@ constexpr const EntityInfo* display_message_supertypes[] = {
 };
 constexpr AttributeInfo display_message_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::display_message, &machining_schema::executable::its_id>},
     {.name = "its_text", .owner = &machining_schema::display_message::meta_entity, .type = &machining_schema::type_info::text,
      .locate = &stepnc::meta::field<machining_schema::display_message, &machining_schema::display_message::its_text>},
 };
@@ -4922,7 +4922,7 @@ constexpr const EntityInfo* optional_stop_supertypes[] = {
 };
 constexpr AttributeInfo optional_stop_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::optional_stop, &machining_schema::executable::its_id>},
 };
 constexpr Upcast optional_stop_upcasts[] = {
     {&machining_schema::optional_stop::meta_entity, &stepnc::meta::upcast_to<machining_schema::optional_stop, machining_schema::optional_stop>},
@@ -4936,7 +4936,7 @@ constexpr const EntityInfo* program_stop_supertypes[] = {
 };
 constexpr AttributeInfo program_stop_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::program_stop, &machining_schema::executable::its_id>},
 };
 constexpr Upcast program_stop_upcasts[] = {
     {&machining_schema::program_stop::meta_entity, &stepnc::meta::upcast_to<machining_schema::program_stop, machining_schema::program_stop>},
@@ -4950,7 +4950,7 @@ constexpr const EntityInfo* set_mark_supertypes[] = {
 };
 constexpr AttributeInfo set_mark_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::set_mark, &machining_schema::executable::its_id>},
 };
 constexpr Upcast set_mark_upcasts[] = {
     {&machining_schema::set_mark::meta_entity, &stepnc::meta::upcast_to<machining_schema::set_mark, machining_schema::set_mark>},
@@ -4964,7 +4964,7 @@ constexpr const EntityInfo* wait_for_mark_supertypes[] = {
 };
 constexpr AttributeInfo wait_for_mark_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::wait_for_mark, &machining_schema::executable::its_id>},
     {.name = "its_channel", .owner = &machining_schema::wait_for_mark::meta_entity, .type = &machining_schema::type_info::channel,
      .locate = &stepnc::meta::field<machining_schema::wait_for_mark, &machining_schema::wait_for_mark::its_channel>},
 };
@@ -4989,7 +4989,7 @@ constexpr const EntityInfo* program_structure_subtypes[] = {
 };
 constexpr AttributeInfo program_structure_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::program_structure, &machining_schema::executable::its_id>},
 };
 
 // workplan
@@ -4998,7 +4998,7 @@ constexpr const EntityInfo* workplan_supertypes[] = {
 };
 constexpr AttributeInfo workplan_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::workplan, &machining_schema::executable::its_id>},
     {.name = "its_elements", .owner = &machining_schema::workplan::meta_entity, .type = &meta_tables::list_0_n_of_executable,
      .locate = &stepnc::meta::field<machining_schema::workplan, &machining_schema::workplan::its_elements>},
     {.name = "its_channel", .owner = &machining_schema::workplan::meta_entity, .type = &machining_schema::type_info::channel, .optional = true,
@@ -5074,7 +5074,7 @@ constexpr const EntityInfo* parallel_supertypes[] = {
 };
 constexpr AttributeInfo parallel_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::parallel, &machining_schema::executable::its_id>},
     {.name = "branches", .owner = &machining_schema::parallel::meta_entity, .type = &meta_tables::set_2_n_of_executable,
      .locate = &stepnc::meta::field<machining_schema::parallel, &machining_schema::parallel::branches>},
 };
@@ -5090,7 +5090,7 @@ constexpr const EntityInfo* non_sequential_supertypes[] = {
 };
 constexpr AttributeInfo non_sequential_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::non_sequential, &machining_schema::executable::its_id>},
     {.name = "its_elements", .owner = &machining_schema::non_sequential::meta_entity, .type = &meta_tables::set_2_n_of_executable,
      .locate = &stepnc::meta::field<machining_schema::non_sequential, &machining_schema::non_sequential::its_elements>},
 };
@@ -5106,7 +5106,7 @@ constexpr const EntityInfo* selective_supertypes[] = {
 };
 constexpr AttributeInfo selective_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::selective, &machining_schema::executable::its_id>},
     {.name = "its_elements", .owner = &machining_schema::selective::meta_entity, .type = &meta_tables::set_2_n_of_executable,
      .locate = &stepnc::meta::field<machining_schema::selective, &machining_schema::selective::its_elements>},
 };
@@ -5122,7 +5122,7 @@ constexpr const EntityInfo* if_statement_supertypes[] = {
 };
 constexpr AttributeInfo if_statement_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::if_statement, &machining_schema::executable::its_id>},
     {.name = "condition", .owner = &machining_schema::if_statement::meta_entity, .type = &machining_schema::type_info::boolean_expression,
      .locate = &stepnc::meta::field<machining_schema::if_statement, &machining_schema::if_statement::condition>},
     {.name = "true_branch", .owner = &machining_schema::if_statement::meta_entity, .type = &machining_schema::type_info::executable,
@@ -5142,7 +5142,7 @@ constexpr const EntityInfo* while_statement_supertypes[] = {
 };
 constexpr AttributeInfo while_statement_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::while_statement, &machining_schema::executable::its_id>},
     {.name = "condition", .owner = &machining_schema::while_statement::meta_entity, .type = &machining_schema::type_info::boolean_expression,
      .locate = &stepnc::meta::field<machining_schema::while_statement, &machining_schema::while_statement::condition>},
     {.name = "body", .owner = &machining_schema::while_statement::meta_entity, .type = &machining_schema::type_info::executable,
@@ -5160,7 +5160,7 @@ constexpr const EntityInfo* assignment_supertypes[] = {
 };
 constexpr AttributeInfo assignment_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
-     .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
+     .locate = &stepnc::meta::field<machining_schema::assignment, &machining_schema::executable::its_id>},
     {.name = "its_lvalue", .owner = &machining_schema::assignment::meta_entity, .type = &machining_schema::type_info::nc_variable,
      .locate = &stepnc::meta::field<machining_schema::assignment, &machining_schema::assignment::its_lvalue>},
     {.name = "its_rvalue", .owner = &machining_schema::assignment::meta_entity, .type = &machining_schema::type_info::rvalue,
@@ -5222,7 +5222,7 @@ constexpr const EntityInfo* not_expression_supertypes[] = {
 };
 constexpr AttributeInfo not_expression_attributes[] = {
     {.name = "operand", .owner = &machining_schema::unary_boolean_expression::meta_entity, .type = &machining_schema::type_info::boolean_expression,
-     .locate = &stepnc::meta::field<machining_schema::unary_boolean_expression, &machining_schema::unary_boolean_expression::operand>},
+     .locate = &stepnc::meta::field<machining_schema::not_expression, &machining_schema::unary_boolean_expression::operand>},
 };
 constexpr Upcast not_expression_upcasts[] = {
     {&machining_schema::not_expression::meta_entity, &stepnc::meta::upcast_to<machining_schema::not_expression, machining_schema::not_expression>},
@@ -5250,9 +5250,9 @@ constexpr const EntityInfo* xor_expression_supertypes[] = {
 };
 constexpr AttributeInfo xor_expression_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::binary_boolean_expression::meta_entity, .type = &machining_schema::type_info::boolean_expression,
-     .locate = &stepnc::meta::field<machining_schema::binary_boolean_expression, &machining_schema::binary_boolean_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::xor_expression, &machining_schema::binary_boolean_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::binary_boolean_expression::meta_entity, .type = &machining_schema::type_info::boolean_expression,
-     .locate = &stepnc::meta::field<machining_schema::binary_boolean_expression, &machining_schema::binary_boolean_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::xor_expression, &machining_schema::binary_boolean_expression::operand2>},
 };
 constexpr Upcast xor_expression_upcasts[] = {
     {&machining_schema::xor_expression::meta_entity, &stepnc::meta::upcast_to<machining_schema::xor_expression, machining_schema::xor_expression>},
@@ -5279,7 +5279,7 @@ constexpr const EntityInfo* and_expression_supertypes[] = {
 };
 constexpr AttributeInfo and_expression_attributes[] = {
     {.name = "operands", .owner = &machining_schema::multiple_arity_boolean_expression::meta_entity, .type = &meta_tables::list_2_n_of_boolean_expression,
-     .locate = &stepnc::meta::field<machining_schema::multiple_arity_boolean_expression, &machining_schema::multiple_arity_boolean_expression::operands>},
+     .locate = &stepnc::meta::field<machining_schema::and_expression, &machining_schema::multiple_arity_boolean_expression::operands>},
 };
 constexpr Upcast and_expression_upcasts[] = {
     {&machining_schema::and_expression::meta_entity, &stepnc::meta::upcast_to<machining_schema::and_expression, machining_schema::and_expression>},
@@ -5293,7 +5293,7 @@ constexpr const EntityInfo* or_expression_supertypes[] = {
 };
 constexpr AttributeInfo or_expression_attributes[] = {
     {.name = "operands", .owner = &machining_schema::multiple_arity_boolean_expression::meta_entity, .type = &meta_tables::list_2_n_of_boolean_expression,
-     .locate = &stepnc::meta::field<machining_schema::multiple_arity_boolean_expression, &machining_schema::multiple_arity_boolean_expression::operands>},
+     .locate = &stepnc::meta::field<machining_schema::or_expression, &machining_schema::multiple_arity_boolean_expression::operands>},
 };
 constexpr Upcast or_expression_upcasts[] = {
     {&machining_schema::or_expression::meta_entity, &stepnc::meta::upcast_to<machining_schema::or_expression, machining_schema::or_expression>},
@@ -5326,9 +5326,9 @@ constexpr const EntityInfo* comparison_equal_supertypes[] = {
 };
 constexpr AttributeInfo comparison_equal_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_equal, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_equal, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_equal_upcasts[] = {
     {&machining_schema::comparison_equal::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_equal, machining_schema::comparison_equal>},
@@ -5342,9 +5342,9 @@ constexpr const EntityInfo* comparison_not_equal_supertypes[] = {
 };
 constexpr AttributeInfo comparison_not_equal_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_not_equal, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_not_equal, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_not_equal_upcasts[] = {
     {&machining_schema::comparison_not_equal::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_not_equal, machining_schema::comparison_not_equal>},
@@ -5358,9 +5358,9 @@ constexpr const EntityInfo* comparison_greater_supertypes[] = {
 };
 constexpr AttributeInfo comparison_greater_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_greater, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_greater, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_greater_upcasts[] = {
     {&machining_schema::comparison_greater::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_greater, machining_schema::comparison_greater>},
@@ -5374,9 +5374,9 @@ constexpr const EntityInfo* comparison_greater_equal_supertypes[] = {
 };
 constexpr AttributeInfo comparison_greater_equal_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_greater_equal, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_greater_equal, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_greater_equal_upcasts[] = {
     {&machining_schema::comparison_greater_equal::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_greater_equal, machining_schema::comparison_greater_equal>},
@@ -5390,9 +5390,9 @@ constexpr const EntityInfo* comparison_less_supertypes[] = {
 };
 constexpr AttributeInfo comparison_less_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_less, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_less, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_less_upcasts[] = {
     {&machining_schema::comparison_less::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_less, machining_schema::comparison_less>},
@@ -5406,9 +5406,9 @@ constexpr const EntityInfo* comparison_less_equal_supertypes[] = {
 };
 constexpr AttributeInfo comparison_less_equal_attributes[] = {
     {.name = "operand1", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::nc_variable,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_less_equal, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
-     .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+     .locate = &stepnc::meta::field<machining_schema::comparison_less_equal, &machining_schema::comparison_expression::operand2>},
 };
 constexpr Upcast comparison_less_equal_upcasts[] = {
     {&machining_schema::comparison_less_equal::meta_entity, &stepnc::meta::upcast_to<machining_schema::comparison_less_equal, machining_schema::comparison_less_equal>},
@@ -5460,9 +5460,9 @@ constexpr const EntityInfo* machining_operation_subtypes[] = {
 };
 constexpr AttributeInfo machining_operation_attributes[] = {
     {.name = "its_toolpath", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::toolpath_list, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
+     .locate = &stepnc::meta::field<machining_schema::machining_operation, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+     .locate = &stepnc::meta::field<machining_schema::machining_operation, &machining_schema::operation::its_tool_direction>},
     {.name = "its_id", .owner = &machining_schema::machining_operation::meta_entity, .type = &machining_schema::type_info::identifier,
      .locate = &stepnc::meta::field<machining_schema::machining_operation, &machining_schema::machining_operation::its_id>},
     {.name = "retract_plane", .owner = &machining_schema::machining_operation::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
@@ -5531,15 +5531,15 @@ constexpr const EntityInfo* feedstop_supertypes[] = {
 };
 constexpr AttributeInfo feedstop_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::toolpath::its_machine_functions>},
     {.name = "dwell", .owner = &machining_schema::feedstop::meta_entity, .type = &machining_schema::type_info::time_measure,
      .locate = &stepnc::meta::field<machining_schema::feedstop, &machining_schema::feedstop::dwell>},
 };
@@ -5559,15 +5559,15 @@ constexpr const EntityInfo* trajectory_subtypes[] = {
 };
 constexpr AttributeInfo trajectory_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::toolpath::its_machine_functions>},
     {.name = "its_direction", .owner = &machining_schema::trajectory::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::trajectory::its_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
@@ -5579,17 +5579,17 @@ constexpr const EntityInfo* cutter_location_trajectory_supertypes[] = {
 };
 constexpr AttributeInfo cutter_location_trajectory_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::toolpath::its_machine_functions>},
     {.name = "its_direction", .owner = &machining_schema::trajectory::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::trajectory::its_direction>,
+     .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::trajectory::its_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "basiccurve", .owner = &machining_schema::cutter_location_trajectory::meta_entity, .type = &machining_schema::type_info::bounded_curve,
      .locate = &stepnc::meta::field<machining_schema::cutter_location_trajectory, &machining_schema::cutter_location_trajectory::basiccurve>},
@@ -5610,17 +5610,17 @@ constexpr const EntityInfo* cutter_contact_trajectory_supertypes[] = {
 };
 constexpr AttributeInfo cutter_contact_trajectory_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::toolpath::its_machine_functions>},
     {.name = "its_direction", .owner = &machining_schema::trajectory::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::trajectory::its_direction>,
+     .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::trajectory::its_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "basiccurve", .owner = &machining_schema::cutter_contact_trajectory::meta_entity, .type = &machining_schema::type_info::curve_with_surface_normal,
      .locate = &stepnc::meta::field<machining_schema::cutter_contact_trajectory, &machining_schema::cutter_contact_trajectory::basiccurve>},
@@ -5653,17 +5653,17 @@ constexpr const EntityInfo* axis_trajectory_supertypes[] = {
 };
 constexpr AttributeInfo axis_trajectory_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::toolpath::its_machine_functions>},
     {.name = "its_direction", .owner = &machining_schema::trajectory::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::trajectory::its_direction>,
+     .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::trajectory::its_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "axis_list", .owner = &machining_schema::axis_trajectory::meta_entity, .type = &meta_tables::list_1_n_of_identifier,
      .locate = &stepnc::meta::field<machining_schema::axis_trajectory, &machining_schema::axis_trajectory::axis_list>},
@@ -5686,15 +5686,15 @@ constexpr const EntityInfo* parameterised_path_subtypes[] = {
 };
 constexpr AttributeInfo parameterised_path_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_machine_functions>},
 };
 
 // connector
@@ -5707,15 +5707,15 @@ constexpr const EntityInfo* connector_subtypes[] = {
 };
 constexpr AttributeInfo connector_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_machine_functions>},
 };
 
 // connect_secplane
@@ -5724,15 +5724,15 @@ constexpr const EntityInfo* connect_secplane_supertypes[] = {
 };
 constexpr AttributeInfo connect_secplane_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::toolpath::its_machine_functions>},
     {.name = "up_dir", .owner = &machining_schema::connect_secplane::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::connect_secplane, &machining_schema::connect_secplane::up_dir>},
     {.name = "down_dir", .owner = &machining_schema::connect_secplane::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
@@ -5751,15 +5751,15 @@ constexpr const EntityInfo* connect_direct_supertypes[] = {
 };
 constexpr AttributeInfo connect_direct_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::connect_direct, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::connect_direct, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::connect_direct, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::connect_direct, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::connect_direct, &machining_schema::toolpath::its_machine_functions>},
 };
 constexpr Upcast connect_direct_upcasts[] = {
     {&machining_schema::connect_direct::meta_entity, &stepnc::meta::upcast_to<machining_schema::connect_direct, machining_schema::connect_direct>},
@@ -5778,15 +5778,15 @@ constexpr const EntityInfo* approach_lift_path_subtypes[] = {
 };
 constexpr AttributeInfo approach_lift_path_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::toolpath::its_machine_functions>},
     {.name = "fix_point", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::cartesian_point,
      .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point>},
     {.name = "fix_point_dir", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
@@ -5799,19 +5799,19 @@ constexpr const EntityInfo* ap_lift_path_angle_supertypes[] = {
 };
 constexpr AttributeInfo ap_lift_path_angle_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::toolpath::its_machine_functions>},
     {.name = "fix_point", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::approach_lift_path::fix_point>},
     {.name = "fix_point_dir", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point_dir>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::approach_lift_path::fix_point_dir>},
     {.name = "angle", .owner = &machining_schema::ap_lift_path_angle::meta_entity, .type = &machining_schema::type_info::plane_angle_measure,
      .locate = &stepnc::meta::field<machining_schema::ap_lift_path_angle, &machining_schema::ap_lift_path_angle::angle>},
     {.name = "benddist", .owner = &machining_schema::ap_lift_path_angle::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
@@ -5830,19 +5830,19 @@ constexpr const EntityInfo* ap_lift_path_tangent_supertypes[] = {
 };
 constexpr AttributeInfo ap_lift_path_tangent_attributes[] = {
     {.name = "its_priority", .owner = &machining_schema::toolpath::meta_entity, .type = &stepnc::meta::boolean_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_priority>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::toolpath::its_priority>},
     {.name = "its_type", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_type,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_type>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::toolpath::its_type>},
     {.name = "its_speed", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::toolpath_speedprofile, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_speed>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::toolpath::its_speed>},
     {.name = "its_technology", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::technology, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_technology>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::toolpath::its_machine_functions>},
     {.name = "fix_point", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::approach_lift_path::fix_point>},
     {.name = "fix_point_dir", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point_dir>},
+     .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::approach_lift_path::fix_point_dir>},
     {.name = "radius", .owner = &machining_schema::ap_lift_path_tangent::meta_entity, .type = &machining_schema::type_info::positive_length_measure,
      .locate = &stepnc::meta::field<machining_schema::ap_lift_path_tangent, &machining_schema::ap_lift_path_tangent::radius>},
 };
@@ -5864,19 +5864,19 @@ constexpr const EntityInfo* uniform_curve_and_rational_b_spline_curve_parts[] = 
 };
 constexpr AttributeInfo uniform_curve_and_rational_b_spline_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_curve_and_rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
 constexpr Upcast uniform_curve_and_rational_b_spline_curve_upcasts[] = {
     {&machining_schema::uniform_curve_and_rational_b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::uniform_curve_and_rational_b_spline_curve, machining_schema::uniform_curve_and_rational_b_spline_curve>},
@@ -5900,25 +5900,25 @@ constexpr const EntityInfo* b_spline_curve_with_knots_and_rational_b_spline_curv
 };
 constexpr AttributeInfo b_spline_curve_with_knots_and_rational_b_spline_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "knot_multiplicities", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::knot_multiplicities>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve_with_knots::knot_multiplicities>},
     {.name = "knots", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_parameter_value,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::knots>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve_with_knots::knots>},
     {.name = "knot_spec", .owner = &machining_schema::b_spline_curve_with_knots::meta_entity, .type = &machining_schema::type_info::knot_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots, &machining_schema::b_spline_curve_with_knots::knot_spec>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::b_spline_curve_with_knots::knot_spec>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
 constexpr Upcast b_spline_curve_with_knots_and_rational_b_spline_curve_upcasts[] = {
     {&machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve, machining_schema::b_spline_curve_with_knots_and_rational_b_spline_curve>},
@@ -5942,19 +5942,19 @@ constexpr const EntityInfo* quasi_uniform_curve_and_rational_b_spline_curve_part
 };
 constexpr AttributeInfo quasi_uniform_curve_and_rational_b_spline_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
 constexpr Upcast quasi_uniform_curve_and_rational_b_spline_curve_upcasts[] = {
     {&machining_schema::quasi_uniform_curve_and_rational_b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::quasi_uniform_curve_and_rational_b_spline_curve, machining_schema::quasi_uniform_curve_and_rational_b_spline_curve>},
@@ -5978,19 +5978,19 @@ constexpr const EntityInfo* bezier_curve_and_rational_b_spline_curve_parts[] = {
 };
 constexpr AttributeInfo bezier_curve_and_rational_b_spline_curve_attributes[] = {
     {.name = "name", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::name>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::name>},
     {.name = "degree", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::control_points_list>},
     {.name = "curve_form", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &machining_schema::type_info::b_spline_curve_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::curve_form>},
     {.name = "closed_curve", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::closed_curve>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::b_spline_curve::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_curve::meta_entity, .type = &meta_tables::list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_curve_and_rational_b_spline_curve, &machining_schema::rational_b_spline_curve::weights_data>},
 };
 constexpr Upcast bezier_curve_and_rational_b_spline_curve_upcasts[] = {
     {&machining_schema::bezier_curve_and_rational_b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::bezier_curve_and_rational_b_spline_curve, machining_schema::bezier_curve_and_rational_b_spline_curve>},
@@ -6014,33 +6014,33 @@ constexpr const EntityInfo* b_spline_surface_with_knots_and_rational_b_spline_su
 };
 constexpr AttributeInfo b_spline_surface_with_knots_and_rational_b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "u_multiplicities", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::u_multiplicities>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface_with_knots::u_multiplicities>},
     {.name = "v_multiplicities", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_integer,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::v_multiplicities>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface_with_knots::v_multiplicities>},
     {.name = "u_knots", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_parameter_value,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::u_knots>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface_with_knots::u_knots>},
     {.name = "v_knots", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &meta_tables::list_2_n_of_parameter_value,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::v_knots>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface_with_knots::v_knots>},
     {.name = "knot_spec", .owner = &machining_schema::b_spline_surface_with_knots::meta_entity, .type = &machining_schema::type_info::knot_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots, &machining_schema::b_spline_surface_with_knots::knot_spec>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::b_spline_surface_with_knots::knot_spec>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
 constexpr Upcast b_spline_surface_with_knots_and_rational_b_spline_surface_upcasts[] = {
     {&machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface, machining_schema::b_spline_surface_with_knots_and_rational_b_spline_surface>},
@@ -6064,23 +6064,23 @@ constexpr const EntityInfo* uniform_surface_and_rational_b_spline_surface_parts[
 };
 constexpr AttributeInfo uniform_surface_and_rational_b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::uniform_surface_and_rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
 constexpr Upcast uniform_surface_and_rational_b_spline_surface_upcasts[] = {
     {&machining_schema::uniform_surface_and_rational_b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::uniform_surface_and_rational_b_spline_surface, machining_schema::uniform_surface_and_rational_b_spline_surface>},
@@ -6104,23 +6104,23 @@ constexpr const EntityInfo* quasi_uniform_surface_and_rational_b_spline_surface_
 };
 constexpr AttributeInfo quasi_uniform_surface_and_rational_b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
 constexpr Upcast quasi_uniform_surface_and_rational_b_spline_surface_upcasts[] = {
     {&machining_schema::quasi_uniform_surface_and_rational_b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::quasi_uniform_surface_and_rational_b_spline_surface, machining_schema::quasi_uniform_surface_and_rational_b_spline_surface>},
@@ -6144,23 +6144,23 @@ constexpr const EntityInfo* bezier_surface_and_rational_b_spline_surface_parts[]
 };
 constexpr AttributeInfo bezier_surface_and_rational_b_spline_surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::surface::name>},
     {.name = "u_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_degree>},
     {.name = "v_degree", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::integer_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_degree>},
     {.name = "control_points_list", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_cartesian_point,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::control_points_list>},
     {.name = "surface_form", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &machining_schema::type_info::b_spline_surface_form,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::surface_form>},
     {.name = "u_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::u_closed>},
     {.name = "v_closed", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::v_closed>},
     {.name = "self_intersect", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &stepnc::meta::logical_type,
-     .locate = &stepnc::meta::field<machining_schema::b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::b_spline_surface::self_intersect>},
     {.name = "weights_data", .owner = &machining_schema::rational_b_spline_surface::meta_entity, .type = &meta_tables::list_2_n_of_list_2_n_of_real,
-     .locate = &stepnc::meta::field<machining_schema::rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
+     .locate = &stepnc::meta::field<machining_schema::bezier_surface_and_rational_b_spline_surface, &machining_schema::rational_b_spline_surface::weights_data>},
 };
 constexpr Upcast bezier_surface_and_rational_b_spline_surface_upcasts[] = {
     {&machining_schema::bezier_surface_and_rational_b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::bezier_surface_and_rational_b_spline_surface, machining_schema::bezier_surface_and_rational_b_spline_surface>},
@@ -6184,9 +6184,9 @@ constexpr const EntityInfo* loop_and_path_parts[] = {
 };
 constexpr AttributeInfo loop_and_path_attributes[] = {
     {.name = "name", .owner = &machining_schema::path::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::name>},
+     .locate = &stepnc::meta::field<machining_schema::loop_and_path, &machining_schema::path::name>},
     {.name = "edge_list", .owner = &machining_schema::path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge,
-     .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::edge_list>},
+     .locate = &stepnc::meta::field<machining_schema::loop_and_path, &machining_schema::path::edge_list>},
 };
 constexpr Upcast loop_and_path_upcasts[] = {
     {&machining_schema::loop_and_path::meta_entity, &stepnc::meta::upcast_to<machining_schema::loop_and_path, machining_schema::loop_and_path>},
@@ -7220,6 +7220,7 @@ const stepnc::meta::EntityInfo& machining_schema::representation_item::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::representation_item::meta_entity{
     .name = "representation_item",
+    .p21_name = "REPRESENTATION_ITEM",
     .schema = &meta_schema,
     .subtypes = meta_tables::representation_item_subtypes,
     .create = &stepnc::meta::create_in<machining_schema::representation_item>,
@@ -7230,6 +7231,7 @@ const stepnc::meta::EntityInfo& machining_schema::geometric_representation_item:
 
 constinit const stepnc::meta::EntityInfo machining_schema::geometric_representation_item::meta_entity{
     .name = "geometric_representation_item",
+    .p21_name = "GEOMETRIC_REPRESENTATION_ITEM",
     .schema = &meta_schema,
     .supertypes = meta_tables::geometric_representation_item_supertypes,
     .subtypes = meta_tables::geometric_representation_item_subtypes,
@@ -7242,6 +7244,7 @@ const stepnc::meta::EntityInfo& machining_schema::curve::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::curve::meta_entity{
     .name = "curve",
+    .p21_name = "CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::curve_supertypes,
     .subtypes = meta_tables::curve_subtypes,
@@ -7253,6 +7256,7 @@ const stepnc::meta::EntityInfo& machining_schema::bounded_curve::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::bounded_curve::meta_entity{
     .name = "bounded_curve",
+    .p21_name = "BOUNDED_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::bounded_curve_supertypes,
     .subtypes = meta_tables::bounded_curve_subtypes,
@@ -7264,6 +7268,7 @@ const stepnc::meta::EntityInfo& machining_schema::trimmed_curve::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::trimmed_curve::meta_entity{
     .name = "trimmed_curve",
+    .p21_name = "TRIMMED_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::trimmed_curve_supertypes,
     .attributes = meta_tables::trimmed_curve_attributes,
@@ -7275,6 +7280,7 @@ const stepnc::meta::EntityInfo& machining_schema::composite_curve::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::composite_curve::meta_entity{
     .name = "composite_curve",
+    .p21_name = "COMPOSITE_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::composite_curve_supertypes,
     .attributes = meta_tables::composite_curve_attributes,
@@ -7287,6 +7293,7 @@ const stepnc::meta::EntityInfo& machining_schema::composite_curve_segment::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::composite_curve_segment::meta_entity{
     .name = "composite_curve_segment",
+    .p21_name = "COMPOSITE_CURVE_SEGMENT",
     .schema = &meta_schema,
     .attributes = meta_tables::composite_curve_segment_attributes,
     .inverses = meta_tables::composite_curve_segment_inverses,
@@ -7298,6 +7305,7 @@ const stepnc::meta::EntityInfo& machining_schema::placement::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::placement::meta_entity{
     .name = "placement",
+    .p21_name = "PLACEMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::placement_supertypes,
     .subtypes = meta_tables::placement_subtypes,
@@ -7310,6 +7318,7 @@ const stepnc::meta::EntityInfo& machining_schema::axis1_placement::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::axis1_placement::meta_entity{
     .name = "axis1_placement",
+    .p21_name = "AXIS1_PLACEMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::axis1_placement_supertypes,
     .attributes = meta_tables::axis1_placement_attributes,
@@ -7322,6 +7331,7 @@ const stepnc::meta::EntityInfo& machining_schema::axis2_placement_3d::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::axis2_placement_3d::meta_entity{
     .name = "axis2_placement_3d",
+    .p21_name = "AXIS2_PLACEMENT_3D",
     .schema = &meta_schema,
     .supertypes = meta_tables::axis2_placement_3d_supertypes,
     .attributes = meta_tables::axis2_placement_3d_attributes,
@@ -7334,6 +7344,7 @@ const stepnc::meta::EntityInfo& machining_schema::b_spline_curve::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::b_spline_curve::meta_entity{
     .name = "b_spline_curve",
+    .p21_name = "B_SPLINE_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::b_spline_curve_supertypes,
     .subtypes = meta_tables::b_spline_curve_subtypes,
@@ -7347,6 +7358,7 @@ const stepnc::meta::EntityInfo& machining_schema::bezier_curve::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::bezier_curve::meta_entity{
     .name = "bezier_curve",
+    .p21_name = "BEZIER_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::bezier_curve_supertypes,
     .attributes = meta_tables::bezier_curve_attributes,
@@ -7358,6 +7370,7 @@ const stepnc::meta::EntityInfo& machining_schema::surface::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::surface::meta_entity{
     .name = "surface",
+    .p21_name = "SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::surface_supertypes,
     .subtypes = meta_tables::surface_subtypes,
@@ -7370,6 +7383,7 @@ const stepnc::meta::EntityInfo& machining_schema::bounded_surface::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::bounded_surface::meta_entity{
     .name = "bounded_surface",
+    .p21_name = "BOUNDED_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::bounded_surface_supertypes,
     .subtypes = meta_tables::bounded_surface_subtypes,
@@ -7382,6 +7396,7 @@ const stepnc::meta::EntityInfo& machining_schema::b_spline_surface::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::b_spline_surface::meta_entity{
     .name = "b_spline_surface",
+    .p21_name = "B_SPLINE_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::b_spline_surface_supertypes,
     .subtypes = meta_tables::b_spline_surface_subtypes,
@@ -7395,6 +7410,7 @@ const stepnc::meta::EntityInfo& machining_schema::bezier_surface::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::bezier_surface::meta_entity{
     .name = "bezier_surface",
+    .p21_name = "BEZIER_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::bezier_surface_supertypes,
     .attributes = meta_tables::bezier_surface_attributes,
@@ -7406,6 +7422,7 @@ const stepnc::meta::EntityInfo& machining_schema::pcurve::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::pcurve::meta_entity{
     .name = "pcurve",
+    .p21_name = "PCURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::pcurve_supertypes,
     .subtypes = meta_tables::pcurve_subtypes,
@@ -7418,6 +7435,7 @@ const stepnc::meta::EntityInfo& machining_schema::bounded_pcurve::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::bounded_pcurve::meta_entity{
     .name = "bounded_pcurve",
+    .p21_name = "BOUNDED_PCURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::bounded_pcurve_supertypes,
     .attributes = meta_tables::bounded_pcurve_attributes,
@@ -7429,6 +7447,7 @@ const stepnc::meta::EntityInfo& machining_schema::b_spline_curve_with_knots::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::b_spline_curve_with_knots::meta_entity{
     .name = "b_spline_curve_with_knots",
+    .p21_name = "B_SPLINE_CURVE_WITH_KNOTS",
     .schema = &meta_schema,
     .supertypes = meta_tables::b_spline_curve_with_knots_supertypes,
     .attributes = meta_tables::b_spline_curve_with_knots_attributes,
@@ -7441,6 +7460,7 @@ const stepnc::meta::EntityInfo& machining_schema::b_spline_surface_with_knots::e
 
 constinit const stepnc::meta::EntityInfo machining_schema::b_spline_surface_with_knots::meta_entity{
     .name = "b_spline_surface_with_knots",
+    .p21_name = "B_SPLINE_SURFACE_WITH_KNOTS",
     .schema = &meta_schema,
     .supertypes = meta_tables::b_spline_surface_with_knots_supertypes,
     .attributes = meta_tables::b_spline_surface_with_knots_attributes,
@@ -7453,6 +7473,7 @@ const stepnc::meta::EntityInfo& machining_schema::point::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::point::meta_entity{
     .name = "point",
+    .p21_name = "POINT",
     .schema = &meta_schema,
     .supertypes = meta_tables::point_supertypes,
     .subtypes = meta_tables::point_subtypes,
@@ -7465,6 +7486,7 @@ const stepnc::meta::EntityInfo& machining_schema::cartesian_point::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::cartesian_point::meta_entity{
     .name = "cartesian_point",
+    .p21_name = "CARTESIAN_POINT",
     .schema = &meta_schema,
     .supertypes = meta_tables::cartesian_point_supertypes,
     .attributes = meta_tables::cartesian_point_attributes,
@@ -7476,6 +7498,7 @@ const stepnc::meta::EntityInfo& machining_schema::conic::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::conic::meta_entity{
     .name = "conic",
+    .p21_name = "CONIC",
     .schema = &meta_schema,
     .supertypes = meta_tables::conic_supertypes,
     .subtypes = meta_tables::conic_subtypes,
@@ -7488,6 +7511,7 @@ const stepnc::meta::EntityInfo& machining_schema::circle::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::circle::meta_entity{
     .name = "circle",
+    .p21_name = "CIRCLE",
     .schema = &meta_schema,
     .supertypes = meta_tables::circle_supertypes,
     .attributes = meta_tables::circle_attributes,
@@ -7499,6 +7523,7 @@ const stepnc::meta::EntityInfo& machining_schema::direction::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::direction::meta_entity{
     .name = "direction",
+    .p21_name = "DIRECTION",
     .schema = &meta_schema,
     .supertypes = meta_tables::direction_supertypes,
     .attributes = meta_tables::direction_attributes,
@@ -7510,6 +7535,7 @@ const stepnc::meta::EntityInfo& machining_schema::elementary_surface::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::elementary_surface::meta_entity{
     .name = "elementary_surface",
+    .p21_name = "ELEMENTARY_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::elementary_surface_supertypes,
     .subtypes = meta_tables::elementary_surface_subtypes,
@@ -7522,6 +7548,7 @@ const stepnc::meta::EntityInfo& machining_schema::ellipse::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::ellipse::meta_entity{
     .name = "ellipse",
+    .p21_name = "ELLIPSE",
     .schema = &meta_schema,
     .supertypes = meta_tables::ellipse_supertypes,
     .attributes = meta_tables::ellipse_attributes,
@@ -7533,6 +7560,7 @@ const stepnc::meta::EntityInfo& machining_schema::representation_context::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::representation_context::meta_entity{
     .name = "representation_context",
+    .p21_name = "REPRESENTATION_CONTEXT",
     .schema = &meta_schema,
     .subtypes = meta_tables::representation_context_subtypes,
     .attributes = meta_tables::representation_context_attributes,
@@ -7545,6 +7573,7 @@ const stepnc::meta::EntityInfo& machining_schema::geometric_representation_conte
 
 constinit const stepnc::meta::EntityInfo machining_schema::geometric_representation_context::meta_entity{
     .name = "geometric_representation_context",
+    .p21_name = "GEOMETRIC_REPRESENTATION_CONTEXT",
     .schema = &meta_schema,
     .supertypes = meta_tables::geometric_representation_context_supertypes,
     .attributes = meta_tables::geometric_representation_context_attributes,
@@ -7556,6 +7585,7 @@ const stepnc::meta::EntityInfo& machining_schema::hyperbola::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::hyperbola::meta_entity{
     .name = "hyperbola",
+    .p21_name = "HYPERBOLA",
     .schema = &meta_schema,
     .supertypes = meta_tables::hyperbola_supertypes,
     .attributes = meta_tables::hyperbola_attributes,
@@ -7567,6 +7597,7 @@ const stepnc::meta::EntityInfo& machining_schema::helix::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::helix::meta_entity{
     .name = "helix",
+    .p21_name = "HELIX",
     .schema = &meta_schema,
     .supertypes = meta_tables::helix_supertypes,
     .attributes = meta_tables::helix_attributes,
@@ -7578,6 +7609,7 @@ const stepnc::meta::EntityInfo& machining_schema::line::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::line::meta_entity{
     .name = "line",
+    .p21_name = "LINE",
     .schema = &meta_schema,
     .supertypes = meta_tables::line_supertypes,
     .attributes = meta_tables::line_attributes,
@@ -7589,6 +7621,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_surface::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_surface::meta_entity{
     .name = "oriented_surface",
+    .p21_name = "ORIENTED_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_surface_supertypes,
     .attributes = meta_tables::oriented_surface_attributes,
@@ -7600,6 +7633,7 @@ const stepnc::meta::EntityInfo& machining_schema::parabola::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::parabola::meta_entity{
     .name = "parabola",
+    .p21_name = "PARABOLA",
     .schema = &meta_schema,
     .supertypes = meta_tables::parabola_supertypes,
     .attributes = meta_tables::parabola_attributes,
@@ -7611,6 +7645,7 @@ const stepnc::meta::EntityInfo& machining_schema::plane::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::plane::meta_entity{
     .name = "plane",
+    .p21_name = "PLANE",
     .schema = &meta_schema,
     .supertypes = meta_tables::plane_supertypes,
     .attributes = meta_tables::plane_attributes,
@@ -7622,6 +7657,7 @@ const stepnc::meta::EntityInfo& machining_schema::polyline::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::polyline::meta_entity{
     .name = "polyline",
+    .p21_name = "POLYLINE",
     .schema = &meta_schema,
     .supertypes = meta_tables::polyline_supertypes,
     .attributes = meta_tables::polyline_attributes,
@@ -7633,6 +7669,7 @@ const stepnc::meta::EntityInfo& machining_schema::quasi_uniform_curve::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::quasi_uniform_curve::meta_entity{
     .name = "quasi_uniform_curve",
+    .p21_name = "QUASI_UNIFORM_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::quasi_uniform_curve_supertypes,
     .attributes = meta_tables::quasi_uniform_curve_attributes,
@@ -7644,6 +7681,7 @@ const stepnc::meta::EntityInfo& machining_schema::quasi_uniform_surface::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::quasi_uniform_surface::meta_entity{
     .name = "quasi_uniform_surface",
+    .p21_name = "QUASI_UNIFORM_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::quasi_uniform_surface_supertypes,
     .attributes = meta_tables::quasi_uniform_surface_attributes,
@@ -7655,6 +7693,7 @@ const stepnc::meta::EntityInfo& machining_schema::rational_b_spline_curve::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::rational_b_spline_curve::meta_entity{
     .name = "rational_b_spline_curve",
+    .p21_name = "RATIONAL_B_SPLINE_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rational_b_spline_curve_supertypes,
     .attributes = meta_tables::rational_b_spline_curve_attributes,
@@ -7667,6 +7706,7 @@ const stepnc::meta::EntityInfo& machining_schema::rational_b_spline_surface::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::rational_b_spline_surface::meta_entity{
     .name = "rational_b_spline_surface",
+    .p21_name = "RATIONAL_B_SPLINE_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rational_b_spline_surface_supertypes,
     .attributes = meta_tables::rational_b_spline_surface_attributes,
@@ -7679,6 +7719,7 @@ const stepnc::meta::EntityInfo& machining_schema::spherical_surface::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::spherical_surface::meta_entity{
     .name = "spherical_surface",
+    .p21_name = "SPHERICAL_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::spherical_surface_supertypes,
     .attributes = meta_tables::spherical_surface_attributes,
@@ -7690,6 +7731,7 @@ const stepnc::meta::EntityInfo& machining_schema::swept_surface::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::swept_surface::meta_entity{
     .name = "swept_surface",
+    .p21_name = "SWEPT_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::swept_surface_supertypes,
     .subtypes = meta_tables::swept_surface_subtypes,
@@ -7702,6 +7744,7 @@ const stepnc::meta::EntityInfo& machining_schema::surface_of_linear_extrusion::e
 
 constinit const stepnc::meta::EntityInfo machining_schema::surface_of_linear_extrusion::meta_entity{
     .name = "surface_of_linear_extrusion",
+    .p21_name = "SURFACE_OF_LINEAR_EXTRUSION",
     .schema = &meta_schema,
     .supertypes = meta_tables::surface_of_linear_extrusion_supertypes,
     .attributes = meta_tables::surface_of_linear_extrusion_attributes,
@@ -7713,6 +7756,7 @@ const stepnc::meta::EntityInfo& machining_schema::surface_of_revolution::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::surface_of_revolution::meta_entity{
     .name = "surface_of_revolution",
+    .p21_name = "SURFACE_OF_REVOLUTION",
     .schema = &meta_schema,
     .supertypes = meta_tables::surface_of_revolution_supertypes,
     .attributes = meta_tables::surface_of_revolution_attributes,
@@ -7725,6 +7769,7 @@ const stepnc::meta::EntityInfo& machining_schema::uniform_curve::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::uniform_curve::meta_entity{
     .name = "uniform_curve",
+    .p21_name = "UNIFORM_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::uniform_curve_supertypes,
     .attributes = meta_tables::uniform_curve_attributes,
@@ -7736,6 +7781,7 @@ const stepnc::meta::EntityInfo& machining_schema::uniform_surface::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::uniform_surface::meta_entity{
     .name = "uniform_surface",
+    .p21_name = "UNIFORM_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::uniform_surface_supertypes,
     .attributes = meta_tables::uniform_surface_attributes,
@@ -7747,6 +7793,7 @@ const stepnc::meta::EntityInfo& machining_schema::vector::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::vector::meta_entity{
     .name = "vector",
+    .p21_name = "VECTOR",
     .schema = &meta_schema,
     .supertypes = meta_tables::vector_supertypes,
     .attributes = meta_tables::vector_attributes,
@@ -7758,6 +7805,7 @@ const stepnc::meta::EntityInfo& machining_schema::topological_representation_ite
 
 constinit const stepnc::meta::EntityInfo machining_schema::topological_representation_item::meta_entity{
     .name = "topological_representation_item",
+    .p21_name = "TOPOLOGICAL_REPRESENTATION_ITEM",
     .schema = &meta_schema,
     .supertypes = meta_tables::topological_representation_item_supertypes,
     .subtypes = meta_tables::topological_representation_item_subtypes,
@@ -7769,6 +7817,7 @@ const stepnc::meta::EntityInfo& machining_schema::connected_face_set::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::connected_face_set::meta_entity{
     .name = "connected_face_set",
+    .p21_name = "CONNECTED_FACE_SET",
     .schema = &meta_schema,
     .supertypes = meta_tables::connected_face_set_supertypes,
     .subtypes = meta_tables::connected_face_set_subtypes,
@@ -7781,6 +7830,7 @@ const stepnc::meta::EntityInfo& machining_schema::closed_shell::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::closed_shell::meta_entity{
     .name = "closed_shell",
+    .p21_name = "CLOSED_SHELL",
     .schema = &meta_schema,
     .supertypes = meta_tables::closed_shell_supertypes,
     .subtypes = meta_tables::closed_shell_subtypes,
@@ -7793,6 +7843,7 @@ const stepnc::meta::EntityInfo& machining_schema::edge::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::edge::meta_entity{
     .name = "edge",
+    .p21_name = "EDGE",
     .schema = &meta_schema,
     .supertypes = meta_tables::edge_supertypes,
     .subtypes = meta_tables::edge_subtypes,
@@ -7805,6 +7856,7 @@ const stepnc::meta::EntityInfo& machining_schema::edge_curve::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::edge_curve::meta_entity{
     .name = "edge_curve",
+    .p21_name = "EDGE_CURVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::edge_curve_supertypes,
     .attributes = meta_tables::edge_curve_attributes,
@@ -7816,6 +7868,7 @@ const stepnc::meta::EntityInfo& machining_schema::loop::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::loop::meta_entity{
     .name = "loop",
+    .p21_name = "LOOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::loop_supertypes,
     .subtypes = meta_tables::loop_subtypes,
@@ -7827,6 +7880,7 @@ const stepnc::meta::EntityInfo& machining_schema::path::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::path::meta_entity{
     .name = "path",
+    .p21_name = "PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::path_supertypes,
     .subtypes = meta_tables::path_subtypes,
@@ -7839,6 +7893,7 @@ const stepnc::meta::EntityInfo& machining_schema::edge_loop::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::edge_loop::meta_entity{
     .name = "edge_loop",
+    .p21_name = "EDGE_LOOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::edge_loop_supertypes,
     .attributes = meta_tables::edge_loop_attributes,
@@ -7851,6 +7906,7 @@ const stepnc::meta::EntityInfo& machining_schema::face::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::face::meta_entity{
     .name = "face",
+    .p21_name = "FACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::face_supertypes,
     .subtypes = meta_tables::face_subtypes,
@@ -7863,6 +7919,7 @@ const stepnc::meta::EntityInfo& machining_schema::face_bound::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::face_bound::meta_entity{
     .name = "face_bound",
+    .p21_name = "FACE_BOUND",
     .schema = &meta_schema,
     .supertypes = meta_tables::face_bound_supertypes,
     .subtypes = meta_tables::face_bound_subtypes,
@@ -7875,6 +7932,7 @@ const stepnc::meta::EntityInfo& machining_schema::face_outer_bound::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::face_outer_bound::meta_entity{
     .name = "face_outer_bound",
+    .p21_name = "FACE_OUTER_BOUND",
     .schema = &meta_schema,
     .supertypes = meta_tables::face_outer_bound_supertypes,
     .attributes = meta_tables::face_outer_bound_attributes,
@@ -7886,6 +7944,7 @@ const stepnc::meta::EntityInfo& machining_schema::face_surface::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::face_surface::meta_entity{
     .name = "face_surface",
+    .p21_name = "FACE_SURFACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::face_surface_supertypes,
     .subtypes = meta_tables::face_surface_subtypes,
@@ -7898,6 +7957,7 @@ const stepnc::meta::EntityInfo& machining_schema::open_shell::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::open_shell::meta_entity{
     .name = "open_shell",
+    .p21_name = "OPEN_SHELL",
     .schema = &meta_schema,
     .supertypes = meta_tables::open_shell_supertypes,
     .subtypes = meta_tables::open_shell_subtypes,
@@ -7910,6 +7970,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_closed_shell::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_closed_shell::meta_entity{
     .name = "oriented_closed_shell",
+    .p21_name = "ORIENTED_CLOSED_SHELL",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_closed_shell_supertypes,
     .attributes = meta_tables::oriented_closed_shell_attributes,
@@ -7922,6 +7983,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_edge::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_edge::meta_entity{
     .name = "oriented_edge",
+    .p21_name = "ORIENTED_EDGE",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_edge_supertypes,
     .attributes = meta_tables::oriented_edge_attributes,
@@ -7934,6 +7996,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_face::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_face::meta_entity{
     .name = "oriented_face",
+    .p21_name = "ORIENTED_FACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_face_supertypes,
     .attributes = meta_tables::oriented_face_attributes,
@@ -7946,6 +8009,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_open_shell::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_open_shell::meta_entity{
     .name = "oriented_open_shell",
+    .p21_name = "ORIENTED_OPEN_SHELL",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_open_shell_supertypes,
     .attributes = meta_tables::oriented_open_shell_attributes,
@@ -7958,6 +8022,7 @@ const stepnc::meta::EntityInfo& machining_schema::oriented_path::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::oriented_path::meta_entity{
     .name = "oriented_path",
+    .p21_name = "ORIENTED_PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::oriented_path_supertypes,
     .attributes = meta_tables::oriented_path_attributes,
@@ -7970,6 +8035,7 @@ const stepnc::meta::EntityInfo& machining_schema::poly_loop::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::poly_loop::meta_entity{
     .name = "poly_loop",
+    .p21_name = "POLY_LOOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::poly_loop_supertypes,
     .attributes = meta_tables::poly_loop_attributes,
@@ -7981,6 +8047,7 @@ const stepnc::meta::EntityInfo& machining_schema::vertex::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::vertex::meta_entity{
     .name = "vertex",
+    .p21_name = "VERTEX",
     .schema = &meta_schema,
     .supertypes = meta_tables::vertex_supertypes,
     .subtypes = meta_tables::vertex_subtypes,
@@ -7993,6 +8060,7 @@ const stepnc::meta::EntityInfo& machining_schema::vertex_loop::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::vertex_loop::meta_entity{
     .name = "vertex_loop",
+    .p21_name = "VERTEX_LOOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::vertex_loop_supertypes,
     .attributes = meta_tables::vertex_loop_attributes,
@@ -8004,6 +8072,7 @@ const stepnc::meta::EntityInfo& machining_schema::vertex_point::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::vertex_point::meta_entity{
     .name = "vertex_point",
+    .p21_name = "VERTEX_POINT",
     .schema = &meta_schema,
     .supertypes = meta_tables::vertex_point_supertypes,
     .attributes = meta_tables::vertex_point_attributes,
@@ -8015,6 +8084,7 @@ const stepnc::meta::EntityInfo& machining_schema::block::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::block::meta_entity{
     .name = "block",
+    .p21_name = "BLOCK",
     .schema = &meta_schema,
     .supertypes = meta_tables::block_supertypes,
     .attributes = meta_tables::block_attributes,
@@ -8026,6 +8096,7 @@ const stepnc::meta::EntityInfo& machining_schema::solid_model::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::solid_model::meta_entity{
     .name = "solid_model",
+    .p21_name = "SOLID_MODEL",
     .schema = &meta_schema,
     .supertypes = meta_tables::solid_model_supertypes,
     .subtypes = meta_tables::solid_model_subtypes,
@@ -8038,6 +8109,7 @@ const stepnc::meta::EntityInfo& machining_schema::manifold_solid_brep::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::manifold_solid_brep::meta_entity{
     .name = "manifold_solid_brep",
+    .p21_name = "MANIFOLD_SOLID_BREP",
     .schema = &meta_schema,
     .supertypes = meta_tables::manifold_solid_brep_supertypes,
     .subtypes = meta_tables::manifold_solid_brep_subtypes,
@@ -8050,6 +8122,7 @@ const stepnc::meta::EntityInfo& machining_schema::faceted_brep::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::faceted_brep::meta_entity{
     .name = "faceted_brep",
+    .p21_name = "FACETED_BREP",
     .schema = &meta_schema,
     .supertypes = meta_tables::faceted_brep_supertypes,
     .attributes = meta_tables::faceted_brep_attributes,
@@ -8061,6 +8134,7 @@ const stepnc::meta::EntityInfo& machining_schema::right_circular_cylinder::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::right_circular_cylinder::meta_entity{
     .name = "right_circular_cylinder",
+    .p21_name = "RIGHT_CIRCULAR_CYLINDER",
     .schema = &meta_schema,
     .supertypes = meta_tables::right_circular_cylinder_supertypes,
     .attributes = meta_tables::right_circular_cylinder_attributes,
@@ -8072,6 +8146,7 @@ const stepnc::meta::EntityInfo& machining_schema::representation::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::representation::meta_entity{
     .name = "representation",
+    .p21_name = "REPRESENTATION",
     .schema = &meta_schema,
     .subtypes = meta_tables::representation_subtypes,
     .attributes = meta_tables::representation_attributes,
@@ -8083,6 +8158,7 @@ const stepnc::meta::EntityInfo& machining_schema::definitional_representation::e
 
 constinit const stepnc::meta::EntityInfo machining_schema::definitional_representation::meta_entity{
     .name = "definitional_representation",
+    .p21_name = "DEFINITIONAL_REPRESENTATION",
     .schema = &meta_schema,
     .supertypes = meta_tables::definitional_representation_supertypes,
     .attributes = meta_tables::definitional_representation_attributes,
@@ -8094,6 +8170,7 @@ const stepnc::meta::EntityInfo& machining_schema::founded_item::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::founded_item::meta_entity{
     .name = "founded_item",
+    .p21_name = "FOUNDED_ITEM",
     .schema = &meta_schema,
     .create = &stepnc::meta::create_in<machining_schema::founded_item>,
     .upcasts = meta_tables::founded_item_upcasts,
@@ -8103,6 +8180,7 @@ const stepnc::meta::EntityInfo& machining_schema::mapped_item::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::mapped_item::meta_entity{
     .name = "mapped_item",
+    .p21_name = "MAPPED_ITEM",
     .schema = &meta_schema,
     .supertypes = meta_tables::mapped_item_supertypes,
     .attributes = meta_tables::mapped_item_attributes,
@@ -8114,6 +8192,7 @@ const stepnc::meta::EntityInfo& machining_schema::representation_map::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::representation_map::meta_entity{
     .name = "representation_map",
+    .p21_name = "REPRESENTATION_MAP",
     .schema = &meta_schema,
     .attributes = meta_tables::representation_map_attributes,
     .inverses = meta_tables::representation_map_inverses,
@@ -8125,6 +8204,7 @@ const stepnc::meta::EntityInfo& machining_schema::approval::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::approval::meta_entity{
     .name = "approval",
+    .p21_name = "APPROVAL",
     .schema = &meta_schema,
     .attributes = meta_tables::approval_attributes,
     .create = &stepnc::meta::create_in<machining_schema::approval>,
@@ -8135,6 +8215,7 @@ const stepnc::meta::EntityInfo& machining_schema::approval_status::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::approval_status::meta_entity{
     .name = "approval_status",
+    .p21_name = "APPROVAL_STATUS",
     .schema = &meta_schema,
     .attributes = meta_tables::approval_status_attributes,
     .create = &stepnc::meta::create_in<machining_schema::approval_status>,
@@ -8145,6 +8226,7 @@ const stepnc::meta::EntityInfo& machining_schema::date_and_time::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::date_and_time::meta_entity{
     .name = "date_and_time",
+    .p21_name = "DATE_AND_TIME",
     .schema = &meta_schema,
     .attributes = meta_tables::date_and_time_attributes,
     .create = &stepnc::meta::create_in<machining_schema::date_and_time>,
@@ -8155,6 +8237,7 @@ const stepnc::meta::EntityInfo& machining_schema::date::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::date::meta_entity{
     .name = "date",
+    .p21_name = "DATE",
     .schema = &meta_schema,
     .subtypes = meta_tables::date_subtypes,
     .attributes = meta_tables::date_attributes,
@@ -8166,6 +8249,7 @@ const stepnc::meta::EntityInfo& machining_schema::calendar_date::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::calendar_date::meta_entity{
     .name = "calendar_date",
+    .p21_name = "CALENDAR_DATE",
     .schema = &meta_schema,
     .supertypes = meta_tables::calendar_date_supertypes,
     .attributes = meta_tables::calendar_date_attributes,
@@ -8177,6 +8261,7 @@ const stepnc::meta::EntityInfo& machining_schema::ordinal_date::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::ordinal_date::meta_entity{
     .name = "ordinal_date",
+    .p21_name = "ORDINAL_DATE",
     .schema = &meta_schema,
     .supertypes = meta_tables::ordinal_date_supertypes,
     .attributes = meta_tables::ordinal_date_attributes,
@@ -8188,6 +8273,7 @@ const stepnc::meta::EntityInfo& machining_schema::week_of_year_and_day_date::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::week_of_year_and_day_date::meta_entity{
     .name = "week_of_year_and_day_date",
+    .p21_name = "WEEK_OF_YEAR_AND_DAY_DATE",
     .schema = &meta_schema,
     .supertypes = meta_tables::week_of_year_and_day_date_supertypes,
     .attributes = meta_tables::week_of_year_and_day_date_attributes,
@@ -8199,6 +8285,7 @@ const stepnc::meta::EntityInfo& machining_schema::local_time::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::local_time::meta_entity{
     .name = "local_time",
+    .p21_name = "LOCAL_TIME",
     .schema = &meta_schema,
     .attributes = meta_tables::local_time_attributes,
     .create = &stepnc::meta::create_in<machining_schema::local_time>,
@@ -8209,6 +8296,7 @@ const stepnc::meta::EntityInfo& machining_schema::coordinated_universal_time_off
 
 constinit const stepnc::meta::EntityInfo machining_schema::coordinated_universal_time_offset::meta_entity{
     .name = "coordinated_universal_time_offset",
+    .p21_name = "COORDINATED_UNIVERSAL_TIME_OFFSET",
     .schema = &meta_schema,
     .attributes = meta_tables::coordinated_universal_time_offset_attributes,
     .create = &stepnc::meta::create_in<machining_schema::coordinated_universal_time_offset>,
@@ -8219,6 +8307,7 @@ const stepnc::meta::EntityInfo& machining_schema::person::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::person::meta_entity{
     .name = "person",
+    .p21_name = "PERSON",
     .schema = &meta_schema,
     .attributes = meta_tables::person_attributes,
     .create = &stepnc::meta::create_in<machining_schema::person>,
@@ -8229,6 +8318,7 @@ const stepnc::meta::EntityInfo& machining_schema::address::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::address::meta_entity{
     .name = "address",
+    .p21_name = "ADDRESS",
     .schema = &meta_schema,
     .attributes = meta_tables::address_attributes,
     .create = &stepnc::meta::create_in<machining_schema::address>,
@@ -8239,6 +8329,7 @@ const stepnc::meta::EntityInfo& machining_schema::shape_representation::entity_i
 
 constinit const stepnc::meta::EntityInfo machining_schema::shape_representation::meta_entity{
     .name = "shape_representation",
+    .p21_name = "SHAPE_REPRESENTATION",
     .schema = &meta_schema,
     .supertypes = meta_tables::shape_representation_supertypes,
     .subtypes = meta_tables::shape_representation_subtypes,
@@ -8251,6 +8342,7 @@ const stepnc::meta::EntityInfo& machining_schema::advanced_face::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::advanced_face::meta_entity{
     .name = "advanced_face",
+    .p21_name = "ADVANCED_FACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::advanced_face_supertypes,
     .attributes = meta_tables::advanced_face_attributes,
@@ -8262,6 +8354,7 @@ const stepnc::meta::EntityInfo& machining_schema::advanced_brep_shape_representa
 
 constinit const stepnc::meta::EntityInfo machining_schema::advanced_brep_shape_representation::meta_entity{
     .name = "advanced_brep_shape_representation",
+    .p21_name = "ADVANCED_BREP_SHAPE_REPRESENTATION",
     .schema = &meta_schema,
     .supertypes = meta_tables::advanced_brep_shape_representation_supertypes,
     .attributes = meta_tables::advanced_brep_shape_representation_attributes,
@@ -8273,6 +8366,7 @@ const stepnc::meta::EntityInfo& machining_schema::toleranced_length_measure::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::toleranced_length_measure::meta_entity{
     .name = "toleranced_length_measure",
+    .p21_name = "TOLERANCED_LENGTH_MEASURE",
     .schema = &meta_schema,
     .attributes = meta_tables::toleranced_length_measure_attributes,
     .create = &stepnc::meta::create_in<machining_schema::toleranced_length_measure>,
@@ -8283,6 +8377,7 @@ const stepnc::meta::EntityInfo& machining_schema::plus_minus_value::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::plus_minus_value::meta_entity{
     .name = "plus_minus_value",
+    .p21_name = "PLUS_MINUS_VALUE",
     .schema = &meta_schema,
     .attributes = meta_tables::plus_minus_value_attributes,
     .create = &stepnc::meta::create_in<machining_schema::plus_minus_value>,
@@ -8293,6 +8388,7 @@ const stepnc::meta::EntityInfo& machining_schema::limits_and_fits::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::limits_and_fits::meta_entity{
     .name = "limits_and_fits",
+    .p21_name = "LIMITS_AND_FITS",
     .schema = &meta_schema,
     .attributes = meta_tables::limits_and_fits_attributes,
     .create = &stepnc::meta::create_in<machining_schema::limits_and_fits>,
@@ -8303,6 +8399,7 @@ const stepnc::meta::EntityInfo& machining_schema::project::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::project::meta_entity{
     .name = "project",
+    .p21_name = "PROJECT",
     .schema = &meta_schema,
     .attributes = meta_tables::project_attributes,
     .create = &stepnc::meta::create_in<machining_schema::project>,
@@ -8313,6 +8410,7 @@ const stepnc::meta::EntityInfo& machining_schema::person_and_address::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::person_and_address::meta_entity{
     .name = "person_and_address",
+    .p21_name = "PERSON_AND_ADDRESS",
     .schema = &meta_schema,
     .attributes = meta_tables::person_and_address_attributes,
     .create = &stepnc::meta::create_in<machining_schema::person_and_address>,
@@ -8323,6 +8421,7 @@ const stepnc::meta::EntityInfo& machining_schema::workpiece::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::workpiece::meta_entity{
     .name = "workpiece",
+    .p21_name = "WORKPIECE",
     .schema = &meta_schema,
     .attributes = meta_tables::workpiece_attributes,
     .create = &stepnc::meta::create_in<machining_schema::workpiece>,
@@ -8333,6 +8432,7 @@ const stepnc::meta::EntityInfo& machining_schema::material::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::material::meta_entity{
     .name = "material",
+    .p21_name = "MATERIAL",
     .schema = &meta_schema,
     .attributes = meta_tables::material_attributes,
     .create = &stepnc::meta::create_in<machining_schema::material>,
@@ -8343,6 +8443,7 @@ const stepnc::meta::EntityInfo& machining_schema::property_parameter::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::property_parameter::meta_entity{
     .name = "property_parameter",
+    .p21_name = "PROPERTY_PARAMETER",
     .schema = &meta_schema,
     .subtypes = meta_tables::property_parameter_subtypes,
     .attributes = meta_tables::property_parameter_attributes,
@@ -8354,6 +8455,7 @@ const stepnc::meta::EntityInfo& machining_schema::descriptive_parameter::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::descriptive_parameter::meta_entity{
     .name = "descriptive_parameter",
+    .p21_name = "DESCRIPTIVE_PARAMETER",
     .schema = &meta_schema,
     .supertypes = meta_tables::descriptive_parameter_supertypes,
     .attributes = meta_tables::descriptive_parameter_attributes,
@@ -8365,6 +8467,7 @@ const stepnc::meta::EntityInfo& machining_schema::numeric_parameter::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::numeric_parameter::meta_entity{
     .name = "numeric_parameter",
+    .p21_name = "NUMERIC_PARAMETER",
     .schema = &meta_schema,
     .supertypes = meta_tables::numeric_parameter_supertypes,
     .attributes = meta_tables::numeric_parameter_attributes,
@@ -8376,6 +8479,7 @@ const stepnc::meta::EntityInfo& machining_schema::manufacturing_feature::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::manufacturing_feature::meta_entity{
     .name = "manufacturing_feature",
+    .p21_name = "MANUFACTURING_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::manufacturing_feature_subtypes,
@@ -8386,6 +8490,7 @@ const stepnc::meta::EntityInfo& machining_schema::region::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::region::meta_entity{
     .name = "region",
+    .p21_name = "REGION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::region_supertypes,
@@ -8397,6 +8502,7 @@ const stepnc::meta::EntityInfo& machining_schema::region_projection::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::region_projection::meta_entity{
     .name = "region_projection",
+    .p21_name = "REGION_PROJECTION",
     .schema = &meta_schema,
     .supertypes = meta_tables::region_projection_supertypes,
     .attributes = meta_tables::region_projection_attributes,
@@ -8408,6 +8514,7 @@ const stepnc::meta::EntityInfo& machining_schema::region_surface_list::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::region_surface_list::meta_entity{
     .name = "region_surface_list",
+    .p21_name = "REGION_SURFACE_LIST",
     .schema = &meta_schema,
     .supertypes = meta_tables::region_surface_list_supertypes,
     .attributes = meta_tables::region_surface_list_attributes,
@@ -8419,6 +8526,7 @@ const stepnc::meta::EntityInfo& machining_schema::topological_region::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::topological_region::meta_entity{
     .name = "topological_region",
+    .p21_name = "TOPOLOGICAL_REGION",
     .schema = &meta_schema,
     .supertypes = meta_tables::topological_region_supertypes,
     .attributes = meta_tables::topological_region_attributes,
@@ -8430,6 +8538,7 @@ const stepnc::meta::EntityInfo& machining_schema::two5d_manufacturing_feature::e
 
 constinit const stepnc::meta::EntityInfo machining_schema::two5d_manufacturing_feature::meta_entity{
     .name = "two5d_manufacturing_feature",
+    .p21_name = "TWO5D_MANUFACTURING_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::two5d_manufacturing_feature_supertypes,
@@ -8441,6 +8550,7 @@ const stepnc::meta::EntityInfo& machining_schema::machining_feature::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::machining_feature::meta_entity{
     .name = "machining_feature",
+    .p21_name = "MACHINING_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::machining_feature_supertypes,
@@ -8452,6 +8562,7 @@ const stepnc::meta::EntityInfo& machining_schema::planar_face::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::planar_face::meta_entity{
     .name = "planar_face",
+    .p21_name = "PLANAR_FACE",
     .schema = &meta_schema,
     .supertypes = meta_tables::planar_face_supertypes,
     .attributes = meta_tables::planar_face_attributes,
@@ -8463,6 +8574,7 @@ const stepnc::meta::EntityInfo& machining_schema::pocket::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::pocket::meta_entity{
     .name = "pocket",
+    .p21_name = "POCKET",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::pocket_supertypes,
@@ -8474,6 +8586,7 @@ const stepnc::meta::EntityInfo& machining_schema::closed_pocket::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::closed_pocket::meta_entity{
     .name = "closed_pocket",
+    .p21_name = "CLOSED_POCKET",
     .schema = &meta_schema,
     .supertypes = meta_tables::closed_pocket_supertypes,
     .attributes = meta_tables::closed_pocket_attributes,
@@ -8485,6 +8598,7 @@ const stepnc::meta::EntityInfo& machining_schema::open_pocket::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::open_pocket::meta_entity{
     .name = "open_pocket",
+    .p21_name = "OPEN_POCKET",
     .schema = &meta_schema,
     .supertypes = meta_tables::open_pocket_supertypes,
     .attributes = meta_tables::open_pocket_attributes,
@@ -8496,6 +8610,7 @@ const stepnc::meta::EntityInfo& machining_schema::pocket_bottom_condition::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::pocket_bottom_condition::meta_entity{
     .name = "pocket_bottom_condition",
+    .p21_name = "POCKET_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::pocket_bottom_condition_subtypes,
@@ -8505,6 +8620,7 @@ const stepnc::meta::EntityInfo& machining_schema::through_pocket_bottom_conditio
 
 constinit const stepnc::meta::EntityInfo machining_schema::through_pocket_bottom_condition::meta_entity{
     .name = "through_pocket_bottom_condition",
+    .p21_name = "THROUGH_POCKET_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .supertypes = meta_tables::through_pocket_bottom_condition_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::through_pocket_bottom_condition>,
@@ -8515,6 +8631,7 @@ const stepnc::meta::EntityInfo& machining_schema::planar_pocket_bottom_condition
 
 constinit const stepnc::meta::EntityInfo machining_schema::planar_pocket_bottom_condition::meta_entity{
     .name = "planar_pocket_bottom_condition",
+    .p21_name = "PLANAR_POCKET_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .supertypes = meta_tables::planar_pocket_bottom_condition_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::planar_pocket_bottom_condition>,
@@ -8525,6 +8642,7 @@ const stepnc::meta::EntityInfo& machining_schema::radiused_pocket_bottom_conditi
 
 constinit const stepnc::meta::EntityInfo machining_schema::radiused_pocket_bottom_condition::meta_entity{
     .name = "radiused_pocket_bottom_condition",
+    .p21_name = "RADIUSED_POCKET_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .supertypes = meta_tables::radiused_pocket_bottom_condition_supertypes,
     .attributes = meta_tables::radiused_pocket_bottom_condition_attributes,
@@ -8536,6 +8654,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_pocket_bottom_conditio
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_pocket_bottom_condition::meta_entity{
     .name = "general_pocket_bottom_condition",
+    .p21_name = "GENERAL_POCKET_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_pocket_bottom_condition_supertypes,
     .attributes = meta_tables::general_pocket_bottom_condition_attributes,
@@ -8547,6 +8666,7 @@ const stepnc::meta::EntityInfo& machining_schema::slot::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::slot::meta_entity{
     .name = "slot",
+    .p21_name = "SLOT",
     .schema = &meta_schema,
     .supertypes = meta_tables::slot_supertypes,
     .attributes = meta_tables::slot_attributes,
@@ -8558,6 +8678,7 @@ const stepnc::meta::EntityInfo& machining_schema::slot_end_type::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::slot_end_type::meta_entity{
     .name = "slot_end_type",
+    .p21_name = "SLOT_END_TYPE",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::slot_end_type_subtypes,
@@ -8567,6 +8688,7 @@ const stepnc::meta::EntityInfo& machining_schema::woodruff_slot_end_type::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::woodruff_slot_end_type::meta_entity{
     .name = "woodruff_slot_end_type",
+    .p21_name = "WOODRUFF_SLOT_END_TYPE",
     .schema = &meta_schema,
     .supertypes = meta_tables::woodruff_slot_end_type_supertypes,
     .attributes = meta_tables::woodruff_slot_end_type_attributes,
@@ -8578,6 +8700,7 @@ const stepnc::meta::EntityInfo& machining_schema::radiused_slot_end_type::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::radiused_slot_end_type::meta_entity{
     .name = "radiused_slot_end_type",
+    .p21_name = "RADIUSED_SLOT_END_TYPE",
     .schema = &meta_schema,
     .supertypes = meta_tables::radiused_slot_end_type_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::radiused_slot_end_type>,
@@ -8588,6 +8711,7 @@ const stepnc::meta::EntityInfo& machining_schema::flat_slot_end_type::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::flat_slot_end_type::meta_entity{
     .name = "flat_slot_end_type",
+    .p21_name = "FLAT_SLOT_END_TYPE",
     .schema = &meta_schema,
     .supertypes = meta_tables::flat_slot_end_type_supertypes,
     .attributes = meta_tables::flat_slot_end_type_attributes,
@@ -8599,6 +8723,7 @@ const stepnc::meta::EntityInfo& machining_schema::loop_slot_end_type::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::loop_slot_end_type::meta_entity{
     .name = "loop_slot_end_type",
+    .p21_name = "LOOP_SLOT_END_TYPE",
     .schema = &meta_schema,
     .supertypes = meta_tables::loop_slot_end_type_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::loop_slot_end_type>,
@@ -8609,6 +8734,7 @@ const stepnc::meta::EntityInfo& machining_schema::open_slot_end_type::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::open_slot_end_type::meta_entity{
     .name = "open_slot_end_type",
+    .p21_name = "OPEN_SLOT_END_TYPE",
     .schema = &meta_schema,
     .supertypes = meta_tables::open_slot_end_type_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::open_slot_end_type>,
@@ -8619,6 +8745,7 @@ const stepnc::meta::EntityInfo& machining_schema::step::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::step::meta_entity{
     .name = "step",
+    .p21_name = "STEP",
     .schema = &meta_schema,
     .supertypes = meta_tables::step_supertypes,
     .attributes = meta_tables::step_attributes,
@@ -8630,6 +8757,7 @@ const stepnc::meta::EntityInfo& machining_schema::profile_feature::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::profile_feature::meta_entity{
     .name = "profile_feature",
+    .p21_name = "PROFILE_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::profile_feature_supertypes,
@@ -8641,6 +8769,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_outside_profile::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_outside_profile::meta_entity{
     .name = "general_outside_profile",
+    .p21_name = "GENERAL_OUTSIDE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_outside_profile_supertypes,
     .attributes = meta_tables::general_outside_profile_attributes,
@@ -8652,6 +8781,7 @@ const stepnc::meta::EntityInfo& machining_schema::shape_profile::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::shape_profile::meta_entity{
     .name = "shape_profile",
+    .p21_name = "SHAPE_PROFILE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::shape_profile_supertypes,
@@ -8663,6 +8793,7 @@ const stepnc::meta::EntityInfo& machining_schema::through_profile_floor::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::through_profile_floor::meta_entity{
     .name = "through_profile_floor",
+    .p21_name = "THROUGH_PROFILE_FLOOR",
     .schema = &meta_schema,
     .create = &stepnc::meta::create_in<machining_schema::through_profile_floor>,
     .upcasts = meta_tables::through_profile_floor_upcasts,
@@ -8672,6 +8803,7 @@ const stepnc::meta::EntityInfo& machining_schema::profile_floor::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::profile_floor::meta_entity{
     .name = "profile_floor",
+    .p21_name = "PROFILE_FLOOR",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::profile_floor_subtypes,
@@ -8682,6 +8814,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_profile_floor::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_profile_floor::meta_entity{
     .name = "general_profile_floor",
+    .p21_name = "GENERAL_PROFILE_FLOOR",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_profile_floor_supertypes,
     .attributes = meta_tables::general_profile_floor_attributes,
@@ -8693,6 +8826,7 @@ const stepnc::meta::EntityInfo& machining_schema::planar_profile_floor::entity_i
 
 constinit const stepnc::meta::EntityInfo machining_schema::planar_profile_floor::meta_entity{
     .name = "planar_profile_floor",
+    .p21_name = "PLANAR_PROFILE_FLOOR",
     .schema = &meta_schema,
     .supertypes = meta_tables::planar_profile_floor_supertypes,
     .attributes = meta_tables::planar_profile_floor_attributes,
@@ -8704,6 +8838,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_shape_profile::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_shape_profile::meta_entity{
     .name = "general_shape_profile",
+    .p21_name = "GENERAL_SHAPE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_shape_profile_supertypes,
     .attributes = meta_tables::general_shape_profile_attributes,
@@ -8715,6 +8850,7 @@ const stepnc::meta::EntityInfo& machining_schema::partial_circular_shape_profile
 
 constinit const stepnc::meta::EntityInfo machining_schema::partial_circular_shape_profile::meta_entity{
     .name = "partial_circular_shape_profile",
+    .p21_name = "PARTIAL_CIRCULAR_SHAPE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::partial_circular_shape_profile_supertypes,
     .attributes = meta_tables::partial_circular_shape_profile_attributes,
@@ -8726,6 +8862,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_closed_shape_profile:
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_closed_shape_profile::meta_entity{
     .name = "circular_closed_shape_profile",
+    .p21_name = "CIRCULAR_CLOSED_SHAPE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::circular_closed_shape_profile_supertypes,
     .attributes = meta_tables::circular_closed_shape_profile_attributes,
@@ -8737,6 +8874,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_open_shape_profile
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_open_shape_profile::meta_entity{
     .name = "rectangular_open_shape_profile",
+    .p21_name = "RECTANGULAR_OPEN_SHAPE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rectangular_open_shape_profile_supertypes,
     .attributes = meta_tables::rectangular_open_shape_profile_attributes,
@@ -8748,6 +8886,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_closed_shape_profi
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_closed_shape_profile::meta_entity{
     .name = "rectangular_closed_shape_profile",
+    .p21_name = "RECTANGULAR_CLOSED_SHAPE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rectangular_closed_shape_profile_supertypes,
     .attributes = meta_tables::rectangular_closed_shape_profile_attributes,
@@ -8759,6 +8898,7 @@ const stepnc::meta::EntityInfo& machining_schema::round_hole::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::round_hole::meta_entity{
     .name = "round_hole",
+    .p21_name = "ROUND_HOLE",
     .schema = &meta_schema,
     .supertypes = meta_tables::round_hole_supertypes,
     .attributes = meta_tables::round_hole_attributes,
@@ -8770,6 +8910,7 @@ const stepnc::meta::EntityInfo& machining_schema::diameter_taper::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::diameter_taper::meta_entity{
     .name = "diameter_taper",
+    .p21_name = "DIAMETER_TAPER",
     .schema = &meta_schema,
     .attributes = meta_tables::diameter_taper_attributes,
     .create = &stepnc::meta::create_in<machining_schema::diameter_taper>,
@@ -8780,6 +8921,7 @@ const stepnc::meta::EntityInfo& machining_schema::angle_taper::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::angle_taper::meta_entity{
     .name = "angle_taper",
+    .p21_name = "ANGLE_TAPER",
     .schema = &meta_schema,
     .attributes = meta_tables::angle_taper_attributes,
     .create = &stepnc::meta::create_in<machining_schema::angle_taper>,
@@ -8790,6 +8932,7 @@ const stepnc::meta::EntityInfo& machining_schema::hole_bottom_condition::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::hole_bottom_condition::meta_entity{
     .name = "hole_bottom_condition",
+    .p21_name = "HOLE_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::hole_bottom_condition_subtypes,
@@ -8799,6 +8942,7 @@ const stepnc::meta::EntityInfo& machining_schema::through_bottom_condition::enti
 
 constinit const stepnc::meta::EntityInfo machining_schema::through_bottom_condition::meta_entity{
     .name = "through_bottom_condition",
+    .p21_name = "THROUGH_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .supertypes = meta_tables::through_bottom_condition_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::through_bottom_condition>,
@@ -8809,6 +8953,7 @@ const stepnc::meta::EntityInfo& machining_schema::blind_bottom_condition::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::blind_bottom_condition::meta_entity{
     .name = "blind_bottom_condition",
+    .p21_name = "BLIND_BOTTOM_CONDITION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::blind_bottom_condition_supertypes,
@@ -8819,6 +8964,7 @@ const stepnc::meta::EntityInfo& machining_schema::flat_hole_bottom::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::flat_hole_bottom::meta_entity{
     .name = "flat_hole_bottom",
+    .p21_name = "FLAT_HOLE_BOTTOM",
     .schema = &meta_schema,
     .supertypes = meta_tables::flat_hole_bottom_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::flat_hole_bottom>,
@@ -8829,6 +8975,7 @@ const stepnc::meta::EntityInfo& machining_schema::flat_with_radius_hole_bottom::
 
 constinit const stepnc::meta::EntityInfo machining_schema::flat_with_radius_hole_bottom::meta_entity{
     .name = "flat_with_radius_hole_bottom",
+    .p21_name = "FLAT_WITH_RADIUS_HOLE_BOTTOM",
     .schema = &meta_schema,
     .supertypes = meta_tables::flat_with_radius_hole_bottom_supertypes,
     .attributes = meta_tables::flat_with_radius_hole_bottom_attributes,
@@ -8840,6 +8987,7 @@ const stepnc::meta::EntityInfo& machining_schema::spherical_hole_bottom::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::spherical_hole_bottom::meta_entity{
     .name = "spherical_hole_bottom",
+    .p21_name = "SPHERICAL_HOLE_BOTTOM",
     .schema = &meta_schema,
     .supertypes = meta_tables::spherical_hole_bottom_supertypes,
     .attributes = meta_tables::spherical_hole_bottom_attributes,
@@ -8851,6 +8999,7 @@ const stepnc::meta::EntityInfo& machining_schema::conical_hole_bottom::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::conical_hole_bottom::meta_entity{
     .name = "conical_hole_bottom",
+    .p21_name = "CONICAL_HOLE_BOTTOM",
     .schema = &meta_schema,
     .supertypes = meta_tables::conical_hole_bottom_supertypes,
     .attributes = meta_tables::conical_hole_bottom_attributes,
@@ -8862,6 +9011,7 @@ const stepnc::meta::EntityInfo& machining_schema::toolpath_feature::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::toolpath_feature::meta_entity{
     .name = "toolpath_feature",
+    .p21_name = "TOOLPATH_FEATURE",
     .schema = &meta_schema,
     .supertypes = meta_tables::toolpath_feature_supertypes,
     .attributes = meta_tables::toolpath_feature_attributes,
@@ -8873,6 +9023,7 @@ const stepnc::meta::EntityInfo& machining_schema::boss::entity_info() const noex
 
 constinit const stepnc::meta::EntityInfo machining_schema::boss::meta_entity{
     .name = "boss",
+    .p21_name = "BOSS",
     .schema = &meta_schema,
     .supertypes = meta_tables::boss_supertypes,
     .attributes = meta_tables::boss_attributes,
@@ -8884,6 +9035,7 @@ const stepnc::meta::EntityInfo& machining_schema::spherical_cap::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::spherical_cap::meta_entity{
     .name = "spherical_cap",
+    .p21_name = "SPHERICAL_CAP",
     .schema = &meta_schema,
     .supertypes = meta_tables::spherical_cap_supertypes,
     .attributes = meta_tables::spherical_cap_attributes,
@@ -8895,6 +9047,7 @@ const stepnc::meta::EntityInfo& machining_schema::rounded_end::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::rounded_end::meta_entity{
     .name = "rounded_end",
+    .p21_name = "ROUNDED_END",
     .schema = &meta_schema,
     .supertypes = meta_tables::rounded_end_supertypes,
     .attributes = meta_tables::rounded_end_attributes,
@@ -8906,6 +9059,7 @@ const stepnc::meta::EntityInfo& machining_schema::compound_feature::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::compound_feature::meta_entity{
     .name = "compound_feature",
+    .p21_name = "COMPOUND_FEATURE",
     .schema = &meta_schema,
     .supertypes = meta_tables::compound_feature_supertypes,
     .subtypes = meta_tables::compound_feature_subtypes,
@@ -8918,6 +9072,7 @@ const stepnc::meta::EntityInfo& machining_schema::counterbore_hole::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::counterbore_hole::meta_entity{
     .name = "counterbore_hole",
+    .p21_name = "COUNTERBORE_HOLE",
     .schema = &meta_schema,
     .supertypes = meta_tables::counterbore_hole_supertypes,
     .attributes = meta_tables::counterbore_hole_attributes,
@@ -8929,6 +9084,7 @@ const stepnc::meta::EntityInfo& machining_schema::countersunk_hole::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::countersunk_hole::meta_entity{
     .name = "countersunk_hole",
+    .p21_name = "COUNTERSUNK_HOLE",
     .schema = &meta_schema,
     .supertypes = meta_tables::countersunk_hole_supertypes,
     .attributes = meta_tables::countersunk_hole_attributes,
@@ -8940,6 +9096,7 @@ const stepnc::meta::EntityInfo& machining_schema::replicate_feature::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::replicate_feature::meta_entity{
     .name = "replicate_feature",
+    .p21_name = "REPLICATE_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::replicate_feature_supertypes,
@@ -8951,6 +9108,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_pattern::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_pattern::meta_entity{
     .name = "circular_pattern",
+    .p21_name = "CIRCULAR_PATTERN",
     .schema = &meta_schema,
     .supertypes = meta_tables::circular_pattern_supertypes,
     .attributes = meta_tables::circular_pattern_attributes,
@@ -8962,6 +9120,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_offset::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_offset::meta_entity{
     .name = "circular_offset",
+    .p21_name = "CIRCULAR_OFFSET",
     .schema = &meta_schema,
     .attributes = meta_tables::circular_offset_attributes,
     .create = &stepnc::meta::create_in<machining_schema::circular_offset>,
@@ -8972,6 +9131,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_omit::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_omit::meta_entity{
     .name = "circular_omit",
+    .p21_name = "CIRCULAR_OMIT",
     .schema = &meta_schema,
     .attributes = meta_tables::circular_omit_attributes,
     .create = &stepnc::meta::create_in<machining_schema::circular_omit>,
@@ -8982,6 +9142,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_pattern::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_pattern::meta_entity{
     .name = "rectangular_pattern",
+    .p21_name = "RECTANGULAR_PATTERN",
     .schema = &meta_schema,
     .supertypes = meta_tables::rectangular_pattern_supertypes,
     .attributes = meta_tables::rectangular_pattern_attributes,
@@ -8993,6 +9154,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_offset::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_offset::meta_entity{
     .name = "rectangular_offset",
+    .p21_name = "RECTANGULAR_OFFSET",
     .schema = &meta_schema,
     .attributes = meta_tables::rectangular_offset_attributes,
     .create = &stepnc::meta::create_in<machining_schema::rectangular_offset>,
@@ -9003,6 +9165,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_omit::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_omit::meta_entity{
     .name = "rectangular_omit",
+    .p21_name = "RECTANGULAR_OMIT",
     .schema = &meta_schema,
     .attributes = meta_tables::rectangular_omit_attributes,
     .create = &stepnc::meta::create_in<machining_schema::rectangular_omit>,
@@ -9013,6 +9176,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_pattern::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_pattern::meta_entity{
     .name = "general_pattern",
+    .p21_name = "GENERAL_PATTERN",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_pattern_supertypes,
     .attributes = meta_tables::general_pattern_attributes,
@@ -9024,6 +9188,7 @@ const stepnc::meta::EntityInfo& machining_schema::transition_feature::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::transition_feature::meta_entity{
     .name = "transition_feature",
+    .p21_name = "TRANSITION_FEATURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::transition_feature_supertypes,
@@ -9035,6 +9200,7 @@ const stepnc::meta::EntityInfo& machining_schema::chamfer::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::chamfer::meta_entity{
     .name = "chamfer",
+    .p21_name = "CHAMFER",
     .schema = &meta_schema,
     .supertypes = meta_tables::chamfer_supertypes,
     .attributes = meta_tables::chamfer_attributes,
@@ -9046,6 +9212,7 @@ const stepnc::meta::EntityInfo& machining_schema::edge_round::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::edge_round::meta_entity{
     .name = "edge_round",
+    .p21_name = "EDGE_ROUND",
     .schema = &meta_schema,
     .supertypes = meta_tables::edge_round_supertypes,
     .attributes = meta_tables::edge_round_attributes,
@@ -9057,6 +9224,7 @@ const stepnc::meta::EntityInfo& machining_schema::thread::entity_info() const no
 
 constinit const stepnc::meta::EntityInfo machining_schema::thread::meta_entity{
     .name = "thread",
+    .p21_name = "THREAD",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::thread_supertypes,
@@ -9068,6 +9236,7 @@ const stepnc::meta::EntityInfo& machining_schema::partial_area_definition::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::partial_area_definition::meta_entity{
     .name = "partial_area_definition",
+    .p21_name = "PARTIAL_AREA_DEFINITION",
     .schema = &meta_schema,
     .attributes = meta_tables::partial_area_definition_attributes,
     .create = &stepnc::meta::create_in<machining_schema::partial_area_definition>,
@@ -9078,6 +9247,7 @@ const stepnc::meta::EntityInfo& machining_schema::catalogue_thread::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::catalogue_thread::meta_entity{
     .name = "catalogue_thread",
+    .p21_name = "CATALOGUE_THREAD",
     .schema = &meta_schema,
     .supertypes = meta_tables::catalogue_thread_supertypes,
     .attributes = meta_tables::catalogue_thread_attributes,
@@ -9089,6 +9259,7 @@ const stepnc::meta::EntityInfo& machining_schema::specification::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::specification::meta_entity{
     .name = "specification",
+    .p21_name = "SPECIFICATION",
     .schema = &meta_schema,
     .attributes = meta_tables::specification_attributes,
     .create = &stepnc::meta::create_in<machining_schema::specification>,
@@ -9099,6 +9270,7 @@ const stepnc::meta::EntityInfo& machining_schema::specification_usage_constraint
 
 constinit const stepnc::meta::EntityInfo machining_schema::specification_usage_constraint::meta_entity{
     .name = "specification_usage_constraint",
+    .p21_name = "SPECIFICATION_USAGE_CONSTRAINT",
     .schema = &meta_schema,
     .attributes = meta_tables::specification_usage_constraint_attributes,
     .create = &stepnc::meta::create_in<machining_schema::specification_usage_constraint>,
@@ -9109,6 +9281,7 @@ const stepnc::meta::EntityInfo& machining_schema::defined_thread::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::defined_thread::meta_entity{
     .name = "defined_thread",
+    .p21_name = "DEFINED_THREAD",
     .schema = &meta_schema,
     .supertypes = meta_tables::defined_thread_supertypes,
     .attributes = meta_tables::defined_thread_attributes,
@@ -9120,6 +9293,7 @@ const stepnc::meta::EntityInfo& machining_schema::profile::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::profile::meta_entity{
     .name = "profile",
+    .p21_name = "PROFILE",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::profile_subtypes,
@@ -9130,6 +9304,7 @@ const stepnc::meta::EntityInfo& machining_schema::open_profile::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::open_profile::meta_entity{
     .name = "open_profile",
+    .p21_name = "OPEN_PROFILE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::open_profile_supertypes,
@@ -9141,6 +9316,7 @@ const stepnc::meta::EntityInfo& machining_schema::linear_profile::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::linear_profile::meta_entity{
     .name = "linear_profile",
+    .p21_name = "LINEAR_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::linear_profile_supertypes,
     .attributes = meta_tables::linear_profile_attributes,
@@ -9152,6 +9328,7 @@ const stepnc::meta::EntityInfo& machining_schema::square_u_profile::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::square_u_profile::meta_entity{
     .name = "square_u_profile",
+    .p21_name = "SQUARE_U_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::square_u_profile_supertypes,
     .attributes = meta_tables::square_u_profile_attributes,
@@ -9163,6 +9340,7 @@ const stepnc::meta::EntityInfo& machining_schema::rounded_u_profile::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::rounded_u_profile::meta_entity{
     .name = "rounded_u_profile",
+    .p21_name = "ROUNDED_U_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rounded_u_profile_supertypes,
     .attributes = meta_tables::rounded_u_profile_attributes,
@@ -9174,6 +9352,7 @@ const stepnc::meta::EntityInfo& machining_schema::tee_profile::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::tee_profile::meta_entity{
     .name = "tee_profile",
+    .p21_name = "TEE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::tee_profile_supertypes,
     .attributes = meta_tables::tee_profile_attributes,
@@ -9185,6 +9364,7 @@ const stepnc::meta::EntityInfo& machining_schema::vee_profile::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::vee_profile::meta_entity{
     .name = "vee_profile",
+    .p21_name = "VEE_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::vee_profile_supertypes,
     .attributes = meta_tables::vee_profile_attributes,
@@ -9196,6 +9376,7 @@ const stepnc::meta::EntityInfo& machining_schema::partial_circular_profile::enti
 
 constinit const stepnc::meta::EntityInfo machining_schema::partial_circular_profile::meta_entity{
     .name = "partial_circular_profile",
+    .p21_name = "PARTIAL_CIRCULAR_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::partial_circular_profile_supertypes,
     .attributes = meta_tables::partial_circular_profile_attributes,
@@ -9207,6 +9388,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_profile::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_profile::meta_entity{
     .name = "general_profile",
+    .p21_name = "GENERAL_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_profile_supertypes,
     .attributes = meta_tables::general_profile_attributes,
@@ -9218,6 +9400,7 @@ const stepnc::meta::EntityInfo& machining_schema::closed_profile::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::closed_profile::meta_entity{
     .name = "closed_profile",
+    .p21_name = "CLOSED_PROFILE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::closed_profile_supertypes,
@@ -9229,6 +9412,7 @@ const stepnc::meta::EntityInfo& machining_schema::rectangular_closed_profile::en
 
 constinit const stepnc::meta::EntityInfo machining_schema::rectangular_closed_profile::meta_entity{
     .name = "rectangular_closed_profile",
+    .p21_name = "RECTANGULAR_CLOSED_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::rectangular_closed_profile_supertypes,
     .attributes = meta_tables::rectangular_closed_profile_attributes,
@@ -9240,6 +9424,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_closed_profile::entit
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_closed_profile::meta_entity{
     .name = "circular_closed_profile",
+    .p21_name = "CIRCULAR_CLOSED_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::circular_closed_profile_supertypes,
     .attributes = meta_tables::circular_closed_profile_attributes,
@@ -9251,6 +9436,7 @@ const stepnc::meta::EntityInfo& machining_schema::ngon_closed_profile::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::ngon_closed_profile::meta_entity{
     .name = "ngon_closed_profile",
+    .p21_name = "NGON_CLOSED_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::ngon_closed_profile_supertypes,
     .attributes = meta_tables::ngon_closed_profile_attributes,
@@ -9262,6 +9448,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_closed_profile::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_closed_profile::meta_entity{
     .name = "general_closed_profile",
+    .p21_name = "GENERAL_CLOSED_PROFILE",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_closed_profile_supertypes,
     .attributes = meta_tables::general_closed_profile_attributes,
@@ -9273,6 +9460,7 @@ const stepnc::meta::EntityInfo& machining_schema::travel_path::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::travel_path::meta_entity{
     .name = "travel_path",
+    .p21_name = "TRAVEL_PATH",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::travel_path_subtypes,
@@ -9283,6 +9471,7 @@ const stepnc::meta::EntityInfo& machining_schema::general_path::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::general_path::meta_entity{
     .name = "general_path",
+    .p21_name = "GENERAL_PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::general_path_supertypes,
     .attributes = meta_tables::general_path_attributes,
@@ -9294,6 +9483,7 @@ const stepnc::meta::EntityInfo& machining_schema::linear_path::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::linear_path::meta_entity{
     .name = "linear_path",
+    .p21_name = "LINEAR_PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::linear_path_supertypes,
     .attributes = meta_tables::linear_path_attributes,
@@ -9305,6 +9495,7 @@ const stepnc::meta::EntityInfo& machining_schema::circular_path::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::circular_path::meta_entity{
     .name = "circular_path",
+    .p21_name = "CIRCULAR_PATH",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::circular_path_supertypes,
@@ -9316,6 +9507,7 @@ const stepnc::meta::EntityInfo& machining_schema::complete_circular_path::entity
 
 constinit const stepnc::meta::EntityInfo machining_schema::complete_circular_path::meta_entity{
     .name = "complete_circular_path",
+    .p21_name = "COMPLETE_CIRCULAR_PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::complete_circular_path_supertypes,
     .attributes = meta_tables::complete_circular_path_attributes,
@@ -9327,6 +9519,7 @@ const stepnc::meta::EntityInfo& machining_schema::partial_circular_path::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::partial_circular_path::meta_entity{
     .name = "partial_circular_path",
+    .p21_name = "PARTIAL_CIRCULAR_PATH",
     .schema = &meta_schema,
     .supertypes = meta_tables::partial_circular_path_supertypes,
     .attributes = meta_tables::partial_circular_path_attributes,
@@ -9338,6 +9531,7 @@ const stepnc::meta::EntityInfo& machining_schema::surface_texture_parameter::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::surface_texture_parameter::meta_entity{
     .name = "surface_texture_parameter",
+    .p21_name = "SURFACE_TEXTURE_PARAMETER",
     .schema = &meta_schema,
     .attributes = meta_tables::surface_texture_parameter_attributes,
     .create = &stepnc::meta::create_in<machining_schema::surface_texture_parameter>,
@@ -9348,6 +9542,7 @@ const stepnc::meta::EntityInfo& machining_schema::machined_surface::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::machined_surface::meta_entity{
     .name = "machined_surface",
+    .p21_name = "MACHINED_SURFACE",
     .schema = &meta_schema,
     .attributes = meta_tables::machined_surface_attributes,
     .create = &stepnc::meta::create_in<machining_schema::machined_surface>,
@@ -9358,6 +9553,7 @@ const stepnc::meta::EntityInfo& machining_schema::executable::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::executable::meta_entity{
     .name = "executable",
+    .p21_name = "EXECUTABLE",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::executable_subtypes,
@@ -9368,6 +9564,7 @@ const stepnc::meta::EntityInfo& machining_schema::workingstep::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::workingstep::meta_entity{
     .name = "workingstep",
+    .p21_name = "WORKINGSTEP",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::workingstep_supertypes,
@@ -9379,6 +9576,7 @@ const stepnc::meta::EntityInfo& machining_schema::machining_workingstep::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::machining_workingstep::meta_entity{
     .name = "machining_workingstep",
+    .p21_name = "MACHINING_WORKINGSTEP",
     .schema = &meta_schema,
     .supertypes = meta_tables::machining_workingstep_supertypes,
     .attributes = meta_tables::machining_workingstep_attributes,
@@ -9390,6 +9588,7 @@ const stepnc::meta::EntityInfo& machining_schema::in_process_geometry::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::in_process_geometry::meta_entity{
     .name = "in_process_geometry",
+    .p21_name = "IN_PROCESS_GEOMETRY",
     .schema = &meta_schema,
     .attributes = meta_tables::in_process_geometry_attributes,
     .create = &stepnc::meta::create_in<machining_schema::in_process_geometry>,
@@ -9400,6 +9599,7 @@ const stepnc::meta::EntityInfo& machining_schema::operation::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::operation::meta_entity{
     .name = "operation",
+    .p21_name = "OPERATION",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::operation_subtypes,
@@ -9410,6 +9610,7 @@ const stepnc::meta::EntityInfo& machining_schema::rapid_movement::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::rapid_movement::meta_entity{
     .name = "rapid_movement",
+    .p21_name = "RAPID_MOVEMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::rapid_movement_supertypes,
     .subtypes = meta_tables::rapid_movement_subtypes,
@@ -9422,6 +9623,7 @@ const stepnc::meta::EntityInfo& machining_schema::return_home::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::return_home::meta_entity{
     .name = "return_home",
+    .p21_name = "RETURN_HOME",
     .schema = &meta_schema,
     .supertypes = meta_tables::return_home_supertypes,
     .attributes = meta_tables::return_home_attributes,
@@ -9433,6 +9635,7 @@ const stepnc::meta::EntityInfo& machining_schema::touch_probing::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::touch_probing::meta_entity{
     .name = "touch_probing",
+    .p21_name = "TOUCH_PROBING",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::touch_probing_supertypes,
@@ -9444,6 +9647,7 @@ const stepnc::meta::EntityInfo& machining_schema::workpiece_probing::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::workpiece_probing::meta_entity{
     .name = "workpiece_probing",
+    .p21_name = "WORKPIECE_PROBING",
     .schema = &meta_schema,
     .supertypes = meta_tables::workpiece_probing_supertypes,
     .attributes = meta_tables::workpiece_probing_attributes,
@@ -9455,6 +9659,7 @@ const stepnc::meta::EntityInfo& machining_schema::workpiece_complete_probing::en
 
 constinit const stepnc::meta::EntityInfo machining_schema::workpiece_complete_probing::meta_entity{
     .name = "workpiece_complete_probing",
+    .p21_name = "WORKPIECE_COMPLETE_PROBING",
     .schema = &meta_schema,
     .supertypes = meta_tables::workpiece_complete_probing_supertypes,
     .attributes = meta_tables::workpiece_complete_probing_attributes,
@@ -9466,6 +9671,7 @@ const stepnc::meta::EntityInfo& machining_schema::touch_probe::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::touch_probe::meta_entity{
     .name = "touch_probe",
+    .p21_name = "TOUCH_PROBE",
     .schema = &meta_schema,
     .attributes = meta_tables::touch_probe_attributes,
     .create = &stepnc::meta::create_in<machining_schema::touch_probe>,
@@ -9476,6 +9682,7 @@ const stepnc::meta::EntityInfo& machining_schema::offset_vector::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::offset_vector::meta_entity{
     .name = "offset_vector",
+    .p21_name = "OFFSET_VECTOR",
     .schema = &meta_schema,
     .attributes = meta_tables::offset_vector_attributes,
     .create = &stepnc::meta::create_in<machining_schema::offset_vector>,
@@ -9486,6 +9693,7 @@ const stepnc::meta::EntityInfo& machining_schema::tool_probing::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::tool_probing::meta_entity{
     .name = "tool_probing",
+    .p21_name = "TOOL_PROBING",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::tool_probing_supertypes,
@@ -9497,6 +9705,7 @@ const stepnc::meta::EntityInfo& machining_schema::machining_tool::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::machining_tool::meta_entity{
     .name = "machining_tool",
+    .p21_name = "MACHINING_TOOL",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::machining_tool_subtypes,
@@ -9507,6 +9716,7 @@ const stepnc::meta::EntityInfo& machining_schema::cutting_tool::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::cutting_tool::meta_entity{
     .name = "cutting_tool",
+    .p21_name = "CUTTING_TOOL",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::cutting_tool_supertypes,
@@ -9518,6 +9728,7 @@ const stepnc::meta::EntityInfo& machining_schema::tool_body::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::tool_body::meta_entity{
     .name = "tool_body",
+    .p21_name = "TOOL_BODY",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::tool_body_subtypes,
@@ -9527,6 +9738,7 @@ const stepnc::meta::EntityInfo& machining_schema::cutting_component::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::cutting_component::meta_entity{
     .name = "cutting_component",
+    .p21_name = "CUTTING_COMPONENT",
     .schema = &meta_schema,
     .attributes = meta_tables::cutting_component_attributes,
     .create = &stepnc::meta::create_in<machining_schema::cutting_component>,
@@ -9537,6 +9749,7 @@ const stepnc::meta::EntityInfo& machining_schema::cutting_edge_technological_dat
 
 constinit const stepnc::meta::EntityInfo machining_schema::cutting_edge_technological_data::meta_entity{
     .name = "cutting_edge_technological_data",
+    .p21_name = "CUTTING_EDGE_TECHNOLOGICAL_DATA",
     .schema = &meta_schema,
     .attributes = meta_tables::cutting_edge_technological_data_attributes,
     .create = &stepnc::meta::create_in<machining_schema::cutting_edge_technological_data>,
@@ -9547,6 +9760,7 @@ const stepnc::meta::EntityInfo& machining_schema::tool_length_probing::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::tool_length_probing::meta_entity{
     .name = "tool_length_probing",
+    .p21_name = "TOOL_LENGTH_PROBING",
     .schema = &meta_schema,
     .supertypes = meta_tables::tool_length_probing_supertypes,
     .attributes = meta_tables::tool_length_probing_attributes,
@@ -9558,6 +9772,7 @@ const stepnc::meta::EntityInfo& machining_schema::tool_radius_probing::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::tool_radius_probing::meta_entity{
     .name = "tool_radius_probing",
+    .p21_name = "TOOL_RADIUS_PROBING",
     .schema = &meta_schema,
     .supertypes = meta_tables::tool_radius_probing_supertypes,
     .attributes = meta_tables::tool_radius_probing_attributes,
@@ -9569,6 +9784,7 @@ const stepnc::meta::EntityInfo& machining_schema::nc_function::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::nc_function::meta_entity{
     .name = "nc_function",
+    .p21_name = "NC_FUNCTION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::nc_function_supertypes,
@@ -9580,6 +9796,7 @@ const stepnc::meta::EntityInfo& machining_schema::display_message::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::display_message::meta_entity{
     .name = "display_message",
+    .p21_name = "DISPLAY_MESSAGE",
     .schema = &meta_schema,
     .supertypes = meta_tables::display_message_supertypes,
     .attributes = meta_tables::display_message_attributes,
@@ -9591,6 +9808,7 @@ const stepnc::meta::EntityInfo& machining_schema::optional_stop::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::optional_stop::meta_entity{
     .name = "optional_stop",
+    .p21_name = "OPTIONAL_STOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::optional_stop_supertypes,
     .attributes = meta_tables::optional_stop_attributes,
@@ -9602,6 +9820,7 @@ const stepnc::meta::EntityInfo& machining_schema::program_stop::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::program_stop::meta_entity{
     .name = "program_stop",
+    .p21_name = "PROGRAM_STOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::program_stop_supertypes,
     .attributes = meta_tables::program_stop_attributes,
@@ -9613,6 +9832,7 @@ const stepnc::meta::EntityInfo& machining_schema::set_mark::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::set_mark::meta_entity{
     .name = "set_mark",
+    .p21_name = "SET_MARK",
     .schema = &meta_schema,
     .supertypes = meta_tables::set_mark_supertypes,
     .attributes = meta_tables::set_mark_attributes,
@@ -9624,6 +9844,7 @@ const stepnc::meta::EntityInfo& machining_schema::wait_for_mark::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::wait_for_mark::meta_entity{
     .name = "wait_for_mark",
+    .p21_name = "WAIT_FOR_MARK",
     .schema = &meta_schema,
     .supertypes = meta_tables::wait_for_mark_supertypes,
     .attributes = meta_tables::wait_for_mark_attributes,
@@ -9635,6 +9856,7 @@ const stepnc::meta::EntityInfo& machining_schema::program_structure::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::program_structure::meta_entity{
     .name = "program_structure",
+    .p21_name = "PROGRAM_STRUCTURE",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::program_structure_supertypes,
@@ -9646,6 +9868,7 @@ const stepnc::meta::EntityInfo& machining_schema::workplan::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::workplan::meta_entity{
     .name = "workplan",
+    .p21_name = "WORKPLAN",
     .schema = &meta_schema,
     .supertypes = meta_tables::workplan_supertypes,
     .attributes = meta_tables::workplan_attributes,
@@ -9657,6 +9880,7 @@ const stepnc::meta::EntityInfo& machining_schema::channel::entity_info() const n
 
 constinit const stepnc::meta::EntityInfo machining_schema::channel::meta_entity{
     .name = "channel",
+    .p21_name = "CHANNEL",
     .schema = &meta_schema,
     .attributes = meta_tables::channel_attributes,
     .create = &stepnc::meta::create_in<machining_schema::channel>,
@@ -9667,6 +9891,7 @@ const stepnc::meta::EntityInfo& machining_schema::setup::entity_info() const noe
 
 constinit const stepnc::meta::EntityInfo machining_schema::setup::meta_entity{
     .name = "setup",
+    .p21_name = "SETUP",
     .schema = &meta_schema,
     .attributes = meta_tables::setup_attributes,
     .create = &stepnc::meta::create_in<machining_schema::setup>,
@@ -9677,6 +9902,7 @@ const stepnc::meta::EntityInfo& machining_schema::workpiece_setup::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::workpiece_setup::meta_entity{
     .name = "workpiece_setup",
+    .p21_name = "WORKPIECE_SETUP",
     .schema = &meta_schema,
     .attributes = meta_tables::workpiece_setup_attributes,
     .create = &stepnc::meta::create_in<machining_schema::workpiece_setup>,
@@ -9687,6 +9913,7 @@ const stepnc::meta::EntityInfo& machining_schema::setup_instruction::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::setup_instruction::meta_entity{
     .name = "setup_instruction",
+    .p21_name = "SETUP_INSTRUCTION",
     .schema = &meta_schema,
     .attributes = meta_tables::setup_instruction_attributes,
     .create = &stepnc::meta::create_in<machining_schema::setup_instruction>,
@@ -9697,6 +9924,7 @@ const stepnc::meta::EntityInfo& machining_schema::parallel::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::parallel::meta_entity{
     .name = "parallel",
+    .p21_name = "PARALLEL",
     .schema = &meta_schema,
     .supertypes = meta_tables::parallel_supertypes,
     .attributes = meta_tables::parallel_attributes,
@@ -9708,6 +9936,7 @@ const stepnc::meta::EntityInfo& machining_schema::non_sequential::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::non_sequential::meta_entity{
     .name = "non_sequential",
+    .p21_name = "NON_SEQUENTIAL",
     .schema = &meta_schema,
     .supertypes = meta_tables::non_sequential_supertypes,
     .attributes = meta_tables::non_sequential_attributes,
@@ -9719,6 +9948,7 @@ const stepnc::meta::EntityInfo& machining_schema::selective::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::selective::meta_entity{
     .name = "selective",
+    .p21_name = "SELECTIVE",
     .schema = &meta_schema,
     .supertypes = meta_tables::selective_supertypes,
     .attributes = meta_tables::selective_attributes,
@@ -9730,6 +9960,7 @@ const stepnc::meta::EntityInfo& machining_schema::if_statement::entity_info() co
 
 constinit const stepnc::meta::EntityInfo machining_schema::if_statement::meta_entity{
     .name = "if_statement",
+    .p21_name = "IF_STATEMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::if_statement_supertypes,
     .attributes = meta_tables::if_statement_attributes,
@@ -9741,6 +9972,7 @@ const stepnc::meta::EntityInfo& machining_schema::while_statement::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::while_statement::meta_entity{
     .name = "while_statement",
+    .p21_name = "WHILE_STATEMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::while_statement_supertypes,
     .attributes = meta_tables::while_statement_attributes,
@@ -9752,6 +9984,7 @@ const stepnc::meta::EntityInfo& machining_schema::assignment::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::assignment::meta_entity{
     .name = "assignment",
+    .p21_name = "ASSIGNMENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::assignment_supertypes,
     .attributes = meta_tables::assignment_attributes,
@@ -9763,6 +9996,7 @@ const stepnc::meta::EntityInfo& machining_schema::nc_variable::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::nc_variable::meta_entity{
     .name = "nc_variable",
+    .p21_name = "NC_VARIABLE",
     .schema = &meta_schema,
     .attributes = meta_tables::nc_variable_attributes,
     .create = &stepnc::meta::create_in<machining_schema::nc_variable>,
@@ -9773,6 +10007,7 @@ const stepnc::meta::EntityInfo& machining_schema::nc_constant::entity_info() con
 
 constinit const stepnc::meta::EntityInfo machining_schema::nc_constant::meta_entity{
     .name = "nc_constant",
+    .p21_name = "NC_CONSTANT",
     .schema = &meta_schema,
     .attributes = meta_tables::nc_constant_attributes,
     .create = &stepnc::meta::create_in<machining_schema::nc_constant>,
@@ -9783,6 +10018,7 @@ const stepnc::meta::EntityInfo& machining_schema::boolean_expression::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::boolean_expression::meta_entity{
     .name = "boolean_expression",
+    .p21_name = "BOOLEAN_EXPRESSION",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::boolean_expression_subtypes,
@@ -9792,6 +10028,7 @@ const stepnc::meta::EntityInfo& machining_schema::unary_boolean_expression::enti
 
 constinit const stepnc::meta::EntityInfo machining_schema::unary_boolean_expression::meta_entity{
     .name = "unary_boolean_expression",
+    .p21_name = "UNARY_BOOLEAN_EXPRESSION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::unary_boolean_expression_supertypes,
@@ -9803,6 +10040,7 @@ const stepnc::meta::EntityInfo& machining_schema::not_expression::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::not_expression::meta_entity{
     .name = "not_expression",
+    .p21_name = "NOT_EXPRESSION",
     .schema = &meta_schema,
     .supertypes = meta_tables::not_expression_supertypes,
     .attributes = meta_tables::not_expression_attributes,
@@ -9814,6 +10052,7 @@ const stepnc::meta::EntityInfo& machining_schema::binary_boolean_expression::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::binary_boolean_expression::meta_entity{
     .name = "binary_boolean_expression",
+    .p21_name = "BINARY_BOOLEAN_EXPRESSION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::binary_boolean_expression_supertypes,
@@ -9825,6 +10064,7 @@ const stepnc::meta::EntityInfo& machining_schema::xor_expression::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::xor_expression::meta_entity{
     .name = "xor_expression",
+    .p21_name = "XOR_EXPRESSION",
     .schema = &meta_schema,
     .supertypes = meta_tables::xor_expression_supertypes,
     .attributes = meta_tables::xor_expression_attributes,
@@ -9836,6 +10076,7 @@ const stepnc::meta::EntityInfo& machining_schema::multiple_arity_boolean_express
 
 constinit const stepnc::meta::EntityInfo machining_schema::multiple_arity_boolean_expression::meta_entity{
     .name = "multiple_arity_boolean_expression",
+    .p21_name = "MULTIPLE_ARITY_BOOLEAN_EXPRESSION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::multiple_arity_boolean_expression_supertypes,
@@ -9847,6 +10088,7 @@ const stepnc::meta::EntityInfo& machining_schema::and_expression::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::and_expression::meta_entity{
     .name = "and_expression",
+    .p21_name = "AND_EXPRESSION",
     .schema = &meta_schema,
     .supertypes = meta_tables::and_expression_supertypes,
     .attributes = meta_tables::and_expression_attributes,
@@ -9858,6 +10100,7 @@ const stepnc::meta::EntityInfo& machining_schema::or_expression::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::or_expression::meta_entity{
     .name = "or_expression",
+    .p21_name = "OR_EXPRESSION",
     .schema = &meta_schema,
     .supertypes = meta_tables::or_expression_supertypes,
     .attributes = meta_tables::or_expression_attributes,
@@ -9869,6 +10112,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_expression::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_expression::meta_entity{
     .name = "comparison_expression",
+    .p21_name = "COMPARISON_EXPRESSION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::comparison_expression_supertypes,
@@ -9880,6 +10124,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_equal::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_equal::meta_entity{
     .name = "comparison_equal",
+    .p21_name = "COMPARISON_EQUAL",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_equal_supertypes,
     .attributes = meta_tables::comparison_equal_attributes,
@@ -9891,6 +10136,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_not_equal::entity_i
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_not_equal::meta_entity{
     .name = "comparison_not_equal",
+    .p21_name = "COMPARISON_NOT_EQUAL",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_not_equal_supertypes,
     .attributes = meta_tables::comparison_not_equal_attributes,
@@ -9902,6 +10148,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_greater::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_greater::meta_entity{
     .name = "comparison_greater",
+    .p21_name = "COMPARISON_GREATER",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_greater_supertypes,
     .attributes = meta_tables::comparison_greater_attributes,
@@ -9913,6 +10160,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_greater_equal::enti
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_greater_equal::meta_entity{
     .name = "comparison_greater_equal",
+    .p21_name = "COMPARISON_GREATER_EQUAL",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_greater_equal_supertypes,
     .attributes = meta_tables::comparison_greater_equal_attributes,
@@ -9924,6 +10172,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_less::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_less::meta_entity{
     .name = "comparison_less",
+    .p21_name = "COMPARISON_LESS",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_less_supertypes,
     .attributes = meta_tables::comparison_less_attributes,
@@ -9935,6 +10184,7 @@ const stepnc::meta::EntityInfo& machining_schema::comparison_less_equal::entity_
 
 constinit const stepnc::meta::EntityInfo machining_schema::comparison_less_equal::meta_entity{
     .name = "comparison_less_equal",
+    .p21_name = "COMPARISON_LESS_EQUAL",
     .schema = &meta_schema,
     .supertypes = meta_tables::comparison_less_equal_supertypes,
     .attributes = meta_tables::comparison_less_equal_attributes,
@@ -9946,6 +10196,7 @@ const stepnc::meta::EntityInfo& machining_schema::toolpath_list::entity_info() c
 
 constinit const stepnc::meta::EntityInfo machining_schema::toolpath_list::meta_entity{
     .name = "toolpath_list",
+    .p21_name = "TOOLPATH_LIST",
     .schema = &meta_schema,
     .attributes = meta_tables::toolpath_list_attributes,
     .create = &stepnc::meta::create_in<machining_schema::toolpath_list>,
@@ -9956,6 +10207,7 @@ const stepnc::meta::EntityInfo& machining_schema::tool_direction::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::tool_direction::meta_entity{
     .name = "tool_direction",
+    .p21_name = "TOOL_DIRECTION",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::tool_direction_subtypes,
@@ -9965,6 +10217,7 @@ const stepnc::meta::EntityInfo& machining_schema::two_axes::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::two_axes::meta_entity{
     .name = "two_axes",
+    .p21_name = "TWO_AXES",
     .schema = &meta_schema,
     .supertypes = meta_tables::two_axes_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::two_axes>,
@@ -9975,6 +10228,7 @@ const stepnc::meta::EntityInfo& machining_schema::three_axes::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::three_axes::meta_entity{
     .name = "three_axes",
+    .p21_name = "THREE_AXES",
     .schema = &meta_schema,
     .supertypes = meta_tables::three_axes_supertypes,
     .create = &stepnc::meta::create_in<machining_schema::three_axes>,
@@ -9985,6 +10239,7 @@ const stepnc::meta::EntityInfo& machining_schema::machining_operation::entity_in
 
 constinit const stepnc::meta::EntityInfo machining_schema::machining_operation::meta_entity{
     .name = "machining_operation",
+    .p21_name = "MACHINING_OPERATION",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::machining_operation_supertypes,
@@ -9996,6 +10251,7 @@ const stepnc::meta::EntityInfo& machining_schema::technology::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::technology::meta_entity{
     .name = "technology",
+    .p21_name = "TECHNOLOGY",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::technology_subtypes,
@@ -10006,6 +10262,7 @@ const stepnc::meta::EntityInfo& machining_schema::machine_functions::entity_info
 
 constinit const stepnc::meta::EntityInfo machining_schema::machine_functions::meta_entity{
     .name = "machine_functions",
+    .p21_name = "MACHINE_FUNCTIONS",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::machine_functions_subtypes,
@@ -10015,6 +10272,7 @@ const stepnc::meta::EntityInfo& machining_schema::toolpath::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::toolpath::meta_entity{
     .name = "toolpath",
+    .p21_name = "TOOLPATH",
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::toolpath_subtypes,
@@ -10025,6 +10283,7 @@ const stepnc::meta::EntityInfo& machining_schema::toolpath_speed::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::toolpath_speed::meta_entity{
     .name = "toolpath_speed",
+    .p21_name = "TOOLPATH_SPEED",
     .schema = &meta_schema,
     .attributes = meta_tables::toolpath_speed_attributes,
     .create = &stepnc::meta::create_in<machining_schema::toolpath_speed>,
@@ -10035,6 +10294,7 @@ const stepnc::meta::EntityInfo& machining_schema::feedstop::entity_info() const 
 
 constinit const stepnc::meta::EntityInfo machining_schema::feedstop::meta_entity{
     .name = "feedstop",
+    .p21_name = "FEEDSTOP",
     .schema = &meta_schema,
     .supertypes = meta_tables::feedstop_supertypes,
     .attributes = meta_tables::feedstop_attributes,
@@ -10046,6 +10306,7 @@ const stepnc::meta::EntityInfo& machining_schema::trajectory::entity_info() cons
 
 constinit const stepnc::meta::EntityInfo machining_schema::trajectory::meta_entity{
     .name = "trajectory",
+    .p21_name = "TRAJECTORY",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::trajectory_supertypes,
@@ -10057,6 +10318,7 @@ const stepnc::meta::EntityInfo& machining_schema::cutter_location_trajectory::en
 
 constinit const stepnc::meta::EntityInfo machining_schema::cutter_location_trajectory::meta_entity{
     .name = "cutter_location_trajectory",
+    .p21_name = "CUTTER_LOCATION_TRAJECTORY",
     .schema = &meta_schema,
     .supertypes = meta_tables::cutter_location_trajectory_supertypes,
     .attributes = meta_tables::cutter_location_trajectory_attributes,
@@ -10068,6 +10330,7 @@ const stepnc::meta::EntityInfo& machining_schema::cutter_contact_trajectory::ent
 
 constinit const stepnc::meta::EntityInfo machining_schema::cutter_contact_trajectory::meta_entity{
     .name = "cutter_contact_trajectory",
+    .p21_name = "CUTTER_CONTACT_TRAJECTORY",
     .schema = &meta_schema,
     .supertypes = meta_tables::cutter_contact_trajectory_supertypes,
     .attributes = meta_tables::cutter_contact_trajectory_attributes,
@@ -10079,6 +10342,7 @@ const stepnc::meta::EntityInfo& machining_schema::curve_with_normal_vector::enti
 
 constinit const stepnc::meta::EntityInfo machining_schema::curve_with_normal_vector::meta_entity{
     .name = "curve_with_normal_vector",
+    .p21_name = "CURVE_WITH_NORMAL_VECTOR",
     .schema = &meta_schema,
     .attributes = meta_tables::curve_with_normal_vector_attributes,
     .create = &stepnc::meta::create_in<machining_schema::curve_with_normal_vector>,
@@ -10089,6 +10353,7 @@ const stepnc::meta::EntityInfo& machining_schema::axis_trajectory::entity_info()
 
 constinit const stepnc::meta::EntityInfo machining_schema::axis_trajectory::meta_entity{
     .name = "axis_trajectory",
+    .p21_name = "AXIS_TRAJECTORY",
     .schema = &meta_schema,
     .supertypes = meta_tables::axis_trajectory_supertypes,
     .attributes = meta_tables::axis_trajectory_attributes,
@@ -10100,6 +10365,7 @@ const stepnc::meta::EntityInfo& machining_schema::parameterised_path::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::parameterised_path::meta_entity{
     .name = "parameterised_path",
+    .p21_name = "PARAMETERISED_PATH",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::parameterised_path_supertypes,
@@ -10111,6 +10377,7 @@ const stepnc::meta::EntityInfo& machining_schema::connector::entity_info() const
 
 constinit const stepnc::meta::EntityInfo machining_schema::connector::meta_entity{
     .name = "connector",
+    .p21_name = "CONNECTOR",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::connector_supertypes,
@@ -10122,6 +10389,7 @@ const stepnc::meta::EntityInfo& machining_schema::connect_secplane::entity_info(
 
 constinit const stepnc::meta::EntityInfo machining_schema::connect_secplane::meta_entity{
     .name = "connect_secplane",
+    .p21_name = "CONNECT_SECPLANE",
     .schema = &meta_schema,
     .supertypes = meta_tables::connect_secplane_supertypes,
     .attributes = meta_tables::connect_secplane_attributes,
@@ -10133,6 +10401,7 @@ const stepnc::meta::EntityInfo& machining_schema::connect_direct::entity_info() 
 
 constinit const stepnc::meta::EntityInfo machining_schema::connect_direct::meta_entity{
     .name = "connect_direct",
+    .p21_name = "CONNECT_DIRECT",
     .schema = &meta_schema,
     .supertypes = meta_tables::connect_direct_supertypes,
     .attributes = meta_tables::connect_direct_attributes,
@@ -10144,6 +10413,7 @@ const stepnc::meta::EntityInfo& machining_schema::approach_lift_path::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::approach_lift_path::meta_entity{
     .name = "approach_lift_path",
+    .p21_name = "APPROACH_LIFT_PATH",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::approach_lift_path_supertypes,
@@ -10155,6 +10425,7 @@ const stepnc::meta::EntityInfo& machining_schema::ap_lift_path_angle::entity_inf
 
 constinit const stepnc::meta::EntityInfo machining_schema::ap_lift_path_angle::meta_entity{
     .name = "ap_lift_path_angle",
+    .p21_name = "AP_LIFT_PATH_ANGLE",
     .schema = &meta_schema,
     .supertypes = meta_tables::ap_lift_path_angle_supertypes,
     .attributes = meta_tables::ap_lift_path_angle_attributes,
@@ -10166,6 +10437,7 @@ const stepnc::meta::EntityInfo& machining_schema::ap_lift_path_tangent::entity_i
 
 constinit const stepnc::meta::EntityInfo machining_schema::ap_lift_path_tangent::meta_entity{
     .name = "ap_lift_path_tangent",
+    .p21_name = "AP_LIFT_PATH_TANGENT",
     .schema = &meta_schema,
     .supertypes = meta_tables::ap_lift_path_tangent_supertypes,
     .attributes = meta_tables::ap_lift_path_tangent_attributes,

@@ -43,13 +43,13 @@ constexpr const EntityInfo* milling_cutting_tool_supertypes[] = {
 };
 constexpr AttributeInfo milling_cutting_tool_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::machining_tool::meta_entity, .type = &machining_schema::type_info::label,
-     .locate = &stepnc::meta::field<machining_schema::machining_tool, &machining_schema::machining_tool::its_id>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutting_tool, &machining_schema::machining_tool::its_id>},
     {.name = "its_tool_body", .owner = &machining_schema::cutting_tool::meta_entity, .type = &machining_schema::type_info::tool_body,
-     .locate = &stepnc::meta::field<machining_schema::cutting_tool, &machining_schema::cutting_tool::its_tool_body>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutting_tool, &machining_schema::cutting_tool::its_tool_body>},
     {.name = "its_cutting_edge", .owner = &machining_schema::cutting_tool::meta_entity, .type = &meta_tables::list_1_n_of_cutting_component,
-     .locate = &stepnc::meta::field<machining_schema::cutting_tool, &machining_schema::cutting_tool::its_cutting_edge>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutting_tool, &machining_schema::cutting_tool::its_cutting_edge>},
     {.name = "overall_assembly_length", .owner = &machining_schema::cutting_tool::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<machining_schema::cutting_tool, &machining_schema::cutting_tool::overall_assembly_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutting_tool, &machining_schema::cutting_tool::overall_assembly_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "direction_for_spindle_orientation", .owner = &milling_machine_tool_schema::milling_cutting_tool::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutting_tool, &milling_machine_tool_schema::milling_cutting_tool::direction_for_spindle_orientation>},
@@ -129,18 +129,18 @@ constexpr const EntityInfo* centerdrill_supertypes[] = {
 };
 constexpr AttributeInfo centerdrill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast centerdrill_upcasts[] = {
@@ -158,18 +158,18 @@ constexpr const EntityInfo* countersink_subtypes[] = {
 };
 constexpr AttributeInfo countersink_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "countersink_radius", .owner = &milling_machine_tool_schema::countersink::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::countersink::countersink_radius>,
@@ -187,21 +187,21 @@ constexpr const EntityInfo* backside_countersink_supertypes[] = {
 };
 constexpr AttributeInfo backside_countersink_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "countersink_radius", .owner = &milling_machine_tool_schema::countersink::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::countersink, &milling_machine_tool_schema::countersink::countersink_radius>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_countersink, &milling_machine_tool_schema::countersink::countersink_radius>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast backside_countersink_upcasts[] = {
@@ -221,18 +221,18 @@ constexpr const EntityInfo* drill_subtypes[] = {
 };
 constexpr AttributeInfo drill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 
@@ -245,18 +245,18 @@ constexpr const EntityInfo* twist_drill_subtypes[] = {
 };
 constexpr AttributeInfo twist_drill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::twist_drill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::twist_drill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::twist_drill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::twist_drill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::twist_drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast twist_drill_upcasts[] = {
@@ -272,18 +272,18 @@ constexpr const EntityInfo* tapered_drill_supertypes[] = {
 };
 constexpr AttributeInfo tapered_drill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "taper_angle", .owner = &milling_machine_tool_schema::tapered_drill::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_drill, &milling_machine_tool_schema::tapered_drill::taper_angle>,
@@ -303,18 +303,18 @@ constexpr const EntityInfo* spade_drill_supertypes[] = {
 };
 constexpr AttributeInfo spade_drill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::spade_drill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::spade_drill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::spade_drill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::spade_drill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::spade_drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast spade_drill_upcasts[] = {
@@ -339,18 +339,18 @@ constexpr const EntityInfo* milling_cutter_subtypes[] = {
 };
 constexpr AttributeInfo milling_cutter_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 
@@ -360,18 +360,18 @@ constexpr const EntityInfo* facemill_supertypes[] = {
 };
 constexpr AttributeInfo facemill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::facemill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::facemill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::facemill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::facemill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::facemill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast facemill_upcasts[] = {
@@ -392,18 +392,18 @@ constexpr const EntityInfo* endmill_subtypes[] = {
 };
 constexpr AttributeInfo endmill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast endmill_upcasts[] = {
@@ -419,18 +419,18 @@ constexpr const EntityInfo* tapered_endmill_supertypes[] = {
 };
 constexpr AttributeInfo tapered_endmill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "taper_angle", .owner = &milling_machine_tool_schema::tapered_endmill::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_endmill, &milling_machine_tool_schema::tapered_endmill::taper_angle>,
@@ -450,18 +450,18 @@ constexpr const EntityInfo* ball_endmill_supertypes[] = {
 };
 constexpr AttributeInfo ball_endmill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::ball_endmill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::ball_endmill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::ball_endmill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::ball_endmill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::ball_endmill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast ball_endmill_upcasts[] = {
@@ -478,18 +478,18 @@ constexpr const EntityInfo* bullnose_endmill_supertypes[] = {
 };
 constexpr AttributeInfo bullnose_endmill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::bullnose_endmill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::bullnose_endmill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::bullnose_endmill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::bullnose_endmill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::bullnose_endmill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast bullnose_endmill_upcasts[] = {
@@ -506,18 +506,18 @@ constexpr const EntityInfo* t_slot_mill_supertypes[] = {
 };
 constexpr AttributeInfo t_slot_mill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "cutting_thickness", .owner = &milling_machine_tool_schema::t_slot_mill::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::t_slot_mill, &milling_machine_tool_schema::t_slot_mill::cutting_thickness>,
@@ -536,18 +536,18 @@ constexpr const EntityInfo* dovetail_mill_supertypes[] = {
 };
 constexpr AttributeInfo dovetail_mill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "included_angle", .owner = &milling_machine_tool_schema::dovetail_mill::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::dovetail_mill, &milling_machine_tool_schema::dovetail_mill::included_angle>,
@@ -566,18 +566,18 @@ constexpr const EntityInfo* woodruff_keyseat_mill_supertypes[] = {
 };
 constexpr AttributeInfo woodruff_keyseat_mill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "cutter_width", .owner = &milling_machine_tool_schema::woodruff_keyseat_mill::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::woodruff_keyseat_mill, &milling_machine_tool_schema::woodruff_keyseat_mill::cutter_width>,
@@ -596,18 +596,18 @@ constexpr const EntityInfo* side_mill_supertypes[] = {
 };
 constexpr AttributeInfo side_mill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "cutter_width", .owner = &milling_machine_tool_schema::side_mill::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::side_mill, &milling_machine_tool_schema::side_mill::cutter_width>,
@@ -626,18 +626,18 @@ constexpr const EntityInfo* thread_mill_supertypes[] = {
 };
 constexpr AttributeInfo thread_mill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::thread_mill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::thread_mill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::thread_mill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::thread_mill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::thread_mill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast thread_mill_upcasts[] = {
@@ -657,18 +657,18 @@ constexpr const EntityInfo* tap_subtypes[] = {
 };
 constexpr AttributeInfo tap_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast tap_upcasts[] = {
@@ -683,18 +683,18 @@ constexpr const EntityInfo* tapered_tap_supertypes[] = {
 };
 constexpr AttributeInfo tapered_tap_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "taper_angle", .owner = &milling_machine_tool_schema::tapered_tap::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_tap, &milling_machine_tool_schema::tapered_tap::taper_angle>,
@@ -713,18 +713,18 @@ constexpr const EntityInfo* combined_drill_and_tap_supertypes[] = {
 };
 constexpr AttributeInfo combined_drill_and_tap_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "drill_length", .owner = &milling_machine_tool_schema::combined_drill_and_tap::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_tap, &milling_machine_tool_schema::combined_drill_and_tap::drill_length>,
@@ -743,18 +743,18 @@ constexpr const EntityInfo* milling_threading_tool_supertypes[] = {
 };
 constexpr AttributeInfo milling_threading_tool_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_threading_tool, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_threading_tool, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_threading_tool, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_threading_tool, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_threading_tool, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast milling_threading_tool_upcasts[] = {
@@ -772,18 +772,18 @@ constexpr const EntityInfo* counterbore_subtypes[] = {
 };
 constexpr AttributeInfo counterbore_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::counterbore, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::counterbore, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::counterbore, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::counterbore, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::counterbore, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast counterbore_upcasts[] = {
@@ -798,18 +798,18 @@ constexpr const EntityInfo* backside_counterbore_supertypes[] = {
 };
 constexpr AttributeInfo backside_counterbore_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_counterbore, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_counterbore, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_counterbore, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_counterbore, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::backside_counterbore, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast backside_counterbore_upcasts[] = {
@@ -829,18 +829,18 @@ constexpr const EntityInfo* reamer_subtypes[] = {
 };
 constexpr AttributeInfo reamer_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
 constexpr Upcast reamer_upcasts[] = {
@@ -855,18 +855,18 @@ constexpr const EntityInfo* tapered_reamer_supertypes[] = {
 };
 constexpr AttributeInfo tapered_reamer_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "taper_angle", .owner = &milling_machine_tool_schema::tapered_reamer::meta_entity, .type = &machining_schema::type_info::plane_angle_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::tapered_reamer, &milling_machine_tool_schema::tapered_reamer::taper_angle>,
@@ -885,18 +885,18 @@ constexpr const EntityInfo* combined_drill_and_reamer_supertypes[] = {
 };
 constexpr AttributeInfo combined_drill_and_reamer_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "drill_length", .owner = &milling_machine_tool_schema::combined_drill_and_reamer::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::combined_drill_and_reamer, &milling_machine_tool_schema::combined_drill_and_reamer::drill_length>,
@@ -915,18 +915,18 @@ constexpr const EntityInfo* boring_tool_supertypes[] = {
 };
 constexpr AttributeInfo boring_tool_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "retract_movement_forbidden", .owner = &milling_machine_tool_schema::boring_tool::meta_entity, .type = &stepnc::meta::boolean_type,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::boring_tool, &milling_machine_tool_schema::boring_tool::retract_movement_forbidden>},
@@ -943,18 +943,18 @@ constexpr const EntityInfo* user_defined_tool_supertypes[] = {
 };
 constexpr AttributeInfo user_defined_tool_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "identifier", .owner = &milling_machine_tool_schema::user_defined_tool::meta_entity, .type = &machining_schema::type_info::label,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::user_defined_tool, &milling_machine_tool_schema::user_defined_tool::identifier>},
@@ -1098,6 +1098,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_cutting_too
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_cutting_tool::meta_entity{
     .name = "milling_cutting_tool",
+    .p21_name = "MILLING_CUTTING_TOOL",
     .schema = &meta_schema,
     .supertypes = meta_tables::milling_cutting_tool_supertypes,
     .attributes = meta_tables::milling_cutting_tool_attributes,
@@ -1109,6 +1110,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_machine_too
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_machine_tool_body::meta_entity{
     .name = "milling_machine_tool_body",
+    .p21_name = "MILLING_MACHINE_TOOL_BODY",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::milling_machine_tool_body_supertypes,
@@ -1120,6 +1122,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_tool_dimens
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_tool_dimension::meta_entity{
     .name = "milling_tool_dimension",
+    .p21_name = "MILLING_TOOL_DIMENSION",
     .schema = &meta_schema,
     .attributes = meta_tables::milling_tool_dimension_attributes,
     .create = &stepnc::meta::create_in<milling_machine_tool_schema::milling_tool_dimension>,
@@ -1130,6 +1133,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::centerdrill::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::centerdrill::meta_entity{
     .name = "centerdrill",
+    .p21_name = "CENTERDRILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::centerdrill_supertypes,
     .attributes = meta_tables::centerdrill_attributes,
@@ -1141,6 +1145,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::countersink::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::countersink::meta_entity{
     .name = "countersink",
+    .p21_name = "COUNTERSINK",
     .schema = &meta_schema,
     .supertypes = meta_tables::countersink_supertypes,
     .subtypes = meta_tables::countersink_subtypes,
@@ -1153,6 +1158,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::backside_countersin
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::backside_countersink::meta_entity{
     .name = "backside_countersink",
+    .p21_name = "BACKSIDE_COUNTERSINK",
     .schema = &meta_schema,
     .supertypes = meta_tables::backside_countersink_supertypes,
     .attributes = meta_tables::backside_countersink_attributes,
@@ -1164,6 +1170,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::drill::entity_info(
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::drill::meta_entity{
     .name = "drill",
+    .p21_name = "DRILL",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::drill_supertypes,
@@ -1175,6 +1182,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::twist_drill::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::twist_drill::meta_entity{
     .name = "twist_drill",
+    .p21_name = "TWIST_DRILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::twist_drill_supertypes,
     .subtypes = meta_tables::twist_drill_subtypes,
@@ -1187,6 +1195,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_drill::enti
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tapered_drill::meta_entity{
     .name = "tapered_drill",
+    .p21_name = "TAPERED_DRILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::tapered_drill_supertypes,
     .attributes = meta_tables::tapered_drill_attributes,
@@ -1198,6 +1207,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::spade_drill::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::spade_drill::meta_entity{
     .name = "spade_drill",
+    .p21_name = "SPADE_DRILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::spade_drill_supertypes,
     .attributes = meta_tables::spade_drill_attributes,
@@ -1209,6 +1219,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_cutter::ent
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_cutter::meta_entity{
     .name = "milling_cutter",
+    .p21_name = "MILLING_CUTTER",
     .schema = &meta_schema,
     .abstract = true,
     .supertypes = meta_tables::milling_cutter_supertypes,
@@ -1220,6 +1231,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::facemill::entity_in
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::facemill::meta_entity{
     .name = "facemill",
+    .p21_name = "FACEMILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::facemill_supertypes,
     .attributes = meta_tables::facemill_attributes,
@@ -1231,6 +1243,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::endmill::entity_inf
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::endmill::meta_entity{
     .name = "endmill",
+    .p21_name = "ENDMILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::endmill_supertypes,
     .subtypes = meta_tables::endmill_subtypes,
@@ -1243,6 +1256,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_endmill::en
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tapered_endmill::meta_entity{
     .name = "tapered_endmill",
+    .p21_name = "TAPERED_ENDMILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::tapered_endmill_supertypes,
     .attributes = meta_tables::tapered_endmill_attributes,
@@ -1254,6 +1268,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::ball_endmill::entit
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::ball_endmill::meta_entity{
     .name = "ball_endmill",
+    .p21_name = "BALL_ENDMILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::ball_endmill_supertypes,
     .attributes = meta_tables::ball_endmill_attributes,
@@ -1265,6 +1280,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::bullnose_endmill::e
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::bullnose_endmill::meta_entity{
     .name = "bullnose_endmill",
+    .p21_name = "BULLNOSE_ENDMILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::bullnose_endmill_supertypes,
     .attributes = meta_tables::bullnose_endmill_attributes,
@@ -1276,6 +1292,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::t_slot_mill::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::t_slot_mill::meta_entity{
     .name = "t_slot_mill",
+    .p21_name = "T_SLOT_MILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::t_slot_mill_supertypes,
     .attributes = meta_tables::t_slot_mill_attributes,
@@ -1287,6 +1304,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::dovetail_mill::enti
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::dovetail_mill::meta_entity{
     .name = "dovetail_mill",
+    .p21_name = "DOVETAIL_MILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::dovetail_mill_supertypes,
     .attributes = meta_tables::dovetail_mill_attributes,
@@ -1298,6 +1316,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::woodruff_keyseat_mi
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::woodruff_keyseat_mill::meta_entity{
     .name = "woodruff_keyseat_mill",
+    .p21_name = "WOODRUFF_KEYSEAT_MILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::woodruff_keyseat_mill_supertypes,
     .attributes = meta_tables::woodruff_keyseat_mill_attributes,
@@ -1309,6 +1328,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::side_mill::entity_i
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::side_mill::meta_entity{
     .name = "side_mill",
+    .p21_name = "SIDE_MILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::side_mill_supertypes,
     .attributes = meta_tables::side_mill_attributes,
@@ -1320,6 +1340,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::thread_mill::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::thread_mill::meta_entity{
     .name = "thread_mill",
+    .p21_name = "THREAD_MILL",
     .schema = &meta_schema,
     .supertypes = meta_tables::thread_mill_supertypes,
     .attributes = meta_tables::thread_mill_attributes,
@@ -1331,6 +1352,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::tap::entity_info() 
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tap::meta_entity{
     .name = "tap",
+    .p21_name = "TAP",
     .schema = &meta_schema,
     .supertypes = meta_tables::tap_supertypes,
     .subtypes = meta_tables::tap_subtypes,
@@ -1343,6 +1365,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_tap::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tapered_tap::meta_entity{
     .name = "tapered_tap",
+    .p21_name = "TAPERED_TAP",
     .schema = &meta_schema,
     .supertypes = meta_tables::tapered_tap_supertypes,
     .attributes = meta_tables::tapered_tap_attributes,
@@ -1354,6 +1377,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::combined_drill_and_
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::combined_drill_and_tap::meta_entity{
     .name = "combined_drill_and_tap",
+    .p21_name = "COMBINED_DRILL_AND_TAP",
     .schema = &meta_schema,
     .supertypes = meta_tables::combined_drill_and_tap_supertypes,
     .attributes = meta_tables::combined_drill_and_tap_attributes,
@@ -1365,6 +1389,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_threading_t
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_threading_tool::meta_entity{
     .name = "milling_threading_tool",
+    .p21_name = "MILLING_THREADING_TOOL",
     .schema = &meta_schema,
     .supertypes = meta_tables::milling_threading_tool_supertypes,
     .attributes = meta_tables::milling_threading_tool_attributes,
@@ -1376,6 +1401,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::counterbore::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::counterbore::meta_entity{
     .name = "counterbore",
+    .p21_name = "COUNTERBORE",
     .schema = &meta_schema,
     .supertypes = meta_tables::counterbore_supertypes,
     .subtypes = meta_tables::counterbore_subtypes,
@@ -1388,6 +1414,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::backside_counterbor
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::backside_counterbore::meta_entity{
     .name = "backside_counterbore",
+    .p21_name = "BACKSIDE_COUNTERBORE",
     .schema = &meta_schema,
     .supertypes = meta_tables::backside_counterbore_supertypes,
     .attributes = meta_tables::backside_counterbore_attributes,
@@ -1399,6 +1426,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::reamer::entity_info
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::reamer::meta_entity{
     .name = "reamer",
+    .p21_name = "REAMER",
     .schema = &meta_schema,
     .supertypes = meta_tables::reamer_supertypes,
     .subtypes = meta_tables::reamer_subtypes,
@@ -1411,6 +1439,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_reamer::ent
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tapered_reamer::meta_entity{
     .name = "tapered_reamer",
+    .p21_name = "TAPERED_REAMER",
     .schema = &meta_schema,
     .supertypes = meta_tables::tapered_reamer_supertypes,
     .attributes = meta_tables::tapered_reamer_attributes,
@@ -1422,6 +1451,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::combined_drill_and_
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::combined_drill_and_reamer::meta_entity{
     .name = "combined_drill_and_reamer",
+    .p21_name = "COMBINED_DRILL_AND_REAMER",
     .schema = &meta_schema,
     .supertypes = meta_tables::combined_drill_and_reamer_supertypes,
     .attributes = meta_tables::combined_drill_and_reamer_attributes,
@@ -1433,6 +1463,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::boring_tool::entity
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::boring_tool::meta_entity{
     .name = "boring_tool",
+    .p21_name = "BORING_TOOL",
     .schema = &meta_schema,
     .supertypes = meta_tables::boring_tool_supertypes,
     .attributes = meta_tables::boring_tool_attributes,
@@ -1444,6 +1475,7 @@ const stepnc::meta::EntityInfo& milling_machine_tool_schema::user_defined_tool::
 
 constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::user_defined_tool::meta_entity{
     .name = "user_defined_tool",
+    .p21_name = "USER_DEFINED_TOOL",
     .schema = &meta_schema,
     .supertypes = meta_tables::user_defined_tool_supertypes,
     .attributes = meta_tables::user_defined_tool_attributes,

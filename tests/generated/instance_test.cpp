@@ -44,6 +44,30 @@ TEST_CASE("a model owns instances and numbers them", "[generated][model]") {
   CHECK(model.arena_bytes() >= sizeof(cartesian_point) * 2 + sizeof(direction) + sizeof(axis2_placement_3d));
 }
 
+TEST_CASE("a model lists its instances in id order without copying when it can", "[generated][model]") {
+  meta::Model in_order;
+  for (int i = 0; i < 5; ++i) in_order.create<cartesian_point>();
+  in_order.create<cartesian_point>(100);
+  std::vector<meta::Instance*> storage;
+  CHECK(in_order.in_id_order(storage).data() == in_order.instances().data());
+  CHECK(storage.empty());
+
+  meta::Model shuffled;
+  shuffled.create<cartesian_point>(30);
+  shuffled.create<direction>(10);
+  shuffled.create<cartesian_point>(20);
+  shuffled.create<direction>();  // the next free id: 31
+  std::vector<std::uint32_t> ids;
+  for (const meta::Instance* instance : shuffled.in_id_order(storage)) ids.push_back(instance->id());
+  CHECK(ids == std::vector<std::uint32_t>{10, 20, 30, 31});
+  CHECK(shuffled.instances().front()->id() == 30);  // the model itself keeps creation order
+
+  meta::Model moved(std::move(shuffled));
+  storage.clear();
+  CHECK(moved.in_id_order(storage).size() == 4);
+  CHECK(storage.size() == 4);  // the order it had travels with the instances
+}
+
 TEST_CASE("many instances come from a few arena blocks", "[generated][model]") {
   meta::Model model;
   for (int i = 0; i < 10000; ++i) model.create<cartesian_point>().coordinates = {1.0 * i, 2.0, 3.0};

@@ -145,6 +145,20 @@ TEST_CASE("the short-decimal fast path spells exactly what to_chars would", "[p2
     CHECK(formatted(value) == reference_spelling(value));
 }
 
+TEST_CASE("format_real writes into a buffer of kMaxRealLength", "[p21][numbers]") {
+  for (double value : {-2.2250738585072014e-308, -1.7976931348623157e308, -123456.78901234567, 0.1 + 0.2, 128.2712,
+                       -11.12, 1e-5, 100.0}) {
+    char buffer[kMaxRealLength];
+    const char* end = format_real(value, buffer);
+    REQUIRE(end != nullptr);
+    CHECK(static_cast<std::size_t>(end - buffer) <= 24);
+    CHECK(std::string_view(buffer, static_cast<std::size_t>(end - buffer)) == reference_spelling(value));
+  }
+  char buffer[kMaxRealLength];
+  CHECK(format_real(std::numeric_limits<double>::quiet_NaN(), buffer) == nullptr);
+  CHECK(format_real(-std::numeric_limits<double>::infinity(), buffer) == nullptr);
+}
+
 TEST_CASE("reals written by the Writer read back through the reader unchanged", "[p21][numbers]") {
   std::mt19937_64 random(14649);
   std::uniform_real_distribution<double> coordinate(-1000.0, 1000.0);

@@ -103,6 +103,64 @@ TEST_CASE("what the writer cannot represent is an error, not bad output", "[p21]
   CHECK(bad_name.finish() == "invalid entity name '9LIVES'");
 }
 
+TEST_CASE("every name is checked, also after a valid one", "[p21][writer]") {
+  // The writer remembers the last valid name to check each spelling once
+  // per run; a different spelling must still be checked.
+  Writer w;
+  w.begin_instance(1, "POINT");
+  w.end_instance();
+  w.begin_instance(2, "POINT");
+  w.end_instance();
+  CHECK_FALSE(w.error().has_value());
+  w.begin_instance(3, "POINT X");
+  w.end_instance();
+  CHECK(w.finish() == "invalid entity name 'POINT X'");
+  CHECK(w.text() == "#1=POINT();\n#2=POINT();\n#3=POINT X();\n");
+}
+
+namespace {
+
+// The same records written into memory and streamed to a file.
+void write_many_records(Writer& w) {
+  w.begin_file();
+  w.end_header();
+  w.begin_data();
+  for (int i = 1; i <= 60000; ++i) {  // several buffer growths and flushes
+    w.begin_instance(static_cast<std::uint64_t>(i), i % 3 == 0 ? "CARTESIAN_POINT" : "POLYLINE");
+    w.string(i % 7 == 0 ? "it's" : "");
+    w.begin_list();
+    w.real(i * 0.125);
+    w.real(-i / 3.0);
+    w.reference(static_cast<std::uint64_t>(i));
+    w.end_list();
+    w.end_instance();
+  }
+  w.end_data();
+  w.end_file();
+}
+
+}  // namespace
+
+TEST_CASE("memory and file output are the same bytes", "[p21][writer]") {
+  Writer in_memory;
+  write_many_records(in_memory);
+  REQUIRE_FALSE(in_memory.finish().has_value());
+  const std::string text = in_memory.take();
+  CHECK(text.size() > 3'000'000);
+  CHECK(text.find("#21=CARTESIAN_POINT('it''s',(2.625,-7.,#21));\n") != std::string::npos);
+  CHECK(in_memory.text().empty());  // taken
+
+  const fs::path dir = scratch_dir("memory_file");
+  AtomicFile file;
+  REQUIRE_FALSE(file.open(dir / "out.stp").has_value());
+  Writer streamed(file);
+  write_many_records(streamed);
+  REQUIRE_FALSE(streamed.finish().has_value());
+  REQUIRE_FALSE(file.commit().has_value());
+  CHECK(p21_test::slurp(dir / "out.stp") == text);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
   const fs::path dir = scratch_dir("atomic");
   const fs::path target = dir / "out.stp";

@@ -287,7 +287,7 @@ class SchemaEmitter {
   void print_type_tables(Printer& p, const DefinedType& type);
   EntityTables print_entity_tables(Printer& p, const Entity* entity, const Combination* combination);
   void print_entity_info(Printer& p, const EntityTables& tables);
-  void print_attribute_row(Printer& p, const model::Part21Slot& slot);
+  void print_attribute_row(Printer& p, const model::Part21Slot& slot, const std::string& object);
 
   std::vector<const Entity*> entities_in_order() const;
   std::vector<const DefinedType*> types_in_order() const;
@@ -663,21 +663,24 @@ void SchemaEmitter::print_type_tables(Printer& p, const DefinedType& type) {
   }
 }
 
-void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slot) {
+// `object` is the class whose table lists the row: its accessor reaches an
+// inherited member from that class, which the generic code meets far more
+// often than any subtype (see meta::object_of).
+void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slot, const std::string& object) {
   const Attribute& declared = *slot.declared;
   // Printer variables are views: the strings must outlive them.
   const std::string owner = qualified(declared.owner);
   const std::string type = type_info_ref(declared.type);
   const std::string member = member_identifier(declared.name);
   const std::string storage = member_type(declared.type, true);
-  const Printer::Variables v{
-      {"name", declared.name}, {"owner", owner}, {"type", type}, {"member", member}, {"storage", storage}};
+  const Printer::Variables v{{"name", declared.name}, {"owner", owner},   {"object", object},
+                             {"type", type},          {"member", member}, {"storage", storage}};
   p.print("{.name = \"$name$\", .owner = &$owner$::meta_entity, .type = $type$", v);
   if (slot.effective->optional) p.print(", .optional = true");
   if (slot.derived()) {
     p.print(", .kind = AttributeKind::Derived");
   } else {
-    p.print(",\n .locate = &stepnc::meta::field<$owner$, &$owner$::$member$>", v);
+    p.print(",\n .locate = &stepnc::meta::field<$object$, &$owner$::$member$>", v);
     if (declared.optional && !nullable(declared.type))
       p.print(",\n .optional_storage = &stepnc::meta::optional_ops<$storage$>", v);
   }
@@ -728,7 +731,7 @@ EntityTables SchemaEmitter::print_entity_tables(Printer& p, const Entity* entity
     p.print("constexpr AttributeInfo $table$_attributes[] = {\n", {{"table", table_name}});
     p.indent();
     p.indent();
-    for (const model::Part21Slot& s : slots) print_attribute_row(p, s);
+    for (const model::Part21Slot& s : slots) print_attribute_row(p, s, cpp_name);
     p.outdent();
     p.outdent();
     p.print("};\n");
@@ -786,7 +789,9 @@ void SchemaEmitter::print_entity_info(Printer& p, const EntityTables& tables) {
       v);
   p.indent();
   p.indent();
-  p.print(".name = \"$name$\",\n.schema = &meta_schema,\n", v);
+  p.print(".name = \"$name$\",\n", v);
+  if (!tables.express_name.empty()) p.print(".p21_name = \"$upper$\",\n", {{"upper", p21_name(tables.express_name)}});
+  p.print(".schema = &meta_schema,\n");
   if (tables.abstract) p.print(".abstract = true,\n");
   if (tables.supertypes) p.print(".supertypes = meta_tables::$table$_supertypes,\n", v);
   if (tables.subtypes) p.print(".subtypes = meta_tables::$table$_subtypes,\n", v);

@@ -33,6 +33,13 @@ std::string identifier(std::string_view name) {
   return id;
 }
 
+std::string p21_name(std::string_view name) {
+  std::string spelled(name);
+  for (char& c : spelled)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return spelled;
+}
+
 std::string member_identifier(std::string_view name) {
   std::string id = identifier(name);
   if (kReservedMembers.count(id) != 0) id += '_';

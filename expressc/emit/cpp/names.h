@@ -12,5 +12,8 @@ std::string identifier(std::string_view name);
 // A member name of a generated entity class: also avoids the members every
 // class has (id, object, entity_info, meta_entity...).
 std::string member_identifier(std::string_view name);
+// An entity name as Part 21 spells it (upper case), emitted once into the
+// tables so that writers need not convert it per record.
+std::string p21_name(std::string_view name);
 
 }  // namespace expressc::emit::cpp

@@ -361,10 +361,8 @@ void write(const ModelFile& file, p21::Writer& writer) {
   writer.end_header();
   writer.begin_data();
 
-  // Files usually list instances in id order already; sort only when not.
-  std::vector<const meta::Instance*> typed(file.model.instances().begin(), file.model.instances().end());
-  const auto by_id = [](const meta::Instance* a, const meta::Instance* b) { return a->id() < b->id(); };
-  if (!std::is_sorted(typed.begin(), typed.end(), by_id)) std::sort(typed.begin(), typed.end(), by_id);
+  std::vector<meta::Instance*> sorted;
+  const std::span<meta::Instance* const> typed = file.model.in_id_order(sorted);
   std::vector<const GenericRecord*> generic;
   generic.reserve(file.generic_records.size());
   for (const GenericRecord& record : file.generic_records) generic.push_back(&record);

@@ -115,7 +115,17 @@ void write_value(const ValueRef& value, p21::Writer& writer) {
     case TypeKind::Set: {
       writer.begin_list();
       const std::size_t n = value.size();
-      for (std::size_t i = 0; i < n; ++i) write_value(value.element(i), writer);
+      const TypeInfo& aggregate = value.resolved();
+      const TypeKind element_kind = aggregate.underlying->resolved().kind;
+      if (element_kind == TypeKind::Real || element_kind == TypeKind::Number) {
+        // Numbers (coordinates: the bulk of most files) are read from the
+        // contiguous storage directly, as the reader stores them.
+        const auto* elements = static_cast<const std::byte*>(aggregate.aggregate->data(value.slot()));
+        const std::size_t stride = aggregate.aggregate->element_size;
+        for (std::size_t i = 0; i < n; ++i) writer.real(*reinterpret_cast<const double*>(elements + i * stride));
+      } else {
+        for (std::size_t i = 0; i < n; ++i) write_value(value.element(i), writer);
+      }
       writer.end_list();
       break;
     }
@@ -127,7 +137,7 @@ void write_instance(const Instance& const_instance, p21::Writer& writer) {
   auto& instance = const_cast<Instance&>(const_instance);
   const EntityInfo& entity = instance.entity_info();
   if (!entity.is_complex()) {
-    writer.begin_instance(instance.id(), UpperName(entity.name));
+    writer.begin_instance(instance.id(), entity.p21_name);
     for (const AttributeInfo& a : entity.attributes) write_attribute(instance, a, writer);
     writer.end_instance();
     return;
@@ -137,12 +147,11 @@ void write_instance(const Instance& const_instance, p21::Writer& writer) {
   std::vector<const EntityInfo*> parts;
   for (const Upcast& u : entity.upcasts)
     if (u.entity != &entity) parts.push_back(u.entity);
-  std::sort(parts.begin(), parts.end(), [](const EntityInfo* a, const EntityInfo* b) {
-    return std::string_view(UpperName(a->name)) < std::string_view(UpperName(b->name));
-  });
+  std::sort(parts.begin(), parts.end(),
+            [](const EntityInfo* a, const EntityInfo* b) { return a->p21_name < b->p21_name; });
   writer.begin_complex_instance(instance.id());
   for (const EntityInfo* part : parts) {
-    writer.begin_part(UpperName(part->name));
+    writer.begin_part(part->p21_name);
     for (const AttributeInfo& a : entity.attributes)
       if (a.owner == part) write_attribute(instance, a, writer);
     writer.end_part();
@@ -180,17 +189,8 @@ void write_model(const Model& model, const FileHeader& header, p21::Writer& writ
   writer.end_header();
 
   writer.begin_data();
-  // Models built in code or read from a file are usually in id order
-  // already; sort a copy of the list only when they are not.
-  const auto by_id = [](const Instance* a, const Instance* b) { return a->id() < b->id(); };
-  const auto instances = model.instances();
-  if (std::is_sorted(instances.begin(), instances.end(), by_id)) {
-    for (const Instance* instance : instances) write_instance(*instance, writer);
-  } else {
-    std::vector<const Instance*> ordered(instances.begin(), instances.end());
-    std::sort(ordered.begin(), ordered.end(), by_id);
-    for (const Instance* instance : ordered) write_instance(*instance, writer);
-  }
+  std::vector<Instance*> sorted;
+  for (const Instance* instance : model.in_id_order(sorted)) write_instance(*instance, writer);
   writer.end_data();
   writer.end_file();
 }

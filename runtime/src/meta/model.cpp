@@ -18,7 +18,8 @@ Model::Model(Model&& other) noexcept
       remaining_(std::exchange(other.remaining_, 0)),
       arena_bytes_(std::exchange(other.arena_bytes_, 0)),
       instances_(std::move(other.instances_)),
-      last_id_(std::exchange(other.last_id_, 0)) {
+      last_id_(std::exchange(other.last_id_, 0)),
+      in_id_order_(std::exchange(other.in_id_order_, true)) {
   other.blocks_.clear();
   other.instances_.clear();
 }
@@ -32,6 +33,7 @@ Model& Model::operator=(Model&& other) noexcept {
     arena_bytes_ = std::exchange(other.arena_bytes_, 0);
     instances_ = std::move(other.instances_);
     last_id_ = std::exchange(other.last_id_, 0);
+    in_id_order_ = std::exchange(other.in_id_order_, true);
     other.blocks_.clear();
     other.instances_.clear();
   }
@@ -68,6 +70,7 @@ void* Model::allocate(std::size_t size, std::size_t alignment) {
 
 void Model::adopt(Instance& instance, std::uint32_t id) {
   instance.id_ = id != 0 ? id : last_id_ + 1;
+  in_id_order_ = in_id_order_ && instance.id_ > last_id_;
   last_id_ = std::max(last_id_, instance.id_);
   instances_.push_back(&instance);
 }
@@ -75,6 +78,13 @@ void Model::adopt(Instance& instance, std::uint32_t id) {
 Instance* Model::create(const EntityInfo& entity, std::uint32_t id) {
   if (entity.create == nullptr) return nullptr;
   return entity.create(*this, id);
+}
+
+std::span<Instance* const> Model::in_id_order(std::vector<Instance*>& storage) const {
+  if (in_id_order_) return instances_;
+  storage.assign(instances_.begin(), instances_.end());
+  std::sort(storage.begin(), storage.end(), [](const Instance* a, const Instance* b) { return a->id() < b->id(); });
+  return storage;
 }
 
 }  // namespace stepnc::meta

@@ -1,11 +1,12 @@
 #include "stepnc/p21/text_codec.h"
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
-#include <algorithm>
+#include <cstring>
 
 #include "code_pages.h"
 #include "lexical.h"
@@ -216,92 +217,166 @@ bool encode_string(std::string_view text, std::string& out) {
 
 namespace {
 
-constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10};
+constexpr double kPowersOfTen[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                   1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+constexpr std::uint64_t kPowersOfTenInteger[] = {1,
+                                                 10,
+                                                 100,
+                                                 1'000,
+                                                 10'000,
+                                                 100'000,
+                                                 1'000'000,
+                                                 10'000'000,
+                                                 100'000'000,
+                                                 1'000'000'000,
+                                                 10'000'000'000,
+                                                 100'000'000'000,
+                                                 1'000'000'000'000,
+                                                 10'000'000'000'000,
+                                                 100'000'000'000'000,
+                                                 1'000'000'000'000'000,
+                                                 10'000'000'000'000'000};
 
-// The common case of coordinates such as 12.3456: finds the fewest
-// decimals k (up to 10) for which round(|value| * 10^k) / 10^k gives back
-// the same double (checked exactly: a mantissa below 10^15 and one
-// correctly rounded division). Below 16 significant digits two decimals
-// never map to the same double, so this is the shortest spelling, the one
-// std::to_chars finds. Used only where to_chars would pick plain
-// notation; returns false otherwise and for everything else.
-bool format_short_decimal(double value, std::string& out) {
-  const double magnitude = std::fabs(value);
-  if (!(magnitude >= 1e-4 && magnitude < 1e15)) return false;
-  for (int k = 0; k <= 10; ++k) {
-    const double scaled = magnitude * kPowersOfTen[k];
-    if (scaled >= 1e15) return false;
-    const auto nearest = static_cast<double>(static_cast<std::int64_t>(scaled + 0.5));
-    // Cheap filter before the exact test: the right k gives a product
-    // within a few ulps of an integer.
-    if (std::fabs(scaled - nearest) > 1e-9 * nearest + 1e-9) continue;
-    const auto mantissa = static_cast<std::uint64_t>(nearest);
-    if (static_cast<double>(mantissa) / kPowersOfTen[k] != magnitude) continue;
+// The short-decimal path covers |value| in [2^kLowestExponent, 2^(kHighestExponent + 1)),
+// about [6.1E-5, 1.1E15): it needs |value| * 10^K below 2^50 (see below).
+constexpr int kLowestExponent = -14;
+constexpr int kHighestExponent = 49;
+constexpr double kExactLimit = 0x1p50;
+constexpr int kMaxDecimals = 15;
 
-    char text[24];
-    const char* end = std::to_chars(text, text + sizeof text, mantissa).ptr;
-    const std::string_view all(text, static_cast<std::size_t>(end - text));
-    const int digits = static_cast<int>(all.size());
-    // Plain notation must not be longer than scientific (to_chars' choice).
-    // Only k == 0 can leave trailing zeros (otherwise a smaller k fits).
-    const int trailing_zeros = static_cast<int>(all.size() - 1 - all.find_last_not_of('0'));
-    const int significant_digits = digits - trailing_zeros;
-    const int exponent = digits - 1 - k;
-    const int plain_length = k == 0 ? digits : std::max(digits - k, 1) + 1 + k;
-    const int scientific_length =
-        significant_digits + (significant_digits > 1 ? 1 : 0) + 2 + (std::abs(exponent) >= 100 ? 3 : 2);
-    if (plain_length > scientific_length) return false;
-
-    // Spelled in a local buffer and appended once: this runs per real.
-    char spelled[40];
-    char* p = spelled;
-    if (value < 0) *p++ = '-';
-    if (k == 0) {
-      p = std::copy(all.begin(), all.end(), p);
-      *p++ = '.';
-    } else if (digits > k) {
-      p = std::copy(all.begin(), all.end() - k, p);
-      *p++ = '.';
-      p = std::copy(all.end() - k, all.end(), p);
-    } else {
-      *p++ = '0';
-      *p++ = '.';
-      p = std::fill_n(p, k - digits, '0');
-      p = std::copy(all.begin(), all.end(), p);
-    }
-    out.append(spelled, p);
-    return true;
+// K for each binary exponent e: the most decimals (up to 15) for which
+// every value in [2^e, 2^(e+1)) times 10^K stays below 2^50.
+constexpr std::array<std::int8_t, kHighestExponent - kLowestExponent + 1> kDecimalsByExponent = [] {
+  std::array<std::int8_t, kHighestExponent - kLowestExponent + 1> decimals{};
+  for (int e = kLowestExponent; e <= kHighestExponent; ++e) {
+    double top = 1;  // 2^(e+1)
+    for (int i = 0; i < e + 1; ++i) top *= 2;
+    for (int i = 0; i > e + 1; --i) top /= 2;
+    int k = kMaxDecimals;
+    while (k > 0 && top * kPowersOfTen[k] > kExactLimit) --k;
+    decimals[static_cast<std::size_t>(e - kLowestExponent)] = static_cast<std::int8_t>(k);
   }
-  return false;
+  return decimals;
+}();
+
+// "00" "01" ... "99": two digits per division.
+constexpr std::array<char, 200> kDigitPairs = [] {
+  std::array<char, 200> pairs{};
+  for (int i = 0; i < 100; ++i) {
+    pairs[static_cast<std::size_t>(2 * i)] = static_cast<char>('0' + i / 10);
+    pairs[static_cast<std::size_t>(2 * i + 1)] = static_cast<char>('0' + i % 10);
+  }
+  return pairs;
+}();
+
+// The number of decimal digits of n (n < 10^16; at least 1).
+int decimal_digits(std::uint64_t n) {
+  // bit_width * log10(2), then one correction.
+  const int guess = static_cast<int>((std::bit_width(n) * 1233) >> 12);
+  return std::max(guess + (n >= kPowersOfTenInteger[guess] ? 1 : 0), 1);
+}
+
+// Writes the last `count` decimal digits of n, leading zeros included, so
+// that they end at `end`; returns n without them.
+std::uint64_t put_digits(std::uint64_t n, int count, char* end) {
+  for (; count >= 2; count -= 2) {
+    end -= 2;
+    std::memcpy(end, &kDigitPairs[static_cast<std::size_t>(n % 100) * 2], 2);
+    n /= 100;
+  }
+  if (count == 1) {
+    *--end = static_cast<char>('0' + n % 10);
+    n /= 10;
+  }
+  return n;
+}
+
+// The common case of coordinates such as 12.3456, without to_chars.
+//
+// With K decimals chosen so that |value| * 10^K < 2^50, the double
+// |value| lies within 1/8 of a step of 10^-K of every decimal with at
+// most K decimals that reads back as it (half an ulp, scaled, is below
+// 1/8), and the product adds at most another 1/8. So n = round(|value| *
+// 10^K) is that decimal whenever one exists, and two such decimals cannot
+// differ: with its trailing zeros stripped, n is the shortest. One exact
+// check (n / 10^k, correctly rounded as the reader computes it) tells
+// whether it reads back; when it does not, or when to_chars would pick
+// scientific notation, this returns null and the general path runs.
+char* format_short_decimal(double value, char* out) {
+  const double magnitude = std::fabs(value);
+  const int exponent2 = static_cast<int>(std::bit_cast<std::uint64_t>(magnitude) >> 52) - 1023;
+  if (exponent2 < kLowestExponent || exponent2 > kHighestExponent) return nullptr;
+  int k = kDecimalsByExponent[static_cast<std::size_t>(exponent2 - kLowestExponent)];
+  auto n = static_cast<std::uint64_t>(magnitude * kPowersOfTen[k] + 0.5);
+  // Strip trailing zeros, 8, 4, 2 then 1 at a time (at most 15 of them).
+  for (int step = 8; step > 0; step /= 2) {
+    const std::uint64_t power = kPowersOfTenInteger[step];
+    if (k >= step && n % power == 0) {
+      n /= power;
+      k -= step;
+    }
+  }
+  if (static_cast<double>(n) / kPowersOfTen[k] != magnitude) return nullptr;
+
+  // Plain notation must not be longer than scientific (to_chars' choice).
+  // Only k == 0 can leave trailing zeros (otherwise a smaller k fits).
+  const int digit_count = decimal_digits(n);
+  int trailing_zeros = 0;
+  if (k == 0)
+    while (trailing_zeros < digit_count - 1 && n % kPowersOfTenInteger[trailing_zeros + 1] == 0) ++trailing_zeros;
+  const int significant_digits = digit_count - trailing_zeros;
+  const int exponent10 = digit_count - 1 - k;
+  const int whole_digits = std::max(digit_count - k, 1);  // "0." when all digits are decimals
+  const int plain_length = whole_digits + 1 + k - (k == 0 ? 1 : 0);
+  const int scientific_length =
+      significant_digits + (significant_digits > 1 ? 1 : 0) + 2 + (std::abs(exponent10) >= 100 ? 3 : 2);
+  if (plain_length > scientific_length) return nullptr;
+
+  // Written from the end: decimals, '.', whole digits.
+  char* p = out;
+  if (value < 0) *p++ = '-';
+  char* const end = p + whole_digits + 1 + k;
+  n = put_digits(n, k, end);
+  end[-k - 1] = '.';
+  put_digits(n, whole_digits, end - k - 1);
+  return end;
 }
 
 }  // namespace
 
-bool format_real(double value, std::string& out) {
-  if (!std::isfinite(value)) return false;
-  if (format_short_decimal(value, out)) return true;
+char* format_real(double value, char* out) {
+  if (!std::isfinite(value)) return nullptr;
+  if (char* end = format_short_decimal(value, out)) return end;
   std::array<char, 40> buffer{};
   const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  if (ec != std::errc()) return false;
+  if (ec != std::errc()) return nullptr;
   const std::string_view shortest(buffer.data(), static_cast<std::size_t>(end - buffer.data()));
   // to_chars gives e.g. "10", "0.1", "1e-05", "1.5e+300"; Part 21 needs a
   // '.' in the mantissa and an upper-case 'E' exponent.
   const std::size_t e = shortest.find('e');
   const std::string_view mantissa = shortest.substr(0, e);
-  out += mantissa;
-  if (mantissa.find('.') == std::string_view::npos) out += '.';
+  char* p = std::copy(mantissa.begin(), mantissa.end(), out);
+  if (mantissa.find('.') == std::string_view::npos) *p++ = '.';
   if (e != std::string_view::npos) {
-    out += 'E';
+    *p++ = 'E';
     std::string_view exponent = shortest.substr(e + 1);
     if (exponent.front() == '-') {
-      out += '-';
+      *p++ = '-';
       exponent.remove_prefix(1);
     } else if (exponent.front() == '+') {
       exponent.remove_prefix(1);
     }
     while (exponent.size() > 1 && exponent.front() == '0') exponent.remove_prefix(1);
-    out += exponent;
+    p = std::copy(exponent.begin(), exponent.end(), p);
   }
+  return p;
+}
+
+bool format_real(double value, std::string& out) {
+  char spelled[kMaxRealLength];
+  const char* end = format_real(value, spelled);
+  if (end == nullptr) return false;
+  out.append(spelled, static_cast<std::size_t>(end - spelled));
   return true;
 }
 

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <cstring>
 #include <system_error>
 #include <unistd.h>
 
@@ -84,6 +86,8 @@ void AtomicFile::discard() {
 namespace {
 
 constexpr std::size_t kFlushThreshold = 1 << 20;
+constexpr std::size_t kInitialBuffer = 1 << 16;
+constexpr std::size_t kMaxIdLength = 21;  // '#' and 20 digits
 
 bool is_keyword(std::string_view s) {
   if (s.empty() || !detail::is_keyword_start(s.front())) return false;
@@ -92,114 +96,145 @@ bool is_keyword(std::string_view s) {
   return true;
 }
 
+// Printable ASCII other than ' and \: a string written as it is.
+bool needs_no_escape(std::string_view text) {
+  for (char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte > 0x7E || c == '\'' || c == '\\') return false;
+  }
+  return true;
+}
+
+char* put_id(char* p, std::uint64_t id) {
+  *p++ = '#';
+  return std::to_chars(p, p + kMaxIdLength, id).ptr;
+}
+
 }  // namespace
 
-void Writer::append(std::string_view s) { out_ += s; }
-void Writer::append(char c) { out_ += c; }
+void Writer::grow(std::size_t n) {
+  // Doubling keeps appends amortised O(1); resize() also makes the new
+  // capacity writable.
+  buffer_.resize(std::max({size_ + n, 2 * buffer_.size(), kInitialBuffer}));
+}
+
+std::string Writer::take() {
+  buffer_.resize(size_);
+  size_ = 0;
+  return std::move(buffer_);
+}
 
 void Writer::fail(std::string message) {
   if (!error_) error_ = std::move(message);
 }
 
 void Writer::maybe_flush() {
-  if (file_ != nullptr && out_.size() >= kFlushThreshold) {
-    if (auto error = file_->write(out_)) fail(*error);
-    out_.clear();
+  if (file_ != nullptr && size_ >= kFlushThreshold) {
+    if (auto error = file_->write(text())) fail(*error);
+    size_ = 0;
   }
 }
 
-void Writer::separator() {
+char* Writer::begin_value(std::size_t n) {
   if (depth_ == 0) fail("value written outside an instance or list");
-  if (need_comma_) out_ += ',';
+  char* p = room(n + 1);
+  if (need_comma_) *p++ = ',';
   need_comma_ = true;
+  return p;
+}
+
+void Writer::put_keyword(std::string_view name, const char* what) {
+  if (name != last_keyword_) {
+    if (!is_keyword(name)) {
+      fail(fmt::format("invalid {} '{}'", what, name));
+    } else {
+      last_keyword_.assign(name);
+    }
+  }
+  put(name);
 }
 
 void Writer::open_parenthesis() {
-  out_ += '(';
+  put("(");
   need_comma_ = false;
   ++depth_;
 }
 
 void Writer::close_parenthesis() {
   if (depth_ == 0) fail("unbalanced end of list");
-  out_ += ')';
+  put(")");
   need_comma_ = true;
   --depth_;
 }
 
-void Writer::begin_file() { append("ISO-10303-21;\nHEADER;\n"); }
+void Writer::begin_file() { put("ISO-10303-21;\nHEADER;\n"); }
 
 void Writer::begin_header_entity(std::string_view name) {
-  if (!is_keyword(name)) fail(fmt::format("invalid header entity name '{}'", name));
-  append(name);
+  put_keyword(name, "header entity name");
   open_parenthesis();
 }
 
 void Writer::end_header_entity() {
   close_parenthesis();
   if (depth_ != 0) fail("header entity ended inside a list");
-  append(";\n");
+  put(";\n");
   need_comma_ = false;
 }
 
-void Writer::end_header() { append("ENDSEC;\n"); }
+void Writer::end_header() { put("ENDSEC;\n"); }
 
 void Writer::begin_data(std::string_view parameters) {
-  append("DATA");
-  append(parameters);
-  append(";\n");
+  put("DATA");
+  put(parameters);
+  put(";\n");
 }
 
-void Writer::end_data() { append("ENDSEC;\n"); }
+void Writer::end_data() { put("ENDSEC;\n"); }
 
 void Writer::section(SectionKind kind, std::string_view body) {
   switch (kind) {
-    case SectionKind::anchor: append("ANCHOR;\n"); break;
-    case SectionKind::reference: append("REFERENCE;\n"); break;
-    case SectionKind::signature: append("SIGNATURE;\n"); break;
-    case SectionKind::data: append("DATA;\n"); break;
+    case SectionKind::anchor: put("ANCHOR;\n"); break;
+    case SectionKind::reference: put("REFERENCE;\n"); break;
+    case SectionKind::signature: put("SIGNATURE;\n"); break;
+    case SectionKind::data: put("DATA;\n"); break;
   }
-  append(body);
-  if (!body.empty()) append('\n');
-  append("ENDSEC;\n");
+  put(body);
+  if (!body.empty()) put("\n");
+  put("ENDSEC;\n");
 }
 
-void Writer::end_file() { append("END-ISO-10303-21;\n"); }
+void Writer::end_file() { put("END-ISO-10303-21;\n"); }
 
-void Writer::begin_instance(std::uint64_t id, std::string_view entity) {
+void Writer::begin_record(std::uint64_t id) {
   if (depth_ != 0) fail("instance begun inside another instance");
   if (id == 0) fail("instance id 0 is not allowed");
-  if (!is_keyword(entity)) fail(fmt::format("invalid entity name '{}'", entity));
-  out_ += '#';
-  char digits[24];
-  out_.append(digits, std::to_chars(digits, digits + sizeof digits, id).ptr);
-  out_ += '=';
-  append(entity);
+  char* p = put_id(room(kMaxIdLength + 1), id);
+  *p++ = '=';
+  commit(p);
+}
+
+void Writer::begin_instance(std::uint64_t id, std::string_view entity) {
+  begin_record(id);
+  put_keyword(entity, "entity name");
   open_parenthesis();
 }
 
 void Writer::end_instance() {
   close_parenthesis();
   if (depth_ != 0) fail("instance ended inside a list");
-  append(";\n");
+  put(";\n");
   need_comma_ = false;
   maybe_flush();
 }
 
 void Writer::begin_complex_instance(std::uint64_t id) {
-  if (depth_ != 0) fail("instance begun inside another instance");
-  if (id == 0) fail("instance id 0 is not allowed");
-  out_ += '#';
-  char digits[24];
-  out_.append(digits, std::to_chars(digits, digits + sizeof digits, id).ptr);
-  out_ += '=';
+  begin_record(id);
   open_parenthesis();
 }
 
 void Writer::begin_part(std::string_view entity) {
   if (depth_ != 1) fail("complex instance part outside a complex instance");
-  if (!is_keyword(entity)) fail(fmt::format("invalid entity name '{}'", entity));
-  append(entity);
+  put_keyword(entity, "entity name");
   open_parenthesis();
 }
 
@@ -212,109 +247,122 @@ void Writer::end_complex_instance() { end_instance(); }
 
 void Writer::raw_record(std::string_view text) {
   if (depth_ != 0) fail("raw record written inside an instance");
-  append(text);
-  append('\n');
+  put(text);
+  put("\n");
   maybe_flush();
 }
 
 void Writer::integer(std::int64_t value) {
-  separator();
-  char digits[24];
-  out_.append(digits, std::to_chars(digits, digits + sizeof digits, value).ptr);
+  char* p = begin_value(kMaxIdLength);
+  commit(std::to_chars(p, p + kMaxIdLength, value).ptr);
 }
 
 void Writer::real(double value) {
-  separator();
-  if (!format_real(value, out_)) {
+  char* p = begin_value(kMaxRealLength);
+  char* end = format_real(value, p);
+  if (end == nullptr) {
     fail(fmt::format("{} cannot be written in Part 21", value));
-    out_ += '$';
+    *p = '$';
+    end = p + 1;
   }
+  commit(end);
 }
 
 void Writer::real_spelling(std::string_view spelling) {
-  separator();
+  commit(begin_value(0));
   if (spelling.find('.') == std::string_view::npos || !parse_real(spelling))
     fail(fmt::format("'{}' is not a Part 21 real", spelling));
-  append(spelling);
+  put(spelling);
 }
 
 void Writer::string(std::string_view utf8) {
-  separator();
-  if (!encode_string(utf8, out_)) {
-    fail("string is not valid UTF-8");
-    out_ += "''";
+  if (needs_no_escape(utf8)) {
+    char* p = begin_value(utf8.size() + 2);
+    *p++ = '\'';
+    p = std::copy(utf8.begin(), utf8.end(), p);
+    *p++ = '\'';
+    commit(p);
+    return;
   }
+  commit(begin_value(0));
+  scratch_.clear();
+  if (!encode_string(utf8, scratch_)) {
+    fail("string is not valid UTF-8");
+    scratch_ = "''";
+  }
+  put(scratch_);
 }
 
 void Writer::enumeration(std::string_view item) {
-  separator();
-  if (!is_keyword(item)) fail(fmt::format("invalid enumeration item '{}'", item));
-  out_ += '.';
-  append(item);
-  out_ += '.';
+  char* p = begin_value(1);
+  *p++ = '.';
+  commit(p);
+  put_keyword(item, "enumeration item");
+  put(".");
 }
 
 void Writer::logical(Logical value) {
-  separator();
-  append(value == Logical::true_value ? ".T." : value == Logical::false_value ? ".F." : ".U.");
+  commit(begin_value(0));
+  put(value == Logical::true_value ? ".T." : value == Logical::false_value ? ".F." : ".U.");
 }
 
 void Writer::boolean(bool value) { logical(value ? Logical::true_value : Logical::false_value); }
 
 void Writer::binary(std::string_view hex_digits) {
-  separator();
   bool valid = !hex_digits.empty() && hex_digits.front() >= '0' && hex_digits.front() <= '3';
   for (char c : hex_digits) valid = valid && detail::is_hex_digit(c);
   if (!valid) fail(fmt::format("invalid binary value \"{}\"", hex_digits));
-  out_ += '"';
-  append(hex_digits);
-  out_ += '"';
+  char* p = begin_value(hex_digits.size() + 2);
+  *p++ = '"';
+  p = std::copy(hex_digits.begin(), hex_digits.end(), p);
+  *p++ = '"';
+  commit(p);
 }
 
 void Writer::null() {
-  separator();
-  out_ += '$';
+  char* p = begin_value(1);
+  *p++ = '$';
+  commit(p);
 }
 
 void Writer::derived() {
-  separator();
-  out_ += '*';
+  char* p = begin_value(1);
+  *p++ = '*';
+  commit(p);
 }
 
 void Writer::reference(std::uint64_t id) {
-  separator();
   if (id == 0) fail("reference to instance id 0");
-  out_ += '#';
-  char digits[24];
-  out_.append(digits, std::to_chars(digits, digits + sizeof digits, id).ptr);
+  commit(put_id(begin_value(kMaxIdLength), id));
 }
 
 void Writer::begin_list() {
-  separator();
+  commit(begin_value(0));
   open_parenthesis();
 }
 
 void Writer::end_list() { close_parenthesis(); }
 
 void Writer::begin_typed(std::string_view type_name) {
-  separator();
-  if (!is_keyword(type_name)) fail(fmt::format("invalid type name '{}'", type_name));
-  append(type_name);
+  commit(begin_value(0));
+  put_keyword(type_name, "type name");
   open_parenthesis();
 }
 
 void Writer::end_typed() { close_parenthesis(); }
 
 void Writer::value(const Value& v) {
-  separator();
-  append_normalised(v.source(), out_);
+  commit(begin_value(0));
+  scratch_.clear();
+  append_normalised(v.source(), scratch_);
+  put(scratch_);
 }
 
 std::optional<std::string> Writer::finish() {
   if (depth_ != 0) fail("output ended inside an instance or list");
-  if (file_ != nullptr && !out_.empty()) {
-    if (auto error = file_->write(out_)) fail(*error);
-    out_.clear();
+  if (file_ != nullptr && size_ != 0) {
+    if (auto error = file_->write(text())) fail(*error);
+    size_ = 0;
   }
   return error_;
 }

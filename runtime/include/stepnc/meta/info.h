@@ -196,6 +196,7 @@ struct Upcast {
 
 struct EntityInfo {
   std::string_view name{};  // empty for a complex (ANDOR) combination
+  std::string_view p21_name{};  // the name as Part 21 writes it: upper case
   const SchemaInfo* schema = nullptr;
   bool abstract = false;
   std::span<const EntityInfo* const> supertypes{};  // SUBTYPE OF order
@@ -250,13 +251,17 @@ const T* instance_cast(const Instance* instance) noexcept {
 
 // `instance` as its generated class `Object`, which it must be an instance
 // of. A plain static_cast where C++ allows it (no virtual base on the
-// way), else the upcast table of the instance's concrete class.
+// way); else, when `Object` is the instance's own class (generic code
+// walks an instance's own attribute table), its complete object; else the
+// upcast table of the instance's concrete class.
 template <class Object>
 Object& object_of(Instance& instance) noexcept {
   if constexpr (requires(Instance* i) { static_cast<Object*>(i); }) {
     return static_cast<Object&>(instance);
   } else {
-    return *static_cast<Object*>(instance.entity_info().upcast(instance, Object::meta_entity));
+    const EntityInfo& entity = instance.entity_info();
+    if (&entity == &Object::meta_entity) return *static_cast<Object*>(instance.object());
+    return *static_cast<Object*>(entity.upcast(instance, Object::meta_entity));
   }
 }
 

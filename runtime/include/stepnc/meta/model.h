@@ -52,6 +52,10 @@ class Model {
   // Every instance, in creation order.
   std::span<Instance* const> instances() const noexcept { return instances_; }
   std::size_t size() const noexcept { return instances_.size(); }
+  // Every instance, in increasing id order: the list itself when instances
+  // were created in id order (readers and builders usually create them so),
+  // else a sorted copy made in `storage`.
+  std::span<Instance* const> in_id_order(std::vector<Instance*>& storage) const;
 
   // Bytes reserved by the arena (for memory reports).
   std::size_t arena_bytes() const noexcept { return arena_bytes_; }
@@ -71,6 +75,7 @@ class Model {
   std::size_t arena_bytes_ = 0;
   std::vector<Instance*> instances_;
   std::uint32_t last_id_ = 0;
+  bool in_id_order_ = true;  // every instance so far was created with a larger id than the ones before
 };
 
 template <class Object>

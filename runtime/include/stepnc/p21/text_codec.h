@@ -2,6 +2,7 @@
 // strings (escapes <-> UTF-8), reals (shortest round-trip form) and integers.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -36,6 +37,11 @@ bool encode_string(std::string_view text, std::string& out);
 // Returns false for NaN and infinities, which Part 21 cannot represent
 // (nothing is appended).
 bool format_real(double value, std::string& out);
+// The same, written at `out`, which must have room for kMaxRealLength
+// characters; returns the end of the spelling, or null for NaN and
+// infinities. This is the writer's hot path: no string is touched.
+inline constexpr std::size_t kMaxRealLength = 32;  // the longest is 24, e.g. -2.2250738585072014E-308
+char* format_real(double value, char* out);
 
 // Parses a REAL or INTEGER spelling (optional sign, digits, optional
 // '.', optional exponent). Returns nullopt for anything else, including

@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -122,22 +123,42 @@ class Writer {
   // The first problem met, if any.
   const std::optional<std::string>& error() const { return error_; }
   // In-memory mode: the text so far. File mode: the unflushed tail.
-  std::string_view text() const { return out_; }
-  std::string take() { return std::move(out_); }
+  std::string_view text() const { return {buffer_.data(), size_}; }
+  std::string take();
   // Flushes to the file (file mode) and returns the first problem, if any.
   std::optional<std::string> finish();
 
  private:
-  void separator();
-  void append(std::string_view s);
-  void append(char c);
+  // The output buffer: write at room(n) (at least n bytes), then
+  // commit(end). Values are spelled straight into it, with no string
+  // appends per token: this is the writer's hot path.
+  char* room(std::size_t n) {
+    if (buffer_.size() - size_ < n) grow(n);
+    return buffer_.data() + size_;
+  }
+  void commit(const char* end) { size_ = static_cast<std::size_t>(end - buffer_.data()); }
+  void grow(std::size_t n);
+  // Inline, so that the short constant tokens become plain stores.
+  void put(std::string_view s) {
+    char* p = room(s.size());
+    std::memcpy(p, s.data(), s.size());
+    commit(p + s.size());
+  }
+  // The comma before a value (if one is due), with room for `n` more bytes.
+  char* begin_value(std::size_t n);
+  // A name written as given: checked to be a Part 21 keyword first.
+  void put_keyword(std::string_view name, const char* what);
+  void begin_record(std::uint64_t id);  // #id=
   void fail(std::string message);
   void maybe_flush();
   void open_parenthesis();
   void close_parenthesis();
 
   AtomicFile* file_ = nullptr;
-  std::string out_;
+  std::string buffer_;    // sized to its capacity; the first size_ bytes are output
+  std::size_t size_ = 0;
+  std::string last_keyword_;  // the last name found valid (names repeat: check each once per run)
+  std::string scratch_;       // strings that need escapes are encoded here first
   std::optional<std::string> error_;
   bool need_comma_ = false;
   int depth_ = 0;
