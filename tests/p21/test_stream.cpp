@@ -1,6 +1,7 @@
 // Streaming reads: same records and positions as the in-memory reader,
 // whatever the chunk size.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "stepnc/p21/stream.h"
 #include "test_helpers.h"
@@ -80,4 +81,33 @@ TEST_CASE("a handler can stop the stream", "[p21][stream]") {
   const Diagnostics diagnostics = stream_file(p21_test::data_dir() / "data" / "features.stp", {}, handler, 16);
   CHECK(handler.seen == 2);
   CHECK_FALSE(diagnostics.has_errors());
+}
+
+TEST_CASE("streaming positions stay right when many lines leave the window at once", "[p21][stream]") {
+  // Lines of varying length, so that refills drop thousands of bytes
+  // (more than the newline counter's 255 blocks of 16) mid-line.
+  std::string text = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nENDSEC;\nDATA;\n";
+  for (int id = 1; id <= 3000; ++id) {
+    text += fmt::format("#{}=POINT('{}',({}.5,0.,1.));{}", id, std::string(static_cast<std::size_t>(id % 37), 'x'), id,
+                        id % 5 == 0 ? " " : "\n");
+  }
+  text += "ENDSEC;\nEND-ISO-10303-21;\n";
+  ReadResult result = read_text(text, "lines.stp");
+  REQUIRE(result.ok());
+  const Document& doc = *result.document;
+
+  for (std::size_t chunk : {15u, 16u, 4079u, 4096u, 9000u}) {
+    INFO("chunk " << chunk);
+    std::FILE* input = ::fmemopen(text.data(), text.size(), "rb");
+    REQUIRE(input != nullptr);
+    Recorder recorder;
+    const Diagnostics diagnostics = stream(input, "lines.stp", {}, recorder, chunk);
+    std::fclose(input);
+    REQUIRE_FALSE(diagnostics.has_errors());
+    REQUIRE(recorder.locations.size() == doc.records().size());
+    for (std::size_t i = 0; i < doc.records().size(); ++i) {
+      INFO("record " << doc.records()[i].id);
+      CHECK(recorder.locations[i] == doc.location(doc.records()[i].offset));
+    }
+  }
 }

@@ -223,3 +223,21 @@ TEST_CASE("records can be indexed without parsing their parameters", "[p21][synt
   REQUIRE(error.has_value());
   CHECK(result.document->diagnostic(*error, 1).to_string() == "t.stp:8:10: error: #1: expected ')', found '3'");
 }
+
+TEST_CASE("Value::size gives the element count of lists and typed parameters", "[p21][syntax]") {
+  ParamTree tree;
+  REQUIRE_FALSE(tree.parse("#1=E((),(1),(1,(2,3),'a',$),LENGTH_MEASURE(2.5),((((4)))),7,/* c */ ( 1 , 2 ) );")
+                    .has_value());
+  REQUIRE(tree.parts().size() == 1);
+  const Value list = tree.parts().front().list();
+  CHECK(list.size() == 7);
+  std::vector<std::size_t> sizes;
+  std::vector<std::size_t> counted;
+  for (Value v : list.children()) {
+    sizes.push_back(v.size());
+    counted.push_back(static_cast<std::size_t>(std::distance(v.children().begin(), v.children().end())));
+  }
+  CHECK(sizes == counted);
+  CHECK(sizes == std::vector<std::size_t>{0, 1, 4, 1, 1, 0, 2});
+  CHECK(list.children().at(2)->children().at(1)->size() == 2);  // (2,3)
+}

@@ -67,7 +67,9 @@ class InstanceTable {
     if (id < dense_.size()) {
       dense_[id] = &instance;
     } else if (id <= 2 * count_ + kDenseSlack) {
-      dense_.resize(static_cast<std::size_t>(id) + 1, nullptr);
+      // Grown by a step, not to each new id: ids mostly come in
+      // increasing order, one past the last.
+      dense_.resize(std::max(static_cast<std::size_t>(id) + 1, dense_.size() + kDenseStep), nullptr);
       dense_[id] = &instance;
     } else {
       sparse_.emplace(id, &instance);
@@ -77,6 +79,7 @@ class InstanceTable {
 
  private:
   static constexpr std::uint64_t kDenseSlack = std::uint64_t{1} << 16;
+  static constexpr std::size_t kDenseStep = 4096;
 
   std::vector<meta::Instance*> dense_;  // by id; null: not seen
   std::unordered_map<std::uint64_t, meta::Instance*> sparse_;

@@ -48,13 +48,6 @@ std::string_view Value::text() const {
 }
 
 
-std::size_t Value::size() const {
-  std::size_t count = 0;
-  for ([[maybe_unused]] Value child : children()) ++count;
-  return count;
-}
-
-
 std::optional<Value> Value::Children::at(std::size_t i) const {
   for (Value child : *this) {
     if (i-- == 0) return child;
@@ -120,7 +113,7 @@ class RecordParser {
 
   // Most tokens are not preceded by space: test for that inline.
   void skip() {
-    if (detail::is_space(*p_) || *p_ == '/') skip_slow();
+    if (detail::may_start_skip(*p_)) skip_slow();
   }
   [[gnu::noinline]] void skip_slow() {
     const char* unterminated = nullptr;
@@ -132,12 +125,16 @@ class RecordParser {
   }
 
   bool expect(char c) {
-    if (error_) return false;
-    if (*p_ == c) {
+    if (!error_ && *p_ == c) {
       ++p_;
       return true;
     }
-    fail(p_, describe_unexpected(std::string("expected '") + c + "'"));
+    return expect_failed(c);
+  }
+  // Kept out of line: building the message would make every caller's
+  // frame heavier.
+  [[gnu::noinline]] bool expect_failed(char c) {
+    if (!error_) fail(p_, describe_unexpected(std::string("expected '") + c + "'"));
     return false;
   }
 
@@ -211,7 +208,7 @@ class RecordParser {
       close_node(index);
       return !error_;
     }
-    for (;;) {
+    for (std::uint32_t count = 1;; ++count) {
       if (!parse_value(depth)) return false;
       skip();
       if (*p_ == ',') {
@@ -221,6 +218,7 @@ class RecordParser {
       }
       if (!expect(')')) return false;
       close_node(index);
+      tree_.nodes_[index].value.count = count;
       return true;
     }
   }

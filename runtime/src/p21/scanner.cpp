@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <system_error>
 
 #include "lexical.h"
@@ -38,25 +39,26 @@ bool Scanner::refill(std::size_t keep_from) {
     return false;
   }
   // Account for the bytes that leave the window, for line:col later.
-  const std::string_view leaving = std::string_view(storage_).substr(0, keep_from);
-  const std::size_t newlines = static_cast<std::size_t>(std::count(leaving.begin(), leaving.end(), '\n'));
+  const std::string_view leaving = window_.substr(0, keep_from);
+  const std::size_t newlines = count_newlines(leaving.data(), leaving.data() + leaving.size());
   if (newlines > 0) {
     lines_before_window_ += static_cast<std::uint32_t>(newlines);
     column_before_window_ = static_cast<std::uint32_t>(leaving.size() - (leaving.rfind('\n') + 1));
   } else {
     column_before_window_ += static_cast<std::uint32_t>(leaving.size());
   }
-  storage_.erase(0, keep_from);
+  const std::size_t kept = window_.size() - keep_from;
+  std::memmove(storage_.data(), storage_.data() + keep_from, kept);
   window_base_ += keep_from;
 
   // A statement longer than a chunk doubles the read, so rescanning it
-  // from its start after each refill stays linear overall.
-  const std::size_t kept = storage_.size();
+  // from its start after each refill stays linear overall. The buffer
+  // only grows: resizing a string zero-fills, which would cost a pass
+  // over every chunk.
   const std::size_t wanted = std::max(chunk_size_, kept);
-  storage_.resize(kept + wanted);
+  if (storage_.size() < kept + wanted) storage_.resize(kept + wanted);
   const std::size_t got = std::fread(storage_.data() + kept, 1, wanted, file_);
-  storage_.resize(kept + got);
-  window_ = storage_;
+  window_ = std::string_view(storage_.data(), kept + got);
   pos_ = 0;
   if (got == 0) {
     at_eof_ = true;
@@ -72,7 +74,7 @@ SourceLocation Scanner::location(std::uint64_t offset) const {
   if (offset < window_base_) return {};
   const std::size_t relative = std::min<std::size_t>(offset - window_base_, window_.size());
   const std::string_view before = window_.substr(0, relative);
-  const auto newlines = static_cast<std::uint32_t>(std::count(before.begin(), before.end(), '\n'));
+  const auto newlines = static_cast<std::uint32_t>(count_newlines(before.data(), before.data() + before.size()));
   const std::size_t last = before.rfind('\n');
   const std::uint32_t column = last == std::string_view::npos
                                    ? column_before_window_ + static_cast<std::uint32_t>(relative)

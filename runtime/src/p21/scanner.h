@@ -73,11 +73,15 @@ class Scanner final : public StreamContext {
   // Input window.
   std::FILE* file_ = nullptr;
   std::size_t chunk_size_ = 0;
-  std::string storage_;         // streaming mode only
+  std::string storage_;         // streaming mode only: window_ views its start
   std::string_view window_;     // the bytes currently available
   std::uint64_t window_base_ = 0;
   std::size_t pos_ = 0;         // next unread byte in window_
   bool at_eof_ = true;
+  // Streaming: the newlines of every byte leaving the window are counted,
+  // so location() works for any handler. Counted 16 bytes at a time this
+  // is under 1% of a typed read (a per-byte count was 7%), too little to
+  // justify an option that turns positions off.
   std::uint32_t lines_before_window_ = 0;    // streaming: newlines before window_
   std::uint32_t column_before_window_ = 0;   // streaming: bytes of the current line before window_
   Locator locator_;

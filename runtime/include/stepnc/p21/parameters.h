@@ -55,12 +55,14 @@ struct ParamNode {
     double real;
     std::uint64_t reference;
     Logical logical;
+    std::uint32_t count;  // list: the number of elements
     struct {
       std::uint32_t offset;  // into the record text or the decode buffer
       std::uint32_t length;
     } text;
   } value{};
 };
+static_assert(sizeof(ParamNode) == 24, "the tree is walked per value: keep nodes small");
 
 class ParamTree;
 
@@ -90,7 +92,7 @@ class Value {
   // Children of a list (its elements) or typed parameter (its value).
   class Children;
   Children children() const;
-  std::size_t size() const;  // number of children (counts them: O(n))
+  std::size_t size() const;  // number of children (O(1): lists store it)
 
   const ParamNode& node() const;
   std::uint32_t index() const { return index_; }
@@ -204,6 +206,11 @@ inline double Value::number() const {
 inline std::uint64_t Value::reference() const { return node().value.reference; }
 inline Logical Value::logical() const { return node().value.logical; }
 inline std::uint64_t Value::offset() const { return tree_->base_offset_ + node().source_offset; }
+inline std::size_t Value::size() const {
+  const ParamNode& n = node();
+  if (n.kind == ParamKind::list) return n.value.count;
+  return n.kind == ParamKind::typed ? 1 : 0;  // a typed parameter holds exactly one value
+}
 inline Value::Children Value::children() const {
   const ParamNode& n = node();
   if (n.kind != ParamKind::list && n.kind != ParamKind::typed) return Children(*tree_, index_, index_);
