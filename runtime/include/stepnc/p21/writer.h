@@ -140,6 +140,7 @@ class Writer {
   void grow(std::size_t n);
   // Inline, so that the short constant tokens become plain stores.
   void put(std::string_view s) {
+    if (s.empty()) return;  // an empty view may have no data pointer, which memcpy must not get
     char* p = room(s.size());
     std::memcpy(p, s.data(), s.size());
     commit(p + s.size());
