@@ -124,6 +124,21 @@ TEST_CASE("an unknown entity is kept as a generic record, with a warning, and wr
                                       "#3=DIRECTION('',(1.,0.,0.));\n"));
 }
 
+TEST_CASE("an unknown entity with bad syntax is an error, not a generic record", "[exchange]") {
+  // Generic records are written back normalised (no space between
+  // tokens), which only keeps their meaning when they are well-formed:
+  // `CARTESIAN_POIN T(...)` would come back as a CARTESIAN_POINT.
+  auto result = read_model_text(file_with("#1=CARTESIAN_POIN T('',(0.,0.,0.));\n"
+                                          "#2=VENDOR_THING(#1,(1,2);\n"),
+                                "bad_generic.stp", registry(), {.strict = false});
+  CHECK(messages(result.diagnostics) ==
+        std::vector<std::string>{"bad_generic.stp:8:19: error: #1: expected '(', found 'T'",
+                                 "bad_generic.stp:9:25: error: #2: expected ')', found ';'"});
+  REQUIRE(result.file != nullptr);
+  CHECK(result.file->generic_records.empty());
+  CHECK(result.file->model.size() == 0);
+}
+
 TEST_CASE("conformance problems are reported with line:col and #id", "[exchange]") {
   SECTION("an abstract entity instantiated") {
     auto result = read_model_text(file_with("#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=MANUFACTURING_FEATURE('f',$,());\n"), "abstract.stp",

@@ -242,6 +242,13 @@ class ModelBuilder final : public meta::FillContext {
     } else {
       entity = entities_.simple(record.entity, document_.entity_names());
       if (entity == nullptr) {
+        // Kept as written and written back normalised, so it must at least
+        // be well-formed.
+        if (auto problem = document_.parse(record, tree_)) {
+          report_parse_error(*problem, record.id);
+          skip(index);
+          return;
+        }
         keep_generic(index, fmt::format("unknown entity {}; kept as a generic record", display_name()));
         return;
       }
