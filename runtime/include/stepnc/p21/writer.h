@@ -156,7 +156,7 @@ class Writer {
   void close_parenthesis();
 
   AtomicFile* file_ = nullptr;
-  std::string buffer_;    // sized to its capacity; the first size_ bytes are output
+  std::string buffer_;    // all of it writable room; the first size_ bytes are output
   std::size_t size_ = 0;
   std::string last_keyword_;  // the last name found valid (names repeat: check each once per run)
   std::string scratch_;       // strings that need escapes are encoded here first
