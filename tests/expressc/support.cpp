@@ -1,19 +1,16 @@
 #include "support.h"
 
-#include <fstream>
 #include <sstream>
 
 #include <catch2/catch.hpp>
 
+#include "test_files.h"
+
 namespace expressc::test {
 
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  INFO("cannot read " << path.string() << " (the reference schema lives in ../shared beside the checkout)");
-  REQUIRE(in);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return std::move(text).str();
+  INFO("the reference schema lives in ../shared beside the checkout");
+  return stepnc_test::read_file(path);
 }
 
 std::filesystem::path corpus(const std::string& relative) {

@@ -4,25 +4,17 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include <unistd.h>
 
 #include "emit/cpp/cpp_generator.h"
 #include "support.h"
+#include "test_files.h"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 std::set<std::string> generated_files(const fs::path& dir) {
   std::set<std::string> names;
@@ -46,7 +38,7 @@ TEST_CASE("generated/ is up to date with schemas/", "[generated][staleness]") {
   REQUIRE(generated_files(temp) == generated_files(checked_in));
   for (const std::string& name : generated_files(temp)) {
     INFO(name << " differs: run the `regenerate` target");
-    CHECK(read(temp / name) == read(checked_in / name));
+    CHECK(stepnc_test::read_file(temp / name) == stepnc_test::read_file(checked_in / name));
   }
   fs::remove_all(temp);
 }

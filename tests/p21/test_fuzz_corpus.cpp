@@ -8,17 +8,11 @@
 namespace fs = std::filesystem;
 
 TEST_CASE("fuzz corpus replay", "[p21][fuzz]") {
-  std::size_t replayed = 0;
-  const fs::path roots[] = {p21_test::data_dir() / "fuzz" / "corpus", p21_test::data_dir() / "malformed",
-                            p21_test::data_dir() / "data", fs::path(STEPNC_SOURCE_DIR) / "samples"};
-  for (const fs::path& root : roots) {
-    if (!fs::exists(root)) continue;
-    for (const auto& entry : fs::recursive_directory_iterator(root)) {
-      if (!entry.is_regular_file() || entry.file_size() > (1u << 20)) continue;
-      const std::string bytes = p21_test::slurp(entry.path());
-      stepnc::p21::fuzz::run_one(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-      ++replayed;
-    }
-  }
+  const std::size_t replayed = stepnc_test::replay_files(
+      {p21_test::data_dir() / "fuzz" / "corpus", p21_test::data_dir() / "malformed", p21_test::data_dir() / "data",
+       fs::path(STEPNC_SOURCE_DIR) / "samples"},
+      [](std::string_view bytes) {
+        stepnc::p21::fuzz::run_one(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+      });
   CHECK(replayed >= 20);
 }

@@ -2,23 +2,17 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <string_view>
 
 #include "stepnc/p21/document.h"
+#include "test_files.h"
 
 namespace p21_test {
 
 inline std::filesystem::path data_dir() { return std::filesystem::path(STEPNC_TEST_DATA_DIR) / "p21"; }
 
-inline std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
+inline std::string slurp(const std::filesystem::path& path) { return stepnc_test::read_file(path); }
 
 // A minimal exchange structure around `data` (the DATA section body).
 inline std::string wrap(std::string_view data) {

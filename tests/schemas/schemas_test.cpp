@@ -19,6 +19,7 @@
 
 #include "model/model.h"
 #include "schema_digest.h"
+#include "test_files.h"
 
 namespace {
 
@@ -100,14 +101,6 @@ std::string reference_standard_text() {
   return text + "END_SCHEMA;\n";
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return std::move(text).str();
-}
-
 std::string diagnostics_text(const CompileResult& result) {
   std::string text;
   for (const auto& d : result.diagnostics) text += d.to_string() + "\n";
@@ -131,7 +124,7 @@ const Compiled& project_schemas() {
   static const Compiled compiled = [] {
     std::vector<expressc::model::SourceText> texts;
     for (const fs::path& file : project_schema_files()) {
-      texts.push_back({file.string(), read_text(file)});
+      texts.push_back({file.string(), stepnc_test::read_file(file)});
     }
     return compile_with_sources(std::move(texts));
   }();

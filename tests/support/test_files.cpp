@@ -1,0 +1,34 @@
+#include "test_files.h"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+namespace stepnc_test {
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  INFO("cannot read " << path.string());
+  REQUIRE(in);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return std::move(text).str();
+}
+
+std::size_t replay_files(std::initializer_list<std::filesystem::path> roots,
+                         const std::function<void(std::string_view bytes)>& body) {
+  std::size_t replayed = 0;
+  for (const std::filesystem::path& root : roots) {
+    INFO("corpus " << root.string());
+    REQUIRE(std::filesystem::exists(root));
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+      if (!entry.is_regular_file() || entry.file_size() > (1u << 20)) continue;
+      body(read_file(entry.path()));
+      ++replayed;
+    }
+  }
+  return replayed;
+}
+
+}  // namespace stepnc_test

@@ -1,0 +1,23 @@
+// File helpers every test room shares (built into stepnc_catch_main).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace stepnc_test {
+
+// The whole file, byte for byte; fails the running test when it cannot be
+// opened.
+std::string read_file(const std::filesystem::path& path);
+
+// Calls `body` with the bytes of every file of at most 1 MB below each of
+// `roots` (which must exist), and returns how many it replayed: the CI
+// stand-in for a fuzzing run, over saved corpora and sample files.
+std::size_t replay_files(std::initializer_list<std::filesystem::path> roots,
+                         const std::function<void(std::string_view bytes)>& body);
+
+}  // namespace stepnc_test
