@@ -159,7 +159,7 @@ class Writer {
   std::string buffer_;    // all of it writable room; the first size_ bytes are output
   std::size_t size_ = 0;
   std::string last_keyword_;  // the last name found valid (names repeat: check each once per run)
-  std::string scratch_;       // strings that need escapes are encoded here first
+  std::string scratch_;       // tokens spelled before being copied in: escaped strings, normalised values
   std::optional<std::string> error_;
   bool need_comma_ = false;
   int depth_ = 0;
