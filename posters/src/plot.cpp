@@ -313,20 +313,44 @@ class Plot {
       span_u = view.bounds.hi.x - view.bounds.lo.x;
     }
     legend_rows();
+    // The legend goes beside the views in one column, or below them in two
+    // (tools and lines | workingsteps and scale) when that leaves the
+    // drawing clearly larger (long turned parts).
     const double n = static_cast<double>(views_.size());
-    const double avail_w = max_width - 2 * margin - ruler_left - legend_gap - legend_width_;
-    const double avail_h = max_height - title_height - margin - n * (caption_height + ruler_bottom) - (n - 1) * view_gap;
-    scale_ = std::min({avail_w / span_u, avail_h / total_v, max_scale});
+    const double views_h = max_height - title_height - margin - n * (caption_height + ruler_bottom) - (n - 1) * view_gap;
+    const double beside = std::min(
+        {(max_width - 2 * margin - ruler_left - legend_gap - column_width_) / span_u, views_h / total_v, max_scale});
+    const std::size_t split = static_cast<std::size_t>(
+        std::find_if(rows_.begin(), rows_.end(), [](const Row& r) { return r.css_class == "legend-workingsteps"; }) -
+        rows_.begin());
+    const double below_legend_h = legend_height(std::max(split, rows_.size() - split));
+    const double below = std::min(
+        {(max_width - 2 * margin - ruler_left) / span_u, (views_h - legend_gap - below_legend_h) / total_v, max_scale});
+    const bool legend_below = below > 1.15 * beside;
+    scale_ = legend_below ? below : beside;
     double y = title_height;
     for (View& view : views_) {
       view.scale = scale_;
       view.origin_px = {margin + ruler_left, y + caption_height};
       y = view.origin_px.y + view.height_px() + ruler_bottom + view_gap;
     }
-    legend_left_ = margin + ruler_left + views_.front().width_px() + legend_gap;
-    width_ = legend_left_ + legend_width_ + margin;
-    height_ = std::max(y - view_gap + margin, title_height + legend_height_ + margin);
+    const double views_right = margin + ruler_left + views_.front().width_px();
+    if (legend_below) {
+      column_split_ = split;
+      legend_left_ = margin + 8;
+      legend_top_ = y - view_gap + legend_gap / 2;
+      width_ = std::max(views_right, legend_left_ + 2 * column_width_) + margin;
+      height_ = legend_top_ + below_legend_h + margin;
+    } else {
+      column_split_ = rows_.size();
+      legend_left_ = views_right + legend_gap;
+      legend_top_ = title_height;
+      width_ = legend_left_ + column_width_ + margin;
+      height_ = std::max(y - view_gap + margin, title_height + legend_height(rows_.size()) + margin);
+    }
   }
+
+  static double legend_height(std::size_t rows) { return row_height * static_cast<double>(rows + 1) + 12; }
 
   void draw_title(svg::Writer& out, const std::string& name) const {
     out.text("text", {{"class", "title"}, {"x", number(margin)}, {"y", "30"}, {"font-size", "20"}, {"font-weight", "bold"}},
@@ -462,10 +486,32 @@ class Plot {
     out.close();
   }
 
-  // Feature names at the top-left corner of their outline, moved down
-  // while they would cover an earlier label.
+  // Where each workingstep's numbered disc goes: beside its start, moved
+  // right while it would cover an earlier one.
+  std::vector<Vec2> marker_positions(const View& view) const {
+    std::vector<Vec2> placed;
+    for (const WorkingstepStart& start : motion_.starts) {
+      Vec2 p = view.px(start.at);
+      p = {p.x + 10, p.y - 10};
+      while (std::any_of(placed.begin(), placed.end(), [&](Vec2 q) { return std::hypot(q.x - p.x, q.y - p.y) < 19; })) {
+        p.x += 19;
+      }
+      placed.push_back(p);
+    }
+    return placed;
+  }
+
+  // Feature names at the top-left corner inside their outline when they
+  // fit, else above or below it; the first place that covers no earlier
+  // label, workingstep disc or the origin's letters wins.
   void draw_feature_labels(svg::Writer& out, const View& view) const {
     std::vector<Box> placed;
+    for (const Vec2 m : marker_positions(view)) placed.push_back({{m.x - 9, m.y - 9}, {m.x + 9, m.y + 9}});
+    Box frame;
+    frame.add(view.px(view.bounds.lo));
+    frame.add(view.px(view.bounds.hi));
+    const Vec2 origin = view.px(Vec2{0, 0});
+    placed.push_back({{origin.x - 20, origin.y - 50}, {origin.x + 52, origin.y + 18}});
     out.open("g", {{"font-size", "11"}, {"fill", std::string(feature_line)},
                    {"style", "paint-order:stroke;stroke:#ffffff;stroke-width:3px;stroke-linejoin:round"}});
     for (const Outline& o : view.outlines) {
@@ -473,16 +519,26 @@ class Plot {
       const std::string& name = project_.features[static_cast<std::size_t>(o.feature)].source.name;
       Box extent;
       for (const Vec2 p : o.points) extent.add(view.px(p));
-      // Inside the top-left corner when the name fits, else just above it.
-      const double width = char_width * static_cast<double>(name.size()) * 11 / 12;
+      const double width = char_width * static_cast<double>(name.size()) * 11 / 12, height = 13;
       const bool fits = width + 8 < extent.hi.x - extent.lo.x && extent.hi.y - extent.lo.y > 18;
-      Box label;
-      label.lo = fits ? Vec2{extent.lo.x + 4, extent.lo.y + 3} : Vec2{extent.lo.x, extent.lo.y - 16};
-      label.hi = {label.lo.x + width, label.lo.y + 13};
-      for (int tries = 0; tries < 12 && std::any_of(placed.begin(), placed.end(), [&](const Box& b) { return b.overlaps(label); });
-           ++tries) {
-        label.lo.y += 14;
-        label.hi.y += 14;
+      std::vector<Vec2> candidates;  // top-left corners
+      for (int step = 0; step < 8; ++step) {
+        const double shift = 14.0 * step;
+        if (fits) candidates.push_back({extent.lo.x + 4, extent.lo.y + 3 + shift});
+        candidates.push_back({extent.lo.x, extent.lo.y - height - 3 - shift});
+        candidates.push_back({extent.lo.x, extent.hi.y + 3 + shift});
+        candidates.push_back({extent.lo.x - width - 4, extent.lo.y + shift});
+        candidates.push_back({extent.hi.x + 4, extent.lo.y + shift});
+      }
+      Box label{candidates.front(), {candidates.front().x + width, candidates.front().y + height}};
+      for (const Vec2 c : candidates) {
+        const Box box{c, {c.x + width, c.y + height}};
+        const bool inside_frame = box.lo.x >= frame.lo.x && box.hi.x <= frame.hi.x && box.lo.y >= frame.lo.y &&
+                                  box.hi.y <= frame.hi.y;
+        if (inside_frame && std::none_of(placed.begin(), placed.end(), [&](const Box& b) { return b.overlaps(box); })) {
+          label = box;
+          break;
+        }
       }
       placed.push_back(label);
       out.text("text", {{"class", "feature-label"}, {"x", number(label.lo.x)}, {"y", number(label.hi.y - 2)}}, name);
@@ -492,16 +548,10 @@ class Plot {
 
   // A numbered disc where each workingstep starts cutting; the legend names it.
   void draw_workingstep_markers(svg::Writer& out, const View& view) const {
-    std::vector<Vec2> placed;
+    const std::vector<Vec2> placed = marker_positions(view);
     for (std::size_t i = 0; i < motion_.starts.size(); ++i) {
       const WorkingstepStart& start = motion_.starts[i];
-      Vec2 p = view.px(start.at);
-      p = {p.x + 10, p.y - 10};  // beside the start, not over it
-      while (std::any_of(placed.begin(), placed.end(),
-                         [&](Vec2 q) { return std::hypot(q.x - p.x, q.y - p.y) < 19; })) {
-        p.x += 19;
-      }
-      placed.push_back(p);
+      const Vec2 p = placed[i];
       out.open("g", {{"class", "workingstep-marker"}, {"data-workingstep", start.workingstep.name}});
       out.element("circle", {{"cx", number(p.x)}, {"cy", number(p.y)}, {"r", "8.5"}, {"fill", "#ffffff"},
                              {"stroke", colour_of(start.tool)}, {"stroke-width", "2"}});
@@ -536,7 +586,7 @@ class Plot {
     rows_.push_back({Swatch::feature, "feature, named: material removed", -1, ""});
     if (project_.machine == MachineKind::turning) rows_.push_back({Swatch::part, "finished part (turned profile)", -1, ""});
     rows_.push_back({Swatch::stock, "workpiece stock", -1, ""});
-    rows_.push_back({Swatch::heading, "Workingsteps (where they start cutting)", -1, ""});
+    rows_.push_back({Swatch::heading, "Workingsteps (where they start cutting)", -1, "legend-workingsteps"});
     for (std::size_t i = 0; i < motion_.starts.size(); ++i) {
       const WorkingstepStart& s = motion_.starts[i];
       const std::string tool =
@@ -547,17 +597,23 @@ class Plot {
     rows_.push_back({Swatch::scale, "", -1, "scale-bar"});
     std::size_t longest = 0;
     for (const Row& r : rows_) longest = std::max(longest, r.text.size());
-    legend_width_ = std::clamp(46 + char_width * static_cast<double>(longest), 260.0, 520.0);
-    legend_height_ = row_height * static_cast<double>(rows_.size() + 1) + 12;
+    column_width_ = std::clamp(46 + char_width * static_cast<double>(longest), 260.0, 520.0);
   }
 
   void draw_legend(svg::Writer& out) const {
-    const double x = legend_left_, top = title_height;
+    const double top = legend_top_;
+    const std::size_t columns = column_split_ < rows_.size() ? 2 : 1;
+    const std::size_t tallest = columns == 1 ? rows_.size() : std::max(column_split_, rows_.size() - column_split_);
     out.open("g", {{"class", "legend"}, {"font-size", "12"}});
-    out.element("rect", {{"x", number(x - 8)}, {"y", number(top - 4)}, {"width", number(legend_width_)},
-                         {"height", number(legend_height_)}, {"fill", "#fafafa"}, {"stroke", "#cccccc"}});
-    double y = top + 12;
+    out.element("rect", {{"x", number(legend_left_ - 8)}, {"y", number(top - 4)},
+                         {"width", number(column_width_ * static_cast<double>(columns))},
+                         {"height", number(legend_height(tallest))}, {"fill", "#fafafa"}, {"stroke", "#cccccc"}});
+    double x = legend_left_, y = top + 12;
     for (const Row& row : rows_) {
+      if (&row - rows_.data() == static_cast<std::ptrdiff_t>(column_split_)) {
+        x += column_width_;
+        y = top + 12;
+      }
       const double mid = y - 4;
       const std::string x0 = number(x), x1 = number(x + 30), ym = number(mid);
       if (!row.css_class.empty()) out.open("g", {{"class", row.css_class}});
@@ -566,10 +622,20 @@ class Plot {
           out.text("text", {{"x", number(x)}, {"y", number(y + 2)}, {"font-weight", "bold"}}, row.text);
           break;
         case Swatch::tool:
-        case Swatch::feed:
           out.element("line", {{"x1", x0}, {"y1", ym}, {"x2", x1}, {"y2", ym}, {"stroke", colour_of(row.tool)},
-                               {"stroke-width", number(row.swatch == Swatch::tool ? 4 : feed_width)}});
+                               {"stroke-width", "4"}});
           break;
+        case Swatch::feed: {  // a piece in each tool's colour
+          const std::size_t pieces = std::clamp<std::size_t>(program_.tools.size(), 1, 3);
+          for (std::size_t i = 0; i < pieces; ++i) {
+            const double w = 30.0 / static_cast<double>(pieces);
+            out.element("line", {{"x1", number(x + w * static_cast<double>(i))}, {"y1", ym},
+                                 {"x2", number(x + w * static_cast<double>(i + 1))}, {"y2", ym},
+                                 {"stroke", colour_of(program_.tools.empty() ? -1 : static_cast<int>(i))},
+                                 {"stroke-width", number(feed_width)}});
+          }
+          break;
+        }
         case Swatch::rapid:
           out.element("line", {{"x1", x0}, {"y1", ym}, {"x2", x1}, {"y2", ym}, {"stroke", std::string(rapid_colour)},
                                {"stroke-width", number(rapid_width)}, {"stroke-dasharray", std::string(rapid_dashes)}});
@@ -617,7 +683,7 @@ class Plot {
 
   // A bar of a round length in four black and white parts.
   void draw_scale_bar(svg::Writer& out, double x, double y) const {
-    const double length = nice_step(std::min(legend_width_ - 90, 160.0) / scale_ / 2);
+    const double length = nice_step(std::min(column_width_ - 90, 160.0) / scale_ / 2);
     const double w = length * scale_;
     for (int i = 0; i < 4; ++i) {
       out.element("rect", {{"x", number(x + w * i / 4)}, {"y", number(y - 3)}, {"width", number(w / 4)}, {"height", "6"},
@@ -640,7 +706,8 @@ class Plot {
   std::vector<View> views_;
   std::vector<Row> rows_;
   double scale_ = 1, width_ = 0, height_ = 0;
-  double legend_left_ = 0, legend_width_ = 0, legend_height_ = 0;
+  double legend_left_ = 0, legend_top_ = 0, column_width_ = 0;
+  std::size_t column_split_ = 0;  // the first row of the second legend column; rows_.size() = one column
 };
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -92,6 +94,9 @@ void check_plot(const MachiningProject& project) {
   const Program& program = result.program;
   const std::string svg = plot_svg(project, program);
   INFO(project.source.name);
+  if (const char* dir = std::getenv("STEPNC_PLOT_DIR")) {  // for looking at them: render with rsvg-convert
+    std::ofstream(fmt::format("{}/{}.svg", dir, project.source.name)) << svg;
+  }
   CHECK(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0) == 0);
   CHECK(xml_error(svg).empty());
 
