@@ -248,6 +248,12 @@ double cutting_width(const Tool& tool) {
   return tool.diameter;
 }
 
+// Where the cutting width is centred relative to the programmed point: a
+// grooving insert's reference corner is its front (+z) side (generate.cpp).
+Vec3 cutting_centre_offset(const Tool& tool) {
+  return tool.kind == ToolKind::grooving_insert ? Vec3{0, 0, -tool.cutting_width / 2} : Vec3{};
+}
+
 std::string tool_description(const ToolEntry& entry) {
   const Tool& t = entry.tool;
   std::string kind(to_string(t.kind));
@@ -381,7 +387,12 @@ class Plot {
     }
     draw_axes(out, view);
     if (view.primary && options_.envelope) draw_envelope(out, view);
-    for (const Stroke& s : motion_.strokes) {
+    // Rapids first: where a retract runs back along a cut, the cut shows.
+    std::vector<const Stroke*> order;
+    for (const Stroke& s : motion_.strokes) order.push_back(&s);
+    std::stable_partition(order.begin(), order.end(), [](const Stroke* s) { return s->rapid; });
+    for (const Stroke* stroke : order) {
+      const Stroke& s = *stroke;
       if (s.points.size() < 2) continue;
       std::vector<Vec2> points;
       for (const Vec3 p : s.points) points.push_back(view.px(p));
@@ -471,16 +482,19 @@ class Plot {
       if (width <= 0) continue;
       std::vector<Vec2> points;
       Box extent;
+      const Vec3 d = cutting_centre_offset(program_.tools[static_cast<std::size_t>(s.tool)].tool);
       for (const Vec3 p : s.points) {
-        points.push_back(view.px(p));
+        points.push_back(view.px(Vec3{p.x + d.x, p.y + d.y, p.z + d.z}));
         extent.add(points.back());
       }
       if (extent.hi.x - extent.lo.x < 0.01 && extent.hi.y - extent.lo.y < 0.01) {  // along the view axis: a disc
         out.element("circle", {{"cx", number(points[0].x)}, {"cy", number(points[0].y)}, {"r", number(width / 2)},
                                {"fill", colour_of(s.tool)}});
       } else {
+        // A grooving insert's end is square; milling cutters and nose radii are round.
+        const bool square = program_.tools[static_cast<std::size_t>(s.tool)].tool.kind == ToolKind::grooving_insert;
         out.element("polyline", {{"points", svg::points(points)}, {"stroke", colour_of(s.tool)},
-                                 {"stroke-width", number(width)}});
+                                 {"stroke-width", number(width)}, {"stroke-linecap", square ? "butt" : "round"}});
       }
     }
     out.close();

@@ -254,7 +254,7 @@ TEST_CASE("plot: the cutter envelope on request, as wide as the cutter") {
   CHECK(radii.count(110) == 1);  // reamer 22 mm
   CHECK(radii.count(100) == 1);  // drill 20 mm
   // Feed runs of the 20 mm mill are swept 20 mm wide.
-  const auto bands = all(swept, R"re(<polyline points="[^"]+" stroke="#[0-9a-f]{6}" stroke-width="([0-9.]+)"/>)re");
+  const auto bands = all(swept, R"re(<polyline points="[^"]+" stroke="#[0-9a-f]{6}" stroke-width="([0-9.]+)" stroke-linecap="round"/>)re");
   REQUIRE_FALSE(bands.empty());
   CHECK(std::stod(bands[0][1]) == Approx(20 * px_per_mm).margin(0.01));
 }
