@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "stepnc/post/feature_geometry.h"
 #include "stepnc/post/motion.h"
@@ -308,43 +309,66 @@ class Plot {
       u_range.add({view.bounds.lo.x, 0});
       u_range.add({view.bounds.hi.x, 0});
     }
-    double total_v = 0, span_u = 0;
+    double air = 10;  // one margin for every view, so they keep one u range
+    for (const View& view : views_) air = std::max({air, u_range.hi.x - u_range.lo.x, view.bounds.hi.y - view.bounds.lo.y});
+    air *= 0.04;
+    double span_u = 0;
     for (View& view : views_) {
       view.bounds.lo.x = u_range.lo.x;
       view.bounds.hi.x = u_range.hi.x;
-      const double air = 0.04 * std::max({view.bounds.hi.x - view.bounds.lo.x, view.bounds.hi.y - view.bounds.lo.y, 10.0});
       view.bounds.add({view.bounds.lo.x - air, view.bounds.lo.y - air});
       view.bounds.add({view.bounds.hi.x + air, view.bounds.hi.y + air});
-      total_v += view.bounds.hi.y - view.bounds.lo.y;
       span_u = view.bounds.hi.x - view.bounds.lo.x;
     }
     legend_rows();
-    // The legend goes beside the views in one column, or below them in two
-    // (tools and lines | workingsteps and scale) when that leaves the
-    // drawing clearly larger (long turned parts).
-    const double n = static_cast<double>(views_.size());
-    const double views_h = max_height - title_height - margin - n * (caption_height + ruler_bottom) - (n - 1) * view_gap;
-    const double beside = std::min(
-        {(max_width - 2 * margin - ruler_left - legend_gap - column_width_) / span_u, views_h / total_v, max_scale});
+    // Arrangements: the views stacked (the front view under the top view,
+    // X aligned, as on a third-angle drawing) or side by side; the legend
+    // beside them in one column or below them in two (tools and lines |
+    // workingsteps and scale). Stacked with the legend beside, unless
+    // another draws clearly (15%) larger.
     const std::size_t split = static_cast<std::size_t>(
         std::find_if(rows_.begin(), rows_.end(), [](const Row& r) { return r.css_class == "legend-workingsteps"; }) -
         rows_.begin());
     const double below_legend_h = legend_height(std::max(split, rows_.size() - split));
-    const double below = std::min(
-        {(max_width - 2 * margin - ruler_left) / span_u, (views_h - legend_gap - below_legend_h) / total_v, max_scale});
-    const bool legend_below = below > 1.15 * beside;
-    scale_ = legend_below ? below : beside;
-    double y = title_height;
+    const double n = static_cast<double>(views_.size());
+    double sum_v = 0, max_v = 0;
+    for (const View& view : views_) {
+      sum_v += view.bounds.hi.y - view.bounds.lo.y;
+      max_v = std::max(max_v, view.bounds.hi.y - view.bounds.lo.y);
+    }
+    struct Arrangement {
+      bool side_by_side, legend_below;
+      double scale;
+    };
+    std::optional<Arrangement> best;
+    for (const bool side : {false, true}) {
+      if (side && views_.size() < 2) continue;
+      for (const bool below : {false, true}) {
+        const double avail_w = max_width - 2 * margin - (side ? n : 1) * ruler_left - (side ? n - 1 : 0) * view_gap -
+                               (below ? 0 : legend_gap + column_width_);
+        const double avail_h = max_height - title_height - margin - (side ? 1 : n) * (caption_height + ruler_bottom) -
+                               (side ? 0 : n - 1) * view_gap - (below ? legend_gap + below_legend_h : 0);
+        const double scale = std::min({avail_w / (side ? n * span_u : span_u), avail_h / (side ? max_v : sum_v), max_scale});
+        if (!best || scale > 1.15 * best->scale) best = Arrangement{side, below, scale};
+      }
+    }
+    scale_ = best->scale;
+    double x = margin, y = title_height, views_right = 0, views_bottom = 0;
     for (View& view : views_) {
       view.scale = scale_;
-      view.origin_px = {margin + ruler_left, y + caption_height};
-      y = view.origin_px.y + view.height_px() + ruler_bottom + view_gap;
+      view.origin_px = {x + ruler_left, y + caption_height};
+      views_right = std::max(views_right, view.origin_px.x + view.width_px());
+      views_bottom = std::max(views_bottom, view.origin_px.y + view.height_px() + ruler_bottom);
+      if (best->side_by_side) {
+        x = view.origin_px.x + view.width_px() + view_gap;
+      } else {
+        y = view.origin_px.y + view.height_px() + ruler_bottom + view_gap;
+      }
     }
-    const double views_right = margin + ruler_left + views_.front().width_px();
-    if (legend_below) {
+    if (best->legend_below) {
       column_split_ = split;
       legend_left_ = margin + 8;
-      legend_top_ = y - view_gap + legend_gap / 2;
+      legend_top_ = views_bottom + legend_gap / 2;
       width_ = std::max(views_right, legend_left_ + 2 * column_width_) + margin;
       height_ = legend_top_ + below_legend_h + margin;
     } else {
@@ -352,7 +376,7 @@ class Plot {
       legend_left_ = views_right + legend_gap;
       legend_top_ = title_height;
       width_ = legend_left_ + column_width_ + margin;
-      height_ = std::max(y - view_gap + margin, title_height + legend_height(rows_.size()) + margin);
+      height_ = std::max(views_bottom + margin, title_height + legend_height(rows_.size()) + margin);
     }
   }
 

@@ -4,8 +4,9 @@
 // numbered workingstep starts, axes through the program origin with mm
 // rulers, a scale bar and a legend naming every tool and workingstep.
 //
-// Milling: the top view (XY) above a front view (XZ, seen from -Y) that
-// shares its X axis, as on a third-angle drawing. Turning: the XZ profile
+// Milling: the top view (XY) and a front view (XZ, seen from -Y) at one
+// scale and X range, stacked as on a third-angle drawing or side by side,
+// whichever draws larger. Turning: the XZ profile
 // (Z along the spindle axis, X = radius, upper half above the centre line),
 // the view a lathe programmer draws; a second view adds nothing there.
 // The picture is scaled to fit 1400 x 900 pixels (viewBox in pixels).
