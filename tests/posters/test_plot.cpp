@@ -21,19 +21,16 @@ using namespace stepnc::post;
 
 namespace {
 
-std::string xml_escaped(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+// The expected text, written independently of the writer: '&' first.
+std::string xml_escaped(std::string text) {
+  const std::pair<std::string, std::string> entities[] = {
+      {"&", "&amp;"}, {"<", "&lt;"}, {">", "&gt;"}, {"\"", "&quot;"}, {"'", "&apos;"}};
+  for (const auto& [from, to] : entities) {
+    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+      text.replace(at, from.size(), to);
     }
   }
-  return out;
+  return text;
 }
 
 // A small well-formedness check: tags nest and close, attribute values are
