@@ -6,8 +6,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
+#include <set>
 
 #include "stepnc/post/feature_geometry.h"
 #include "stepnc/post/motion.h"
@@ -21,7 +21,8 @@ using svg::number;
 
 // ------------------------------------------------------------ look --
 
-// One colour per tool, in tool-table order; red is kept for rapids.
+// One colour per tool, in tool-table order (a ninth tool repeats the
+// first); red is kept for rapids.
 constexpr std::array<std::string_view, 8> tool_colours = {"#1f5fbf", "#e07b00", "#2a9d3a", "#8e44ad",
                                                          "#8c564b", "#d6338a", "#0f9fb5", "#7f7f00"};
 constexpr std::string_view rapid_colour = "#d62728";
@@ -86,7 +87,6 @@ struct Box {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   }
-  bool empty() const { return lo.x > hi.x; }
   bool overlaps(const Box& o) const { return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y; }
 };
 
@@ -133,7 +133,7 @@ Motion collect_motion(const Program& program) {
   Motion motion;
   int tool = -1;
   bool have_position = false;  // the first move starts from LinuxCNC's assumed (0,0,0): not drawn
-  std::map<std::pair<std::int64_t, std::string>, bool> started;
+  std::set<std::pair<std::int64_t, std::string>> started;  // workingsteps by (#id, name)
   for (const Move& m : expand_motion(program)) {
     if (m.kind == Move::Kind::tool_change) {
       tool = -1;
@@ -160,8 +160,7 @@ Motion collect_motion(const Program& program) {
     if (rapid) continue;
     const std::uint32_t provenance = m.block < program.blocks.size() ? program.blocks[m.block].provenance : 0;
     const Source& ws = program.provenance[provenance].workingstep;
-    if ((ws.id != 0 || !ws.name.empty()) && !started[{ws.id, ws.name}]) {
-      started[{ws.id, ws.name}] = true;
+    if ((ws.id != 0 || !ws.name.empty()) && started.insert({ws.id, ws.name}).second) {
       motion.starts.push_back({ws, m.from, tool});
     }
     if (m.kind == Move::Kind::feed && program.machine == MachineKind::milling && m.to.z < m.from.z &&
