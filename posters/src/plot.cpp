@@ -6,8 +6,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include "stepnc/post/feature_geometry.h"
 #include "stepnc/post/motion.h"
@@ -241,6 +243,50 @@ std::vector<View> turning_views(const MachiningProject& project) {
   return {profile};
 }
 
+// The parts of a segment (px) not drawn before. Horizontal and vertical
+// segments (most rapids in a view) subtract what overlaps on their line;
+// others are dropped only when the same segment was drawn.
+class RapidCoverage {
+ public:
+  std::vector<std::pair<Vec2, Vec2>> add(Vec2 a, Vec2 b) {
+    const bool horizontal = std::abs(a.y - b.y) < 0.05, vertical = std::abs(a.x - b.x) < 0.05;
+    if (horizontal == vertical) {  // sloped, or a point
+      if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);
+      if (!sloped_.insert({key(a.x), key(a.y), key(b.x), key(b.y)}).second) return {};
+      return {{a, b}};
+    }
+    // Along the line: from u0 to u1 at v.
+    const double v = horizontal ? a.y : a.x;
+    double u0 = horizontal ? a.x : a.y, u1 = horizontal ? b.x : b.y;
+    if (u0 > u1) std::swap(u0, u1);
+    std::vector<std::pair<double, double>>& covered = lines_[{horizontal, key(v)}];
+    std::vector<std::pair<double, double>> pieces{{u0, u1}};
+    for (const auto& [c0, c1] : covered) {
+      std::vector<std::pair<double, double>> left;
+      for (const auto& [p0, p1] : pieces) {
+        if (c1 <= p0 || c0 >= p1) {
+          left.push_back({p0, p1});
+          continue;
+        }
+        if (p0 < c0 - 0.05) left.push_back({p0, c0});
+        if (c1 < p1 - 0.05) left.push_back({c1, p1});
+      }
+      pieces = std::move(left);
+    }
+    covered.push_back({u0, u1});
+    std::vector<std::pair<Vec2, Vec2>> out;
+    for (const auto& [p0, p1] : pieces) {
+      out.push_back(horizontal ? std::pair{Vec2{p0, v}, Vec2{p1, v}} : std::pair{Vec2{v, p0}, Vec2{v, p1}});
+    }
+    return out;
+  }
+
+ private:
+  static long key(double px) { return std::lround(px * 10); }
+  std::set<std::array<long, 4>> sloped_;
+  std::map<std::pair<bool, long>, std::vector<std::pair<double, double>>> lines_;
+};
+
 // Cutting width a feed move sweeps (see PlotOptions::envelope).
 double cutting_width(const Tool& tool) {
   if (tool.kind == ToolKind::grooving_insert) return tool.cutting_width;
@@ -414,15 +460,22 @@ class Plot {
     std::vector<const Stroke*> order;
     for (const Stroke& s : motion_.strokes) order.push_back(&s);
     std::stable_partition(order.begin(), order.end(), [](const Stroke* s) { return s->rapid; });
+    // Every stretch of rapid drawn once: a retract back along the approach
+    // would fill the dashes' gaps and look like a feed.
+    RapidCoverage drawn;
     for (const Stroke* stroke : order) {
       const Stroke& s = *stroke;
       if (s.points.size() < 2) continue;
       std::vector<Vec2> points;
       for (const Vec3 p : s.points) points.push_back(view.px(p));
       if (s.rapid) {
-        out.element("polyline", {{"class", "rapid"}, {"points", svg::points(points)}, {"fill", "none"},
-                                 {"stroke", std::string(rapid_colour)}, {"stroke-width", number(rapid_width)},
-                                 {"stroke-dasharray", std::string(rapid_dashes)}});
+        for (std::size_t i = 1; i < points.size(); ++i) {
+          for (const auto& [a, b] : drawn.add(points[i - 1], points[i])) {
+            out.element("polyline", {{"class", "rapid"}, {"points", svg::points({a, b})}, {"fill", "none"},
+                                     {"stroke", std::string(rapid_colour)}, {"stroke-width", number(rapid_width)},
+                                     {"stroke-dasharray", std::string(rapid_dashes)}});
+          }
+        }
       } else {
         out.element("polyline", {{"class", "feed"}, {"data-tool", tool_label(s.tool)}, {"points", svg::points(points)},
                                  {"fill", "none"}, {"stroke", colour_of(s.tool)}, {"stroke-width", number(feed_width)},

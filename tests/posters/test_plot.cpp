@@ -134,9 +134,11 @@ void check_plot(const MachiningProject& project) {
   CHECK(tools_drawn.size() == program.tools.size());
 
   // Rapids: dashed, thinner, in the rapid colour, never a tool's.
-  const auto rapids = all(svg, R"re(<polyline class="rapid"[^>]*/>)re");
+  const auto rapids = all(svg, R"re(<polyline class="rapid" points="([^"]*)"[^>]*/>)re");
   REQUIRE_FALSE(rapids.empty());
+  std::set<std::string> rapid_points;  // each stretch once, or the dashes fill in
   for (const auto& rapid : rapids) {
+    CHECK(rapid_points.insert(rapid[1]).second);
     CHECK_THAT(rapid.str(), Catch::Contains("stroke-dasharray=\"6,4\""));
     CHECK_THAT(rapid.str(), Catch::Contains("stroke-width=\"0.8\""));
     for (const std::string& c : colours) CHECK_THAT(rapid.str(), !Catch::Contains(c));
