@@ -13,6 +13,7 @@ packages=(
   python3                             # benchmark input generator
   clang libclang-rt-14-dev            # libFuzzer and sanitizers for the reader
   linuxcnc-uspace                     # LinuxCNC's rs274 interpreter checks posted programs
+  libxml2-utils librsvg2-bin          # xmllint and rsvg-convert check that every plot is valid SVG
 )
 
 missing=()

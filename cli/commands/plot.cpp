@@ -1,5 +1,5 @@
-// stepnc plot FILE -o OUT.svg: draw the workpiece, the features and the
-// toolpaths (XY for milling, XZ for turning; rapids and feeds differ).
+// stepnc plot FILE -o OUT.svg [--envelope]: draw the workpiece, the features
+// and the toolpaths (milling: top and front view; turning: XZ profile).
 #include "command.h"
 #include "posting.h"
 #include "stepnc/post/plot.h"
@@ -10,12 +10,13 @@ namespace {
 struct PlotOptions {
   std::string file;
   std::string output;
+  bool envelope = false;
 };
 
 int run_plot(const PlotOptions& options) {
   const std::optional<PostedProject> posted = post_file(options.file);
   if (!posted) return exit_invalid_input;
-  return write_output(options.output, post::plot_svg(posted->project, posted->program)) ? exit_ok : exit_failure;
+  return write_output(options.output, post::plot_svg(posted->project, posted->program, {options.envelope})) ? exit_ok : exit_failure;
 }
 
 }  // namespace
@@ -25,6 +26,7 @@ void add_plot_command(CLI::App& app, Action& action) {
   CLI::App* command = app.add_subcommand("plot", "Draw the workpiece, features and toolpaths as SVG");
   command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
   command->add_option("-o,--output", options->output, "Output SVG file")->required();
+  command->add_flag("--envelope", options->envelope, "Also draw the cutter envelope: feed moves swept by the cutting width");
   command->callback([&action, options] { action = [options] { return run_plot(*options); }; });
 }
 

@@ -3,7 +3,6 @@
 #include "projects.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/generate.h"
-#include "stepnc/post/plot.h"
 
 using namespace stepnc::post;
 
@@ -119,17 +118,6 @@ TEST_CASE("numbers: fixed decimals, trimmed, no negative zero") {
   const std::string fanuc = posted(project, Dialect::fanuc);
   CHECK(has_line(fanuc, "G0 X1.235 Y7. Z20."));
   CHECK(has_line(fanuc, "X10. Y0."));
-}
-
-TEST_CASE("the SVG plot draws workpiece, features, feeds and rapids") {
-  const auto project = testing::example1();
-  const auto result = generate(project);
-  const std::string svg = plot_svg(project, result.program);
-  CHECK(svg.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0) == 0);
-  CHECK(svg.find("stroke-dasharray") != std::string::npos);  // rapids
-  CHECK(svg.find("#1f4fd1") != std::string::npos);           // feeds
-  CHECK(svg.find("#2a9d2a") != std::string::npos);           // feature outlines
-  CHECK(svg.find("<title>EXECUTE EXAMPLE1</title>") != std::string::npos);
 }
 
 TEST_CASE("helices: a turn count where the dialect has one, one block per turn on Fanuc") {
