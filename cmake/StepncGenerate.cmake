@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # stepnc_generate(): compile EXPRESS schemas into a C++ library of typed
 # bindings with stepnc::meta reflection, the way protobuf_generate() turns
 # .proto files into code.

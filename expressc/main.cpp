@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc: compile EXPRESS schemas, report every error, run generators.
 //
 //   expressc [--dump-json FILE|-] [--summary] [--<generator>-out DIR]... SCHEMA.exp...

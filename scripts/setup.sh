@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages stepnc builds and tests with. Safe to run again:
 # it asks apt only for what is missing, so a ready machine costs no network.
 set -euo pipefail

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Dialect printers over the program IR, and the traceability sidecar.
 #pragma once
 

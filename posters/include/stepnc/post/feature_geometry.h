@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Where a milling feature lies in the XY plane (setup coordinates): for
 // plots and for checking posted motion against the features.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // From a machining description to the program IR: executable order, tool
 // changes, technology, machine functions and toolpaths, shared by every
 // dialect.

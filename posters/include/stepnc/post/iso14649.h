@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The adapter from the typed ISO 14649 model (generated/) to the machining
 // description the posters work from. It converts units (m/s, rev/s to
 // mm/min, rev/min), resolves placements, and reports every entity it does

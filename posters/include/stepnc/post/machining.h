@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The machining description the posters work from: plain C++ values, no
 // schema types. An adapter fills it from the typed ISO 14649 model (or a test
 // builds it by hand); everything after that is shared by every dialect.

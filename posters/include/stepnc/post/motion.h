@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The machine motion a program commands, with canned cycles and feature
 // cycles expanded the way LinuxCNC's interpreter expands them. The
 // canonical printer, the SVG plotter and the test simulations read this.

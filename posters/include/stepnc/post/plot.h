@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An SVG picture of a posted program: workpiece, features and toolpaths in
 // the XY plane (milling) or XZ plane (turning); rapids dashed, feeds solid.
 #pragma once

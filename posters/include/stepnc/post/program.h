@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The program IR: what every dialect printer reads. One block per NC
 // statement, each tagged with the workingstep/operation/feature it came from.
 //

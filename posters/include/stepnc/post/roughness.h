@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Theoretical surface roughness of a turned surface (seed 001 4.2,
 // eqs. 1-3): the height of the residual ridge a tool of nose radius r,
 // major and minor cutting edge angles K_r and K'_r leaves at feed f.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A Part 21 file read into the typed model, and written back.
 //
 // Reading composes the two lower layers: every record of the Part 21 file

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Text conversion for generated ENUMERATION types. Each generated
 // `enum class` comes with a `meta_type(E)` function (found by argument
 // dependent lookup) returning its TypeInfo; the item names live there.

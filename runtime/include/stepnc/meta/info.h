@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The metaclass tables: what generated code tells generic code about a
 // schema. Every table is a constant emitted by expressc (constant
 // initialised, so there is no start-up cost and no initialisation order

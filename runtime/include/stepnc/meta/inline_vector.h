@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // InlineVector: a vector with a small fixed capacity stored in place.
 // Generated code uses it for aggregates whose upper bound is small, e.g.
 // `coordinates : LIST [1:3] OF length_measure`, so a cartesian point holds

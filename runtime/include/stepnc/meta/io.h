@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Part 21 input and output of typed instances, generic through the
 // metaclass tables.
 //

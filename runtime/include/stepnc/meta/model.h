@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Model: owns the instances of one population (a Part 21 DATA section or a
 // project built in code). Instances are carved from large arena blocks,
 // not allocated one by one, and destroyed together with the model.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Registry: finds entities and named types by name across the schemas a
 // program links, case-insensitively (Part 21 writes names in upper case).
 //

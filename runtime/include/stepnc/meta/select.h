@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Select: the storage shared by every generated SELECT class.
 //
 // A SELECT value is empty, an entity instance, or a value of one of the

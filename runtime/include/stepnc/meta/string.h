@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Value types of the typed model that the standard library lacks in a
 // frugal form: an 8-byte string and the Part 21 BINARY value.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Checking a model built in code against the schema rules that its C++
 // types cannot enforce, through reflection (the same rules the typed
 // reader checks in a file):

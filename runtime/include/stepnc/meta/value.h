@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Generic access to attribute values through the metaclass tables, with
 // no schema-specific code: what the reader, the writer, the dump, queries
 // and validation use.

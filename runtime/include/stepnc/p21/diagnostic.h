@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Errors as values for the Part 21 layer: a position, an optional instance
 // id, and a message. The library never prints; callers format with
 // Diagnostic::to_string() ("file:line:col: error: #id: message").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A Part 21 (ISO 10303-21, 3rd edition) exchange structure read into
 // memory: the file buffer, the header, the sections, and a compact index
 // of instance records (`#id` -> byte range + entity name). Parameters are

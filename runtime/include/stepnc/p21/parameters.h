@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The parameters of one Part 21 record, parsed on demand into a small,
 // reusable flat tree (no allocation per value once the tree has grown).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming Part 21 reading: the file is read in chunks and every record
 // is handed to a handler as soon as it is complete, so memory stays
 // bounded by the chunk size (and the longest record), not the file size.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Conversions between Part 21 token spellings and C++ values:
 // strings (escapes <-> UTF-8), reals (shortest round-trip form) and integers.
 #pragma once

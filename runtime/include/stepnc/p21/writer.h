@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writing Part 21: a token-level Writer, atomic file output, and the
 // schema-independent round trip of a Document.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Path queries over a typed model, built on reflection only (seed 000's
 // STEPNC++ Query, XPath-like):
 //

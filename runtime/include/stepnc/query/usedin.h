@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Inverse lookup (EXPRESS USEDIN): which instances refer to a given one,
 // and through which attribute. References are found through reflection,
 // inside aggregates and SELECT values too; the index is built once per
