@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Where a milling feature lies in the XY plane (setup coordinates): for
-// plots and for checking posted motion against the features.
+/// @file
+/// Where a milling feature lies in the XY plane (setup coordinates): for
+/// plots and for checking posted motion against the features.
 #pragma once
 
 #include <vector>
@@ -9,11 +10,11 @@
 
 namespace stepnc::post {
 
-// Negative inside the feature's XY outline, positive outside (huge for
-// features without one, e.g. turning features).
+/// Negative inside the feature's XY outline, positive outside (huge for
+/// features without one, e.g. turning features).
 double feature_signed_distance(const Feature& feature, Vec2 global);
 
-// The outline as a closed polyline (arcs sampled every 5 degrees).
+/// The outline as a closed polyline (arcs sampled every 5 degrees).
 std::vector<Vec2> feature_outline(const Feature& feature);
 
 }  // namespace stepnc::post
