@@ -11,9 +11,11 @@ packages=(
   catch2                              # unit tests (v2, header-only)
   libcli11-dev                        # command-line parsing for expressc and stepnc
   nlohmann-json3-dev                  # JSON model dump and its tests
-  python3                             # benchmark input generator
+  python3                             # benchmark input generator, the tutorial test runner
   clang libclang-rt-14-dev            # libFuzzer and sanitizers for the reader
   linuxcnc-uspace                     # LinuxCNC's rs274 interpreter checks posted programs
+  doxygen                             # the API reference of the public headers (doxygen target, tested)
+  pkgconf                             # pkg-config, to test the installed stepnc.pc
 )
 
 missing=()
