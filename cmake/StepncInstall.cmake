@@ -31,6 +31,9 @@ function(stepnc_install)
     target_include_directories(${ARG_TARGET} INTERFACE $<INSTALL_INTERFACE:${include_dir}>)
     if(NOT type STREQUAL "INTERFACE_LIBRARY")
       set_property(GLOBAL APPEND PROPERTY STEPNC_INSTALLED_LIBRARIES ${ARG_TARGET})
+      # Shared libraries: 0.x minors may break the ABI, so the soname has both.
+      set_target_properties(${ARG_TARGET} PROPERTIES VERSION "${PROJECT_VERSION}"
+        SOVERSION "${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}")
     endif()
   endif()
   install(TARGETS ${ARG_TARGET} EXPORT stepncTargets
