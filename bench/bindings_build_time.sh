@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Build time of the generated ISO 14649 bindings (generated/), Release, -j2,
 # without ccache. The runtime library is timed the same way as the baseline
 # of the same run. Wall time depends on what else the machine runs; CPU

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc compile speed: the standard part of the reference ISO 14649
 // schema (../shared/reference/iso14649-combined.exp, lines 1-5191, closed
 // with END_SCHEMA), parsed, resolved and checked in memory.

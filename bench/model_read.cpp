@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Full typed read of the 64 MB benchmark file: parse every record, create
 // every typed instance, bind every reference; then write it back, to a
 // file and to memory.

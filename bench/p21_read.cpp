@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Part 21 reader and writer throughput on the 64 MB benchmark file.
 //
 //   p21_read_bench [FILE.stp]

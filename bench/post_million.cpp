@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Posting a project whose explicit toolpath has one million points: build
 // the IR (generate) and print it as RS274NGC and 840D, against a baseline
 // measured in the same run: formatting the same number of "G1 X Y Z"

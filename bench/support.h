@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared helpers of the benchmarks: timing, peak memory, the big input
 // file, and the trivial baseline every figure is compared with.
 #pragma once

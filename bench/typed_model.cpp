@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The typed instance model in numbers: the size of typed instances, the
 // memory per instance when a million of them live in a Model (the shape of
 // ../shared/bench/gen_big_p21.py: cartesian points in polylines), and the

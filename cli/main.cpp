@@ -2,11 +2,12 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "stepnc/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"stepnc: inspect, check, rewrite and post ISO 14649 (STEP-NC) Part 21 files"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "stepnc 0.1.0");
+  app.set_version_flag("--version", "stepnc " STEPNC_VERSION);
 
   stepnc::cli::Action action;
   stepnc::cli::add_info_command(app, action);

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # stepnc_generate(): compile EXPRESS schemas into a C++ library of typed
 # bindings with stepnc::meta reflection, the way protobuf_generate() turns
 # .proto files into code.
@@ -26,6 +27,17 @@ function(stepnc_generate)
     set(ARG_OUT_DIR "${CMAKE_CURRENT_BINARY_DIR}/${ARG_TARGET}")
   endif()
 
+  # In the stepnc build stepnc::expressc is an alias of the expressc target;
+  # after find_package(stepnc) it is the installed (imported) compiler.
+  if(NOT TARGET stepnc::expressc)
+    message(FATAL_ERROR "stepnc_generate: stepnc::expressc is missing: configure stepnc with "
+                        "STEPNC_BUILD_EXPRESSC=ON, or find_package(stepnc) from a prefix that has it")
+  endif()
+  get_target_property(compiler stepnc::expressc ALIASED_TARGET)
+  if(NOT compiler)
+    set(compiler "$<TARGET_FILE:stepnc::expressc>")
+  endif()
+
   set(schemas "")
   set(outputs "")
   foreach(schema IN LISTS ARG_SCHEMAS)
@@ -41,9 +53,9 @@ function(stepnc_generate)
   add_custom_command(
     OUTPUT "${stamp}"
     BYPRODUCTS ${outputs}
-    COMMAND expressc --cpp-out "${ARG_OUT_DIR}" ${schemas}
+    COMMAND "$<TARGET_FILE:stepnc::expressc>" --cpp-out "${ARG_OUT_DIR}" ${schemas}
     COMMAND "${CMAKE_COMMAND}" -E touch "${stamp}"
-    DEPENDS expressc ${schemas}
+    DEPENDS "${compiler}" ${schemas}
     COMMENT "expressc: C++ bindings for ${ARG_TARGET}"
     VERBATIM)
 

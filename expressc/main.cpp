@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc: compile EXPRESS schemas, report every error, run generators.
 //
 //   expressc [--dump-json FILE|-] [--summary] [--<generator>-out DIR]... SCHEMA.exp...
@@ -16,6 +17,7 @@
 #include "emit/output.h"
 #include "emit/registry.h"
 #include "model/model.h"
+#include "stepnc/version.h"
 
 namespace {
 
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   app.add_option("--dump-json", dump_json, "write the resolved model as JSON to FILE ('-' for stdout)")
       ->option_text("FILE|-");
   app.add_flag("--summary", summary, "print per-schema counts");
+  app.set_version_flag("--version", "expressc " STEPNC_VERSION);
 
   const auto generators = expressc::emit::all_generators();
   std::map<std::string, std::filesystem::path> out_dirs;  // generator name -> directory
@@ -54,6 +57,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    return app.exit(version);
   } catch (const CLI::ParseError& error) {
     app.exit(error);
     return exit_usage;

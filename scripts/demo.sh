@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Set up, build in Release, and run the main job on a shipped input: post
 # ISO 14649-11 Example 1 (samples/milling/example1.stp) to a Siemens 840D
 # program with feature cycles, and print it.

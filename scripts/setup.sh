@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs the Debian packages stepnc builds and tests with. Safe to run again:
 # it asks apt only for what is missing, so a ready machine costs no network.
 set -euo pipefail
@@ -10,10 +11,12 @@ packages=(
   catch2                              # unit tests (v2, header-only)
   libcli11-dev                        # command-line parsing for expressc and stepnc
   nlohmann-json3-dev                  # JSON model dump and its tests
-  python3                             # benchmark input generator
+  python3                             # benchmark input generator, the tutorial test runner
   clang libclang-rt-14-dev            # libFuzzer and sanitizers for the reader
   linuxcnc-uspace                     # LinuxCNC's rs274 interpreter checks posted programs
   libxml2-utils librsvg2-bin          # xmllint and rsvg-convert check that every plot is valid SVG
+  doxygen                             # the API reference of the public headers (doxygen target, tested)
+  pkgconf                             # pkg-config, to test the installed stepnc.pc
 )
 
 missing=()

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Set up, build everything, and run the whole test suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."

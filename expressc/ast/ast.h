@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc/ast: the syntax tree of EXPRESS sources, owned by expressc.
 //
 // The parser layer (expressc/parser) builds it from the ANTLR parse tree,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc/emit: one generator per output kind, all reading the same model
 // (the shape of protobuf's CodeGenerator).
 #pragma once

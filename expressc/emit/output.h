@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Writing generated files: all or nothing.
 #pragma once
 

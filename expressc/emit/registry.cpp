@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "emit/registry.h"
 
 #include "emit/cpp/cpp_generator.h"

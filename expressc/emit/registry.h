@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The list of generators expressc offers; main.cpp maps each to a
 // `--<name>-out DIR` option.
 #pragma once

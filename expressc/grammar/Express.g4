@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // EXPRESS (ISO 10303-11:2004), syntax only.
 //
 // The grammar follows the syntax of the standard's annex A, with one

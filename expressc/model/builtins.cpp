@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The built-in constants, functions and procedures of ISO 10303-11 (clause 14-16).
 #include <algorithm>
 #include <array>

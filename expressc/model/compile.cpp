@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The compiler driver: parse every source, resolve, sort the diagnostics.
 #include <algorithm>
 #include <fstream>

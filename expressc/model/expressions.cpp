@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Binds and checks the names used in expressions and statements.
 //
 // Scopes, innermost first: QUERY, ALIAS and REPEAT variables; locals,

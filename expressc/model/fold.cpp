@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Integer constant folding for aggregate bounds and string widths.
 #include "model/resolver.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc/model: the resolved schema model, the one IR every emitter reads.
 //
 // The parser layer builds a syntax tree (expressc/ast); the resolver turns it

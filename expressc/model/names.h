@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Case-insensitive name handling shared by the resolver and the model.
 // EXPRESS identifiers are ASCII letters, digits and underscores, so lowering
 // ASCII is enough.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The resolver: syntax trees in, resolved model out.
 //
 // It runs in passes over all schemas of a run, so that every name can refer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Internal to expressc_core: the resolver that turns syntax trees into the
 // model (model.h), and the pieces it shares with the expression checker.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds the expressc syntax tree from the ANTLR parse tree.
 //
 // Parsing runs in two stages (the usual ANTLR recipe): first with SLL

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc/parser: EXPRESS text to syntax tree.
 //
 // The only part of expressc that sees ANTLR. Syntax errors come back as

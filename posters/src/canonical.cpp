@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The NIST RS274NGC canonical machining functions, one per line, in the
 // form LinuxCNC's `rs274 -g` prints them: "   12 N..... NAME(args)" with
 // four decimals. Canned cycles are expanded as LinuxCNC expands them.

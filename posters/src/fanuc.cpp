@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Fanuc 0i style, mill (G17, G94, canned cycles G81-G86) and lathe (G18,
 // diameter X, G99 feed per revolution, G96/G50 constant surface speed,
 // G71 stock removal where the roughing depth is constant).

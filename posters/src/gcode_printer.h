@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What the G-code dialects share: lines, block numbers, traceability,
 // number formatting, modal motion words. Each dialect derives and prints
 // the statements it writes differently.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // 2D shapes the toolpath generator offsets and clips, in a feature's local
 // frame. Internal to the posters.
 #pragma once

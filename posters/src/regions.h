@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The XY region a milling feature occupies, as a shape the generator can
 // offset, in the feature's local frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // LinuxCNC (RS274NGC) for mills and lathes. Canned cycles run in G99 mode
 // (retract to R); the generator follows each with a rapid to the retract
 // plane, so G98/G99 never changes the motion.

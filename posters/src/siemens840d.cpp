@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Siemens SINUMERIK 840D: tool data in $TC_DP, CYCLE832 with the model's
 // tolerance, feature cycles (POCKET1/2, CYCLE71, SLOT1; parameters mapped
 // per seed 000 Table 1 in siemens_cycles.cpp) and drilling cycles

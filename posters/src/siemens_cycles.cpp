@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Siemens 840D feature cycles. The parameter lists follow the 840D cycles
 // manual of the seed 000 era (Programming Guide Cycles, 840D powerline,
 // cycles SW 6); the public source that confirms each list is cited at its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Siemens 840D feature cycles (POCKET1, POCKET2, CYCLE71, SLOT1) filled from
 // the machining description, following seed 000 Table 1.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds ISO 14649-11 Example 1 in code and writes it as Part 21.
 //
 //   example1 OUT.stp

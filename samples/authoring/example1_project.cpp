@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "example1_project.h"
 
 #include "geometry.h"

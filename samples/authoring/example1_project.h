@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ISO 14649-11 Example 1 built entirely in code: a workpiece with a planar
 // face, a round hole and a closed pocket, their five workingsteps, the
 // tools, technology and machine functions, and the main workplan.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Helpers for the geometry and tolerances every STEP-NC project repeats:
 // named points, directions, placements, planes and toleranced lengths.
 // An id of 0 lets the model number the instance.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Builds a turning project (ISO 14649-12 with ISO 14649-121 tools) in code
 // and writes it as Part 21.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A program using bindings that stepnc_generate() made from its own schema
 // (fixture_schema.exp): build a fixture with typed code, list it through
 // reflection, and print it as Part 21.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The expressc command line: exit codes, diagnostics on stderr in
 // file:line:col form, deterministic JSON, atomic output.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The bad corpus: each schema in corpus/bad/ lists the diagnostics it must
 // produce in `--! line:col: message` tail remarks (invisible to the
 // compiler), and compiling it must produce exactly those, in that order.

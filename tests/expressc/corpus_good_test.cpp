@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The good corpus: small schemas that exercise every construct of
 // ISO 10303-11, each checked for what the compiler understood.
 #include <functional>

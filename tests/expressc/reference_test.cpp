@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The reference ISO 14649 schema (../shared/reference/iso14649-combined.exp):
 // its standard part compiles with the expected counts and Part 21 attribute
 // orders; the whole file, with its invalid appendix, is rejected with exactly

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Hostile and unusual input: the compiler answers with a diagnostic, never
 // a crash, a hang or a stack overflow.
 #include <catch2/catch.hpp>

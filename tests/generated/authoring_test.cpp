@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The authoring samples: projects built in typed C++ and written as Part 21.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Compiled by ctest only (-fsyntax-only): every attribute is typed, so
 // linking a tool where a feature is expected, or text where a length is
 // expected, is a compile error. See CMakeLists.txt for the variants.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C++ emitter on small schemas compiled from text: the inheritance
 // mechanism it picks, complex (ANDOR) combinations, names that clash with
 // C++, and what it refuses to emit.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The typed instance model: creating, linking and editing instances with
 // plain members, selects, enumerations, and the memory each one takes.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Part 21 through reflection: writing typed instances (simple and complex),
 // filling them from parsed records with every problem reported, the
 // generic dump, and a write -> read -> write round trip.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reflection over the generated ISO 14649 bindings: every table agrees
 // with the expressc model it was generated from, and the hierarchies can be
 // walked and instantiated by name.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // generated/ must be exactly what expressc makes from schemas/ today:
 // regenerate into a temporary directory and compare byte for byte. When
 // this fails, run `cmake --build <build> --target regenerate` and commit.

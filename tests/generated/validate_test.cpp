@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // meta::validate: the schema rules a model built in code can still break.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The malformed corpus: every file in tests/p21/malformed/*.stp has a
 // NAME.expected holding the diagnostics of a lenient read, one per line
 // (file:line:col: error: #id: message). A strict read must fail with the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reals and integers: shortest round-trip writing and exact reading.
 #include <catch2/catch.hpp>
 

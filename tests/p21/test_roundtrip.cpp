@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The schema-independent round trip and its preservation policy
 // (documented in stepnc/p21/writer.h).
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Streaming reads: same records and positions as the in-memory reader,
 // whatever the chunk size.
 #include <catch2/catch.hpp>

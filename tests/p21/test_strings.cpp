@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // String escapes: decoding to UTF-8 and encoding back.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every ISO 10303-21 syntax feature, read with asserted values.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The token-level Writer and atomic file output.
 #include <catch2/catch.hpp>
 

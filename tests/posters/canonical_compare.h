@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading canonical machining function listings (ours and `rs274 -g`'s)
 // into comparable moves.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Machining descriptions the posters tests run on, built the way the
 // typed-model adapter will fill them from Part 21 files.
 #pragma once

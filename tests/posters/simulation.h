@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Simple material-removal simulations of posted motion, for tests:
 // a 2.5D height map for milling (flat-bottomed cylindrical tools), and a
 // radius-per-z profile for turning (a point tool; grooving inserts cut

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Golden programs. To refresh after an intended change:
 //   STEPNC_UPDATE_GOLDEN=1 ctest -R posters_golden_tests
 // and review the diff of tests/posters/golden/ like any other code change.

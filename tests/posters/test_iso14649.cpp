@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The adapter: samples/milling/example1.stp read into the typed model,
 // described, and posted.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every rs274ngc program the tests post runs through LinuxCNC's standalone
 // interpreter (`rs274 -g`); it must run without error, and its canonical
 // machining calls must match our `canonical` printer move by move within

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Part 21 samples in samples/ against the schemas in schemas/, read
 // through the typed bindings (generated/ is checked to be fresh against
 // schemas/ by the generated tests), so one set of conformance rules serves

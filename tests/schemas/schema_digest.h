@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A schema-independent summary of the declarations in an expressc model,
 // and the comparison of two summaries.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The project's ISO 14649 schemas (schemas/*.exp) against the reference
 // merge of the standard (../shared/reference/iso14649-combined.exp, lines
 // 1-5191; the rest is a non-standard appendix).

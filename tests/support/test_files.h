@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // File helpers every test room shares (built into stepnc_catch_main).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Facts about the whole schema set that the C++ emitter needs before it
 // prints a class: which supertypes are shared in a diamond (and so become
 // virtual bases), and which complex (ANDOR) combinations get a class.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The C++ emitter: typed classes with metaclass tables (stepnc::meta),
 // one header and one source per schema, named after the schema
 // (`machining_schema.h`, `machining_schema.cc`), in a namespace named

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Translating DERIVE expressions into C++ method bodies.
 //
 // Only what can be translated exactly is: INTEGER results built from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // C++ names for EXPRESS identifiers: the EXPRESS spelling, with a trailing
 // underscore where it would clash with C++ or with the runtime.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Printer: writes generated code from templates with `$name$` variables
 // and automatic indentation (the shape of protobuf's io/printer.h).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 #include "emit/json/json_generator.h"
 
 #include <fmt/format.h>

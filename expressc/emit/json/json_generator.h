@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // expressc/emit/json: a JSON dump of the resolved model, for tests, tools
 // and reviewers. Stable and deterministic: keys in a fixed order,
 // declarations in source order, no addresses, no absolute paths.

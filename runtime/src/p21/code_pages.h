@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Upper halves (0xA0..0xFF) of ISO 8859-2 to -9, the code pages Part 21
 // selects with \PB\ .. \PI\ for the \S\ escape. 0 marks an undefined byte.
 // Produced from Python's iso8859_N codecs; not edited by hand.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Character classes and the whitespace/comment skipper shared by the
 // scanner, the parameter parser and the normaliser (internal header).
 #pragma once

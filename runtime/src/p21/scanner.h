@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one Part 21 structure scanner behind read_file() and stream_file()
 // (internal header). It splits the exchange structure into statements
 // (everything up to a ';' outside strings and comments), checks their

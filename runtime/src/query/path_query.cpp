@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Path queries: a small parser for the path text, then an evaluator that
 // maps a node sequence step by step through the metaclass tables.
 #include "stepnc/query/path_query.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer entry point for the Part 21 reader (see p21_fuzz_body.h).
 #include <cstddef>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One fuzz iteration over the Part 21 reader, shared by the libFuzzer
 // target and the corpus replay test.
 #pragma once

@@ -1,5 +1,7 @@
-// Where a milling feature lies in the XY plane (setup coordinates): for
-// plots and for checking posted motion against the features.
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Where a milling feature lies in the XY plane (setup coordinates): for
+/// plots and for checking posted motion against the features.
 #pragma once
 
 #include <vector>
@@ -8,11 +10,11 @@
 
 namespace stepnc::post {
 
-// Negative inside the feature's XY outline, positive outside (huge for
-// features without one, e.g. turning features).
+/// Negative inside the feature's XY outline, positive outside (huge for
+/// features without one, e.g. turning features).
 double feature_signed_distance(const Feature& feature, Vec2 global);
 
-// The outline as a closed polyline (arcs sampled every 5 degrees).
+/// The outline as a closed polyline (arcs sampled every 5 degrees).
 std::vector<Vec2> feature_outline(const Feature& feature);
 
 }  // namespace stepnc::post

@@ -1,6 +1,8 @@
-// From a machining description to the program IR: executable order, tool
-// changes, technology, machine functions and toolpaths, shared by every
-// dialect.
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// From a machining description to the program IR: executable order, tool
+/// changes, technology, machine functions and toolpaths, shared by every
+/// dialect.
 #pragma once
 
 #include <string>
@@ -11,35 +13,38 @@
 
 namespace stepnc::post {
 
-// A problem found while posting, naming the instance it is about.
+/// A problem found while posting, naming the instance it is about.
 struct Diagnostic {
+  /// Errors stop posting; warnings do not.
   enum class Severity { error, warning };
-  Severity severity = Severity::error;
-  Source where;        // #id + name of the offending instance
-  std::string message;
+  Severity severity = Severity::error;  ///< error or warning
+  Source where;        ///< `#id` + name of the offending instance
+  std::string message;  ///< what is wrong
 
-  std::string to_string() const;  // "#34 'ROUGH POCKET1': error: ..."
+  std::string to_string() const;  ///< "`#34` 'ROUGH POCKET1': error: ..."
 };
 
+/// Distances generate() keeps, in mm.
 struct GenerateOptions {
-  double safety_distance = 2;   // above the feature top where feeding starts (seed 000: 2 mm)
-  double approach_clearance = 1; // beyond open edges / stock when entering
+  double safety_distance = 2;   ///< above the feature top where feeding starts (seed 000: 2 mm)
+  double approach_clearance = 1; ///< beyond open edges / stock when entering
 };
 
+/// A program, and the problems found making it.
 struct GenerateResult {
-  Program program;
-  std::vector<Diagnostic> diagnostics;
+  Program program;  ///< the program IR
+  std::vector<Diagnostic> diagnostics;  ///< errors and warnings, naming instances
 
-  // True when no diagnostic is an error. A program with errors must not be
-  // printed: the posters never write a silently wrong program.
+  /// True when no diagnostic is an error. A program with errors must not be
+  /// printed: the posters never write a silently wrong program.
   bool ok() const;
 };
 
-// Executable order (documented rule):
-//  - workplan and non_sequential: children in listed order;
-//  - parallel: branches one after the other in listed order (one channel);
-//  - selective: the first alternative; a comment names the ones skipped;
-//  - if/while and other control structures: an error diagnostic.
+/// Executable order (documented rule):
+///  - workplan and non_sequential: children in listed order;
+///  - parallel: branches one after the other in listed order (one channel);
+///  - selective: the first alternative; a comment names the ones skipped;
+///  - if/while and other control structures: an error diagnostic.
 GenerateResult generate(const MachiningProject& project, const GenerateOptions& options = {});
 
 }  // namespace stepnc::post

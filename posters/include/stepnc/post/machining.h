@@ -1,12 +1,14 @@
-// The machining description the posters work from: plain C++ values, no
-// schema types. An adapter fills it from the typed ISO 14649 model (or a test
-// builds it by hand); everything after that is shared by every dialect.
-//
-// Units are the NC units, not the schema's: mm, mm/min (milling feed),
-// mm/rev (turning feed), rev/min, m/min (cutting speed), s, degrees. The
-// adapter converts (ISO 14649 gives m/s and rev/s). Spindle speeds keep the
-// ISO 14649 sign: negative = clockwise seen from the spindle (M3),
-// positive = counter-clockwise (M4).
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// The machining description the posters work from: plain C++ values, no
+/// schema types. An adapter fills it from the typed ISO 14649 model (or a test
+/// builds it by hand); everything after that is shared by every dialect.
+///
+/// Units are the NC units, not the schema's: mm, mm/min (milling feed),
+/// mm/rev (turning feed), rev/min, m/min (cutting speed), s, degrees. The
+/// adapter converts (ISO 14649 gives m/s and rev/s). Spindle speeds keep the
+/// ISO 14649 sign: negative = clockwise seen from the spindle (M3),
+/// positive = counter-clockwise (M4).
 #pragma once
 
 #include <cstdint>
@@ -17,35 +19,44 @@
 
 namespace stepnc::post {
 
-// A Part 21 instance a value came from: `#id` plus its name (its_id / name
-// attribute). id 0 means "not from the file" (made up by the poster).
+/// A Part 21 instance a value came from: `#id` plus its name (its_id / name
+/// attribute). id 0 means "not from the file" (made up by the poster).
 struct Source {
-  std::int64_t id = 0;
-  std::string name;
+  std::int64_t id = 0;  ///< Part 21 instance id; 0 when made up by the poster
+  std::string name;  ///< its_id or name attribute of the instance
 };
 
+/// A point or vector in a plane, mm.
 struct Vec2 {
-  double x = 0, y = 0;
+  double x = 0;  ///< coordinates
+  double y = 0;  ///< coordinates
 };
 
+/// A point or vector in space, mm.
 struct Vec3 {
-  double x = 0, y = 0, z = 0;
+  double x = 0;  ///< coordinates
+  double y = 0;  ///< coordinates
+  double z = 0;  ///< coordinates
 };
 
-// A feature's local frame on a milling setup: origin, and the local x axis
-// turned `angle_deg` about +Z (from ref_direction). Local z is always +Z
-// (2.5D milling); local z = 0 is the feature's top.
+/// A feature's local frame on a milling setup: origin, and the local x axis
+/// turned `angle_deg` about +Z (from ref_direction). Local z is always +Z
+/// (2.5D milling); local z = 0 is the feature's top.
 struct Placement {
-  Vec3 location;
-  double angle_deg = 0;
+  Vec3 location;  ///< origin of the feature's frame in setup coordinates
+  double angle_deg = 0;  ///< rotation of the local x axis about +Z
 
+  /// The placement whose local x axis points along (dx, dy).
   static Placement from_ref_direction(Vec3 location, double dx, double dy);
+  /// A local point at height `local_z` in setup coordinates.
   Vec3 to_global(Vec2 local, double local_z = 0) const;
+  /// A setup XY point in the local frame.
   Vec2 to_local(Vec2 global) const;
 };
 
 // ---------------------------------------------------------------- tools --
 
+/// The kinds of cutting tool the posters tell apart (ISO 14649-111, -121).
 enum class ToolKind {
   flat_end_mill,
   bull_nose_end_mill,
@@ -56,187 +67,228 @@ enum class ToolKind {
   tap,
   reamer,
   boring_tool,
-  turning_insert,   // general turning tool (roughing or finishing insert)
+  turning_insert,   ///< general turning tool (roughing or finishing insert)
   grooving_insert,
 };
 
+/// The ISO 14649 entity name of a tool kind, for messages and traces.
 std::string_view to_string(ToolKind kind);
 
+/// A cutting tool with the data posting needs; lengths in mm.
 struct Tool {
-  Source source;
-  ToolKind kind = ToolKind::flat_end_mill;
-  std::optional<int> number;       // T number if the model fixes one; else order of first use
-  double diameter = 0;             // milling/drilling tools
-  double corner_radius = 0;        // milling tools
-  int flutes = 0;                  // feed per tooth needs it
-  double length = 0;               // overall assembly length (tool data)
-  double tip_angle_deg = 118;      // drills, centre drills
-  double thread_pitch = 0;         // taps
+  Source source;  ///< the cutting_tool instance
+  ToolKind kind = ToolKind::flat_end_mill;  ///< which kind of tool
+  std::optional<int> number;       ///< T number if the model fixes one; else order of first use
+  double diameter = 0;             ///< milling/drilling tools
+  double corner_radius = 0;        ///< milling tools
+  int flutes = 0;                  ///< feed per tooth needs it
+  double length = 0;               ///< overall assembly length (tool data)
+  double tip_angle_deg = 118;      ///< drills, centre drills
+  double thread_pitch = 0;         ///< taps
   // Turning inserts (Part 121); angles feed the seed 001 roughness model.
-  double nose_radius = 0;
-  double side_cutting_edge_angle_deg = 0;  // K_r
-  double end_cutting_edge_angle_deg = 0;   // K'_r
-  double cutting_width = 0;                // grooving inserts
+  double nose_radius = 0;  ///< turning inserts (Part 121)
+  double side_cutting_edge_angle_deg = 0;  ///< K_r
+  double end_cutting_edge_angle_deg = 0;   ///< K'_r
+  double cutting_width = 0;                ///< grooving inserts
 };
 
 // ----------------------------------------------------------- technology --
 
+/// Feeds and speeds of an operation, in NC units (see the file comment).
 struct Technology {
-  Source source;
-  std::optional<double> feedrate;             // mm/min (milling, drilling)
-  std::optional<double> feed_per_tooth;       // mm; feedrate = fz * flutes * n
-  std::optional<double> feed_per_revolution;  // mm/rev (turning, or drilling)
-  std::optional<double> spindle_rpm;          // signed, see the file comment
-  std::optional<double> cutting_speed;        // m/min; n = 1000 vc / (pi D) if no spindle
-  bool constant_surface_speed = false;        // turning: G96 with cutting_speed
-  std::optional<double> max_spindle_rpm;      // CSS limit
-  bool counter_clockwise = false;             // direction when only cutting_speed is given
+  Source source;  ///< the technology instance
+  std::optional<double> feedrate;             ///< mm/min (milling, drilling)
+  std::optional<double> feed_per_tooth;       ///< mm; feedrate = fz * flutes * n
+  std::optional<double> feed_per_revolution;  ///< mm/rev (turning, or drilling)
+  std::optional<double> spindle_rpm;          ///< signed, see the file comment
+  std::optional<double> cutting_speed;        ///< m/min; n = 1000 vc / (pi D) if no spindle
+  bool constant_surface_speed = false;        ///< turning: G96 with cutting_speed
+  std::optional<double> max_spindle_rpm;      ///< CSS limit
+  bool counter_clockwise = false;             ///< direction when only cutting_speed is given
 };
 
+/// Machine functions of an operation that the programs switch.
 struct MachineFunctions {
-  Source source;
-  bool flood_coolant = false;
-  bool mist_coolant = false;
+  Source source;  ///< the machine_functions instance
+  bool flood_coolant = false;  ///< M8
+  bool mist_coolant = false;  ///< M7
 };
 
 // -------------------------------------------------------- milling features --
 
-struct RectangularProfile {  // centred on the placement; length along local x
-  double length = 0, width = 0;
-  double corner_radius = 0;  // orthogonal_radius
+/// centred on the placement; length along local x
+struct RectangularProfile {
+  double length = 0;  ///< size along local x
+  double width = 0;  ///< size along local y
+  double corner_radius = 0;  ///< orthogonal_radius
 };
 
-struct CircularProfile {  // centred on the placement
-  double diameter = 0;
+/// centred on the placement
+struct CircularProfile {
+  double diameter = 0;  ///< mm
 };
 
-struct PolygonProfile {  // general_closed_profile as a polygon, local coordinates
-  std::vector<Vec2> vertices;
-  double corner_radius = 0;  // orthogonal_radius; rounds a rectangular polygon's corners
+/// general_closed_profile as a polygon, local coordinates
+struct PolygonProfile {
+  std::vector<Vec2> vertices;  ///< outline, in order
+  double corner_radius = 0;  ///< orthogonal_radius; rounds a rectangular polygon's corners
 };
 
+/// The outline of a closed pocket.
 using ClosedProfile = std::variant<RectangularProfile, CircularProfile, PolygonProfile>;
 
-// Sides of a rectangular region in its local frame, for open pockets and steps.
+/// Sides of a rectangular region in its local frame, for open pockets and steps.
 enum OpenSide : unsigned { open_none = 0, open_min_x = 1, open_max_x = 2, open_min_y = 4, open_max_y = 8 };
 
-struct PlanarFace {  // x in [0, length] (course_of_travel), y in [0, width] (removal_boundary)
-  double length = 0, width = 0;
+/// x in [0, length] (course_of_travel), y in [0, width] (removal_boundary)
+struct PlanarFace {
+  double length = 0;  ///< size along local x
+  double width = 0;  ///< size along local y
 };
 
+/// A pocket closed on every side (ISO 14649-10 closed_pocket).
 struct ClosedPocket {
-  ClosedProfile profile;
-  double planar_radius = 0;  // fillet between floor and walls
+  ClosedProfile profile;  ///< its outline
+  double planar_radius = 0;  ///< fillet between floor and walls
 };
 
-struct OpenPocket {  // rectangular open pocket: the open sides lie in air
-  RectangularProfile profile;
-  unsigned open_sides = open_none;
+/// rectangular open pocket: the open sides lie in air
+struct OpenPocket {
+  RectangularProfile profile;  ///< its outline
+  unsigned open_sides = open_none;  ///< OpenSide bits
 };
 
-struct Slot {  // straight slot, centre line from local (0,0) to (length,0)
-  double length = 0, width = 0;
-  bool rounded_ends = true;
+/// straight slot, centre line from local (0,0) to (length,0)
+struct Slot {
+  double length = 0;  ///< centre line length
+  double width = 0;  ///< slot width
+  bool rounded_ends = true;  ///< radiused (true) or flat slot ends
 };
 
-struct Step {  // wall along local x at y = 0; material removed for y in [0, width], open towards +y
-  double length = 0, width = 0;
+/// wall along local x at y = 0; material removed for y in [0, width], open towards +y
+struct Step {
+  double length = 0;  ///< wall length
+  double width = 0;  ///< step width
 };
 
+/// The bottom condition of a round hole.
 enum class HoleBottom { through, flat, conical };
 
+/// A drilled or bored hole along local -z (ISO 14649-10 round_hole).
 struct RoundHole {
-  double diameter = 0;
-  HoleBottom bottom = HoleBottom::flat;
+  double diameter = 0;  ///< mm
+  HoleBottom bottom = HoleBottom::flat;  ///< bottom condition
 };
 
 // -------------------------------------------------------- turning features --
 // Turning coordinates: z along the spindle axis (0 = finished front face,
 // part towards -z), x = radius. Profiles run from the front (largest z) back.
 
-struct TurningProfile {  // outer_diameter / general_outside_profile
-  std::vector<Vec2> points;  // (z, radius) pairs, stored as {x=z, y=radius}
+/// outer_diameter / general_outside_profile
+struct TurningProfile {
+  std::vector<Vec2> points;  ///< (z, radius) pairs, stored as {x=z, y=radius}
 };
 
-struct TurningFace {  // material from z = stock_front down to z = 0, radius 0..stock
+/// material from z = stock_front down to z = 0, radius 0..stock
+struct TurningFace {
 };
 
+/// A radial groove into the turned part (ISO 14649-12 groove).
 struct Groove {
-  double z = 0;            // groove side nearest the front
-  double width = 0;
-  double bottom_radius = 0;
-  double outer_radius = 0;
+  double z = 0;            ///< groove side nearest the front
+  double width = 0;  ///< along z
+  double bottom_radius = 0;  ///< radius at the groove floor
+  double outer_radius = 0;  ///< radius of the surface the groove is cut into
 };
 
-struct CentreHole {  // axial hole at radius 0
-  double diameter = 0;
-  double depth = 0;
+/// axial hole at radius 0
+struct CentreHole {
+  double diameter = 0;  ///< mm
+  double depth = 0;  ///< along -z from the front face
 };
 
+/// The shape of a feature, one alternative per supported feature kind.
 using FeatureShape = std::variant<PlanarFace, ClosedPocket, OpenPocket, Slot, Step, RoundHole,
                                   TurningProfile, TurningFace, Groove, CentreHole>;
 
+/// A manufacturing feature: where it is and what shape it has.
 struct Feature {
-  Source source;
-  Placement placement;  // milling features only
-  double depth = 0;     // milling: from the placement plane down (positive)
-  FeatureShape shape;
+  Source source;  ///< the manufacturing_feature instance
+  Placement placement;  ///< milling features only
+  double depth = 0;     ///< milling: from the placement plane down (positive)
+  FeatureShape shape;  ///< the shape in the feature's frame
 };
 
 // ----------------------------------------------------------- strategies --
 
+/// Direction of a contour-parallel path around the feature.
 enum class Rotation { unspecified, clockwise, counter_clockwise };
+/// Climb or conventional milling.
 enum class CutMode { unspecified, climb, conventional };
 
+/// Zig-zag strokes (ISO 14649-11 bidirectional_milling).
 struct BidirectionalMilling {
-  std::optional<double> stepover;  // mm
+  std::optional<double> stepover;  ///< mm
 };
+/// Strokes in one direction (ISO 14649-11 unidirectional_milling).
 struct UnidirectionalMilling {
-  std::optional<double> stepover;
+  std::optional<double> stepover;  ///< mm
 };
-struct ContourBidirectional {  // zig-zag, then a lap along the outline
-  std::optional<double> stepover;
+/// zig-zag, then a lap along the outline
+struct ContourBidirectional {
+  std::optional<double> stepover;  ///< mm
 };
+/// Offsets of the outline, from inside out (ISO 14649-11 contour_parallel).
 struct ContourParallel {
-  std::optional<double> stepover;
-  Rotation rotation = Rotation::unspecified;
-  CutMode cutmode = CutMode::unspecified;
+  std::optional<double> stepover;  ///< mm
+  Rotation rotation = Rotation::unspecified;  ///< direction around the outline
+  CutMode cutmode = CutMode::unspecified;  ///< climb or conventional
 };
+/// Roughing passes along -z (ISO 14649-12 unidirectional_turning).
 struct UnidirectionalTurning {
-  std::vector<double> cutting_depths;  // seed 001 5.2: last entry repeats
-  double lift_height = 2;              // vertical lift after each pass
+  std::vector<double> cutting_depths;  ///< seed 001 5.2: last entry repeats
+  double lift_height = 2;              ///< vertical lift after each pass
 };
+/// Passes that follow the contour (ISO 14649-12 contour_turning).
 struct ContourTurning {
-  std::vector<double> cutting_depths;
+  std::vector<double> cutting_depths;  ///< radial depth of each pass, mm
 };
-struct UnknownStrategy {  // a strategy entity the posters do not implement
-  std::string entity_name;
+/// a strategy entity the posters do not implement
+struct UnknownStrategy {
+  std::string entity_name;  ///< its ISO 14649 entity name
 };
 
+/// A machining strategy; std::monostate when the operation names none.
 using Strategy = std::variant<std::monostate, BidirectionalMilling, UnidirectionalMilling,
                               ContourBidirectional, ContourParallel, UnidirectionalTurning,
                               ContourTurning, UnknownStrategy>;
 
 // ----------------------------------------------------- explicit toolpaths --
 
+/// Straight moves through points, mm.
 struct Polyline {
-  std::vector<Vec3> points;
+  std::vector<Vec3> points;  ///< in setup coordinates
 };
-struct CircularArc {  // in the XY plane; helix when end.z != start z
-  Vec3 end, centre;
-  bool clockwise = false;
-  int extra_turns = 0;
+/// in the XY plane; helix when end.z != start z
+struct CircularArc {
+  Vec3 end;  ///< end point
+  Vec3 centre;  ///< centre
+  bool clockwise = false;  ///< direction seen from +Z
+  int extra_turns = 0;  ///< full turns before reaching the end
 };
+/// One piece of an explicit toolpath.
 using ToolpathElement = std::variant<Polyline, CircularArc>;
 
+/// An explicit toolpath of an operation (ISO 14649-10 toolpath).
 struct Toolpath {
-  Source source;
-  bool rapid = false;
-  std::vector<ToolpathElement> elements;
+  Source source;  ///< the toolpath instance
+  bool rapid = false;  ///< rapid (G0) instead of feed moves
+  std::vector<ToolpathElement> elements;  ///< in order
 };
 
 // ----------------------------------------------------------- operations --
 
+/// The operations the posters machine, named as their ISO 14649 entities.
 enum class OperationKind {
   plane_rough_milling,
   plane_finish_milling,
@@ -254,45 +306,49 @@ enum class OperationKind {
   contouring_finish,
   grooving,
   lathe_drilling,
-  freeform,  // explicit toolpaths only
+  freeform,  ///< explicit toolpaths only
 };
 
+/// The ISO 14649 entity name of an operation kind.
 std::string_view to_string(OperationKind kind);
 
+/// What to do to a feature, with which tool, how fast and by which strategy.
 struct Operation {
-  Source source;
-  OperationKind kind = OperationKind::plane_rough_milling;
-  int tool = -1;  // index into MachiningProject::tools
-  std::optional<Technology> technology;
-  MachineFunctions machine_functions;
-  std::optional<double> retract_plane;  // above the feature top (relative)
-  Strategy strategy;
+  Source source;  ///< the machining_operation instance
+  OperationKind kind = OperationKind::plane_rough_milling;  ///< which operation
+  int tool = -1;  ///< index into MachiningProject::tools
+  std::optional<Technology> technology;  ///< feeds and speeds
+  MachineFunctions machine_functions;  ///< coolant
+  std::optional<double> retract_plane;  ///< above the feature top (relative)
+  Strategy strategy;  ///< how the tool moves
   // Milling
-  std::optional<double> axial_cutting_depth;
-  std::optional<double> radial_cutting_depth;  // stepover when the strategy has none
-  double allowance_side = 0;
-  double allowance_bottom = 0;
+  std::optional<double> axial_cutting_depth;  ///< milling: depth per layer, mm
+  std::optional<double> radial_cutting_depth;  ///< stepover when the strategy has none
+  double allowance_side = 0;  ///< milling: stock left on the walls, mm
+  double allowance_bottom = 0;  ///< milling: stock left on the floor, mm
   // Drilling family
-  std::optional<double> cutting_depth;  // hole depth to machine; default the feature's
-  double dwell_time_bottom = 0;         // s
-  std::optional<double> depth_of_step;  // multistep (peck) drilling
-  std::optional<double> first_depth;
-  double feed_on_retract = 0;       // ratio of the feed used when retracting (reaming)
-  bool spindle_stop_at_bottom = false;  // boring, reaming
+  std::optional<double> cutting_depth;  ///< hole depth to machine; default the feature's
+  double dwell_time_bottom = 0;         ///< s
+  std::optional<double> depth_of_step;  ///< multistep (peck) drilling
+  std::optional<double> first_depth;  ///< multistep drilling: depth of the first peck
+  double feed_on_retract = 0;       ///< ratio of the feed used when retracting (reaming)
+  bool spindle_stop_at_bottom = false;  ///< boring, reaming
   // Turning
-  double allowance = 0;  // radial finishing allowance left by roughing
+  double allowance = 0;  ///< radial finishing allowance left by roughing
   // Explicit motion (freeform_operation, toolpath_list)
-  std::vector<Toolpath> toolpaths;
+  std::vector<Toolpath> toolpaths;  ///< explicit motion (freeform_operation, toolpath_list)
 };
 
 // ------------------------------------------------------- executables --
 
+/// A machining workingstep: one operation on one feature.
 struct Workingstep {
-  int feature = -1;    // index into MachiningProject::features
-  int operation = -1;  // index into MachiningProject::operations
-  std::optional<double> security_plane;  // absolute z; else the setup's
+  int feature = -1;    ///< index into MachiningProject::features
+  int operation = -1;  ///< index into MachiningProject::operations
+  std::optional<double> security_plane;  ///< absolute z; else the setup's
 };
 
+/// The kinds of executable in a workplan (ISO 14649-10).
 enum class ExecutableKind {
   workingstep,
   workplan,
@@ -301,41 +357,44 @@ enum class ExecutableKind {
   non_sequential,
   program_stop,
   optional_stop,
-  unsupported,  // if_statement, while_statement, ...: reported, never guessed
+  unsupported,  ///< if_statement, while_statement, ...: reported, never guessed
 };
 
+/// An element of a workplan, with its children for program structures.
 struct Executable {
-  ExecutableKind kind = ExecutableKind::workplan;
-  Source source;
-  Workingstep step;                   // kind == workingstep
-  std::vector<Executable> children;   // program structures
-  std::string entity_name;            // kind == unsupported
+  ExecutableKind kind = ExecutableKind::workplan;  ///< which executable
+  Source source;  ///< the executable instance
+  Workingstep step;                   ///< kind == workingstep
+  std::vector<Executable> children;   ///< program structures
+  std::string entity_name;            ///< kind == unsupported
 };
 
 // ------------------------------------------------------------- project --
 
+/// Milling or turning: chooses the posting path.
 enum class MachineKind { milling, turning };
 
+/// The raw material, in setup coordinates.
 struct Workpiece {
-  Source source;
-  // Milling: a block between two corners in setup coordinates.
-  Vec3 block_min, block_max;
-  // Turning: bar stock; the face stock lies between z = 0 and stock_front.
-  double stock_radius = 0;
-  double stock_length = 0;
-  double stock_front = 0;
-  double global_tolerance = 0.01;  // feeds CYCLE832
+  Source source;  ///< the workpiece instance
+  Vec3 block_min;  ///< milling: the block's lowest corner
+  Vec3 block_max;  ///< milling: the block's highest corner
+  double stock_radius = 0;  ///< turning: bar stock radius
+  double stock_length = 0;  ///< turning: bar stock length
+  double stock_front = 0;  ///< turning: face stock between z = 0 and here
+  double global_tolerance = 0.01;  ///< feeds CYCLE832
 };
 
+/// A project as the posters see it: everything a program is made from.
 struct MachiningProject {
-  Source source;
-  MachineKind machine = MachineKind::milling;
-  Workpiece workpiece;
-  double security_plane = 0;  // absolute z (milling) / x radius (turning) for safe moves
-  std::vector<Tool> tools;
-  std::vector<Feature> features;
-  std::vector<Operation> operations;
-  Executable main_workplan;
+  Source source;  ///< the project instance
+  MachineKind machine = MachineKind::milling;  ///< milling or turning
+  Workpiece workpiece;  ///< the raw material
+  double security_plane = 0;  ///< absolute z (milling) / x radius (turning) for safe moves
+  std::vector<Tool> tools;  ///< every tool, indexed by Operation::tool
+  std::vector<Feature> features;  ///< every feature, indexed by Workingstep::feature
+  std::vector<Operation> operations;  ///< every operation, indexed by Workingstep::operation
+  Executable main_workplan;  ///< the program structure to machine
 };
 
 }  // namespace stepnc::post

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // An SVG picture of a posted program that reads like a shop drawing: a title
 // (the project's name), the workpiece, features with their names, the
 // toolpaths in one colour per tool (rapids dashed and thin, feeds solid),

@@ -1,13 +1,15 @@
-// Model: owns the instances of one population (a Part 21 DATA section or a
-// project built in code). Instances are carved from large arena blocks,
-// not allocated one by one, and destroyed together with the model.
-//
-//   meta::Model model;
-//   auto& point = model.create<machining_schema::cartesian_point>();
-//   point.coordinates = {0.0, 0.0, 10.0};
-//
-// Instances never move, so pointers between them stay valid for the
-// model's lifetime.
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Model: owns the instances of one population (a Part 21 DATA section or a
+/// project built in code). Instances are carved from large arena blocks,
+/// not allocated one by one, and destroyed together with the model.
+///
+///   meta::Model model;
+///   auto& point = model.create<machining_schema::cartesian_point>();
+///   point.coordinates = {0.0, 0.0, 10.0};
+///
+/// Instances never move, so pointers between them stay valid for the
+/// model's lifetime.
 #pragma once
 
 #include <cstddef>
@@ -21,18 +23,19 @@
 
 namespace stepnc::meta {
 
+/// Owns the instances of one population (see the file comment).
 class Model {
  public:
   Model() = default;
   Model(const Model&) = delete;
   Model& operator=(const Model&) = delete;
-  // Moving hands over the instances and the arena; the moved-from model is empty.
+  /// Moving hands over the instances and the arena; the moved-from model is empty.
   Model(Model&& other) noexcept;
-  Model& operator=(Model&& other) noexcept;
+  Model& operator=(Model&& other) noexcept;  ///< as the move constructor
   ~Model();
 
-  // Creates an instance of a generated entity class. Without an id, the
-  // next free one (one more than the largest so far) is used.
+  /// Creates an instance of a generated entity class. Without an id, the
+  /// next free one (one more than the largest so far) is used.
   template <class T>
   T& create(std::uint32_t id = 0) {
     static_assert(!T::meta_entity_is_abstract, "an ABSTRACT entity cannot be instantiated");
@@ -41,28 +44,28 @@ class Model {
     return *object;
   }
 
-  // Creates an instance of the entity by its table (the reader's path);
-  // null when the entity is abstract.
+  /// Creates an instance of the entity by its table (the reader's path);
+  /// null when the entity is abstract.
   Instance* create(const EntityInfo& entity, std::uint32_t id = 0);
 
-  // Makes room for `count` instances in all (a reader knows how many it
-  // will create), so the instance list is allocated once, at its size.
+  /// Makes room for `count` instances in all (a reader knows how many it
+  /// will create), so the instance list is allocated once, at its size.
   void reserve(std::size_t count) { instances_.reserve(count); }
 
-  // Every instance, in creation order.
+  /// Every instance, in creation order.
   std::span<Instance* const> instances() const noexcept { return instances_; }
-  std::size_t size() const noexcept { return instances_.size(); }
-  // Every instance, in increasing id order: the list itself when instances
-  // were created in id order (readers and builders usually create them so),
-  // else a sorted copy made in `storage`.
+  std::size_t size() const noexcept { return instances_.size(); }  ///< number of instances
+  /// Every instance, in increasing id order: the list itself when instances
+  /// were created in id order (readers and builders usually create them so),
+  /// else a sorted copy made in `storage`.
   std::span<Instance* const> in_id_order(std::vector<Instance*>& storage) const;
 
-  // Bytes reserved by the arena (for memory reports).
+  /// Bytes reserved by the arena (for memory reports).
   std::size_t arena_bytes() const noexcept { return arena_bytes_; }
 
-  // Raw arena storage; used by meta::create_in. Exposed for generated code only.
+  /// Raw arena storage; used by meta::create_in. Exposed for generated code only.
   void* allocate(std::size_t size, std::size_t alignment);
-  void adopt(Instance& instance, std::uint32_t id);
+  void adopt(Instance& instance, std::uint32_t id);  ///< registers a new instance under `id` (0: the next free one)
 
  private:
   struct Block {
@@ -75,7 +78,7 @@ class Model {
   std::size_t arena_bytes_ = 0;
   std::vector<Instance*> instances_;
   std::uint32_t last_id_ = 0;
-  bool in_id_order_ = true;  // every instance so far was created with a larger id than the ones before
+  bool in_id_order_ = true;  ///< every instance so far was created with a larger id than the ones before
 };
 
 template <class Object>

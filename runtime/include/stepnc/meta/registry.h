@@ -1,9 +1,11 @@
-// Registry: finds entities and named types by name across the schemas a
-// program links, case-insensitively (Part 21 writes names in upper case).
-//
-//   meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
-//   const meta::EntityInfo* e = registry.find_entity("CLOSED_POCKET");
-//   meta::Instance* pocket = e->create(model, 0);
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Registry: finds entities and named types by name across the schemas a
+/// program links, case-insensitively (Part 21 writes names in upper case).
+///
+///   meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
+///   const meta::EntityInfo* e = registry.find_entity("CLOSED_POCKET");
+///   meta::Instance* pocket = e->create(model, 0);
 #pragma once
 
 #include <initializer_list>
@@ -15,30 +17,31 @@
 
 namespace stepnc::meta {
 
+/// The schemas a reader knows, with name lookups of their schemas, entities and types.
 class Registry {
  public:
-  Registry() = default;
-  Registry(std::initializer_list<const SchemaInfo*> schemas);
-  // Every schema generated together with `schema` (SchemaInfo::schema_set),
-  // e.g. Registry::of_set(machining_schema::meta_schema) for all of ISO 14649.
+  Registry() = default;  ///< no schemas
+  Registry(std::initializer_list<const SchemaInfo*> schemas);  ///< these schemas, in order
+  /// Every schema generated together with `schema` (SchemaInfo::schema_set),
+  /// e.g. Registry::of_set(machining_schema::meta_schema) for all of ISO 14649.
   static Registry of_set(const SchemaInfo& schema);
 
-  // Adds a schema; entity and type names of later schemas do not shadow
-  // earlier ones (the first registration wins).
+  /// Adds a schema; entity and type names of later schemas do not shadow
+  /// earlier ones (the first registration wins).
   void add(const SchemaInfo& schema);
 
-  std::span<const SchemaInfo* const> schemas() const noexcept { return schemas_; }
+  std::span<const SchemaInfo* const> schemas() const noexcept { return schemas_; }  ///< in registration order
 
-  const SchemaInfo* find_schema(std::string_view name) const noexcept;
-  const EntityInfo* find_entity(std::string_view name) const noexcept;
-  const TypeInfo* find_type(std::string_view name) const noexcept;
+  const SchemaInfo* find_schema(std::string_view name) const noexcept;  ///< by name, case-insensitive; null if none
+  const EntityInfo* find_entity(std::string_view name) const noexcept;  ///< by name, case-insensitive; null if none
+  const TypeInfo* find_type(std::string_view name) const noexcept;  ///< by name, case-insensitive; null if none
 
-  // The complex (ANDOR) combination whose instances consist of exactly the
-  // entities named (in any order, case-insensitive): the parts of a Part
-  // 21 complex record, every supertype included. Null when none matches.
+  /// The complex (ANDOR) combination whose instances consist of exactly the
+  /// entities named (in any order, case-insensitive): the parts of a Part
+  /// 21 complex record, every supertype included. Null when none matches.
   const EntityInfo* find_complex(std::span<const std::string_view> part_names) const;
 
-  // Every entity of every schema, in registration then source order.
+  /// Every entity of every schema, in registration then source order.
   std::span<const EntityInfo* const> entities() const noexcept { return entities_; }
 
  private:
@@ -51,11 +54,11 @@ class Registry {
 
   std::vector<const SchemaInfo*> schemas_;
   std::vector<const EntityInfo*> entities_;
-  std::vector<Entry> entity_index_;  // sorted case-insensitively by name
+  std::vector<Entry> entity_index_;  ///< sorted case-insensitively by name
   std::vector<Entry> type_index_;
 };
 
-// Case-insensitive ASCII comparison, as EXPRESS and Part 21 compare names.
+/// Case-insensitive ASCII comparison, as EXPRESS and Part 21 compare names.
 bool equal_names(std::string_view a, std::string_view b) noexcept;
 
 }  // namespace stepnc::meta

@@ -1,16 +1,18 @@
-// Checking a model built in code against the schema rules that its C++
-// types cannot enforce, through reflection (the same rules the typed
-// reader checks in a file):
-//   * a required attribute without a value (a null reference, an empty
-//     select; numbers, strings and lists always hold one);
-//   * an aggregate outside its bounds, at any nesting depth;
-//   * duplicate elements in a SET or a UNIQUE list of references;
-//   * an enumeration value outside its items;
-//   * a reference to an instance of another model;
-//   * two instances with the same id.
-// WHERE rules and UNIQUE clauses are not evaluated yet.
-//
-//   for (const auto& problem : meta::validate(model)) print(problem.to_string());
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Checking a model built in code against the schema rules that its C++
+/// types cannot enforce, through reflection (the same rules the typed
+/// reader checks in a file):
+///   * a required attribute without a value (a null reference, an empty
+///     select; numbers, strings and lists always hold one);
+///   * an aggregate outside its bounds, at any nesting depth;
+///   * duplicate elements in a SET or a UNIQUE list of references;
+///   * an enumeration value outside its items;
+///   * a reference to an instance of another model;
+///   * two instances with the same id.
+/// WHERE rules and UNIQUE clauses are not evaluated yet.
+///
+///   for (const auto& problem : meta::validate(model)) print(problem.to_string());
 #pragma once
 
 #include <cstddef>
@@ -23,17 +25,18 @@
 
 namespace stepnc::meta {
 
+/// An instance that breaks a rule of its schema (a missing value, a bound, a reference target).
 struct ValidationProblem {
-  std::uint32_t id = 0;          // the instance's #id
-  std::string_view entity;       // its entity name
-  std::string_view attribute;    // empty for problems of the instance itself
-  std::string message;
+  std::uint32_t id = 0;          ///< the instance's `#id`
+  std::string_view entity;       ///< its entity name
+  std::string_view attribute;    ///< empty for problems of the instance itself
+  std::string message;  ///< what is wrong
 
-  // "#12 direction.direction_ratios: 1 element, outside the bounds [2:3]"
+  /// "`#12` direction.direction_ratios: 1 element, outside the bounds [2:3]"
   std::string to_string() const;
 };
 
-// Every problem, in instance order, up to `limit`.
+/// Every problem, in instance order, up to `limit`.
 std::vector<ValidationProblem> validate(const Model& model, std::size_t limit = 1000);
 
 }  // namespace stepnc::meta

@@ -1,35 +1,37 @@
-// Writing Part 21: a token-level Writer, atomic file output, and the
-// schema-independent round trip of a Document.
-//
-// Output format (the canonical form). One header entity or instance per
-// line, no spaces or comments outside string values:
-//
-//   ISO-10303-21;
-//   HEADER;
-//   FILE_DESCRIPTION(('...'),'2;1');
-//   ENDSEC;
-//   DATA;
-//   #1=CARTESIAN_POINT('',(0.,1.5,-2.E-5));
-//   ENDSEC;
-//   END-ISO-10303-21;
-//
-// Preservation policy of the round trip (write_document):
-//  * Values are preserved exactly, in their original spelling: `10.000`
-//    stays `10.000`, `\X2\00E9\X0\` stays as written, `#12` stays `#12`.
-//    Records are copied from their source text, so entities the reader
-//    does not know are kept unchanged, and complex instances keep their
-//    parts.
-//  * Whitespace and line breaks outside strings are normalised to the
-//    canonical form above (CRLF becomes LF, a record split over several
-//    lines is joined).
-//  * Comments are dropped. They carry no data in Part 21, and keeping them
-//    attached to the right record through edits has no well-defined meaning.
-//  * Header entities, DATA sections with their parameters, and ANCHOR /
-//    REFERENCE / SIGNATURE sections are kept, in file order.
-//  * The result is a fixed point: write -> read -> write is byte-identical.
-// Values written through the token API (new or changed instances) use the
-// canonical spelling: reals in shortest round-trip form, strings with
-// escapes re-encoded by encode_string().
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Writing Part 21: a token-level Writer, atomic file output, and the
+/// schema-independent round trip of a Document.
+///
+/// Output format (the canonical form). One header entity or instance per
+/// line, no spaces or comments outside string values:
+///
+///   ISO-10303-21;
+///   HEADER;
+///   FILE_DESCRIPTION(('...'),'2;1');
+///   ENDSEC;
+///   DATA;
+///   `#1`=CARTESIAN_POINT('',(0.,1.5,-2.E-5));
+///   ENDSEC;
+///   END-ISO-10303-21;
+///
+/// Preservation policy of the round trip (write_document):
+///  * Values are preserved exactly, in their original spelling: `10.000`
+///    stays `10.000`, `\X2\00E9\X0\` stays as written, `#12` stays `#12`.
+///    Records are copied from their source text, so entities the reader
+///    does not know are kept unchanged, and complex instances keep their
+///    parts.
+///  * Whitespace and line breaks outside strings are normalised to the
+///    canonical form above (CRLF becomes LF, a record split over several
+///    lines is joined).
+///  * Comments are dropped. They carry no data in Part 21, and keeping them
+///    attached to the right record through edits has no well-defined meaning.
+///  * Header entities, DATA sections with their parameters, and ANCHOR /
+///    REFERENCE / SIGNATURE sections are kept, in file order.
+///  * The result is a fixed point: write -> read -> write is byte-identical.
+/// Values written through the token API (new or changed instances) use the
+/// canonical spelling: reals in shortest round-trip form, strings with
+/// escapes re-encoded by encode_string().
 #pragma once
 
 #include <cstdint>
@@ -45,10 +47,10 @@
 
 namespace stepnc::p21 {
 
-// A file written atomically: data goes to a temporary file in the target's
-// directory, which commit() renames over the target. If commit() is never
-// reached (error, exception), the destructor removes the temporary file
-// and the target is untouched.
+/// A file written atomically: data goes to a temporary file in the target's
+/// directory, which commit() renames over the target. If commit() is never
+/// reached (error, exception), the destructor removes the temporary file
+/// and the target is untouched.
 class AtomicFile {
  public:
   AtomicFile() = default;
@@ -56,14 +58,14 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
   ~AtomicFile();
 
-  // Creates the temporary file. Returns an error message on failure.
+  /// Creates the temporary file. Returns an error message on failure.
   std::optional<std::string> open(const std::filesystem::path& target);
-  std::optional<std::string> write(std::string_view data);
-  // Flushes, closes and renames into place.
+  std::optional<std::string> write(std::string_view data);  ///< appends; an error message on failure
+  /// Flushes, closes and renames into place.
   std::optional<std::string> commit();
-  // Closes and removes the temporary file (also done by the destructor).
+  /// Closes and removes the temporary file (also done by the destructor).
   void discard();
-  bool is_open() const { return file_ != nullptr; }
+  bool is_open() const { return file_ != nullptr; }  ///< open() succeeded and neither commit() nor discard() ran
 
  private:
   std::filesystem::path target_;
@@ -72,107 +74,109 @@ class AtomicFile {
   std::optional<std::string> error_;
 };
 
-// Writes Part 21 tokens with commas inserted automatically. Misuse or
-// unrepresentable input (NaN, invalid UTF-8, bad names) never produces
-// bad output silently: the first problem is kept in error(), and
-// finish() reports it.
+/// Writes Part 21 tokens with commas inserted automatically. Misuse or
+/// unrepresentable input (NaN, invalid UTF-8, bad names) never produces
+/// bad output silently: the first problem is kept in error(), and
+/// finish() reports it.
 class Writer {
  public:
-  Writer() = default;                                 // builds text in memory
-  explicit Writer(AtomicFile& file) : file_(&file) {}  // streams to the file in blocks
+  Writer() = default;                                 ///< builds text in memory
+  explicit Writer(AtomicFile& file) : file_(&file) {}  ///< streams to the file in blocks
 
-  // Structure.
-  void begin_file();                                 // ISO-10303-21;  HEADER;
-  void begin_header_entity(std::string_view name);   // NAME(
-  void end_header_entity();                          // );
-  void end_header();                                 // ENDSEC;
-  void begin_data(std::string_view parameters = {});  // DATA; or DATA(...); (text kept as is)
-  void end_data();                                   // ENDSEC;
-  void section(SectionKind kind, std::string_view body);  // ANCHOR; body ENDSEC; etc.
-  void end_file();                                   // END-ISO-10303-21;
+  /// Structure.
+  void begin_file();                                 ///< ISO-10303-21;  HEADER;
+  void begin_header_entity(std::string_view name);   ///< NAME(
+  void end_header_entity();                          ///< );
+  void end_header();                                 ///< ENDSEC;
+  void begin_data(std::string_view parameters = {});  ///< DATA; or DATA(...); (text kept as is)
+  void end_data();                                   ///< ENDSEC;
+  void section(SectionKind kind, std::string_view body);  ///< ANCHOR; body ENDSEC; etc.
+  void end_file();                                   ///< END-ISO-10303-21;
 
-  // Instances.
-  void begin_instance(std::uint64_t id, std::string_view entity);  // #id=ENTITY(
-  void end_instance();                                             // );
-  void begin_complex_instance(std::uint64_t id);                   // #id=(
-  void begin_part(std::string_view entity);                        // ENTITY(
-  void end_part();                                                 // )
-  void end_complex_instance();                                     // );
-  // A whole record or header entity written verbatim plus a line break.
+  /// Instances.
+  void begin_instance(std::uint64_t id, std::string_view entity);  ///< `#id=`ENTITY(
+  void end_instance();                                             ///< );
+  void begin_complex_instance(std::uint64_t id);                   ///< `#id=(`
+  void begin_part(std::string_view entity);                        ///< ENTITY(
+  void end_part();                                                 ///< )
+  void end_complex_instance();                                     ///< );
+  /// A whole record or header entity written verbatim plus a line break.
   void raw_record(std::string_view text);
 
-  // Values.
-  void integer(std::int64_t value);
-  void real(double value);                      // shortest round-trip spelling
-  void real_spelling(std::string_view spelling);  // an already valid REAL token
-  void string(std::string_view utf8);
-  void enumeration(std::string_view item);      // .ITEM.
-  void logical(Logical value);                  // .T. .F. .U.
-  void boolean(bool value);                     // .T. .F.
-  void binary(std::string_view hex_digits);     // "0FF"
-  void null();                                  // $
-  void derived();                               // *
-  void reference(std::uint64_t id);             // #id
-  void begin_list();
-  void end_list();
-  void begin_typed(std::string_view type_name);  // NAME(
-  void end_typed();
-  // Copies a parsed value; reals and strings keep their source spelling.
+  /// Values.
+  void integer(std::int64_t value);            ///< 42
+  void real(double value);                      ///< shortest round-trip spelling
+  void real_spelling(std::string_view spelling);  ///< an already valid REAL token
+  void string(std::string_view utf8);  ///< 'text', escaped as ISO 10303-21 7.3.4 requires
+  void enumeration(std::string_view item);      ///< .ITEM.
+  void logical(Logical value);                  ///< .T. .F. .U.
+  void boolean(bool value);                     ///< .T. .F.
+  void binary(std::string_view hex_digits);     ///< "0FF"
+  void null();                                  ///< $
+  void derived();                               ///< *
+  void reference(std::uint64_t id);             ///< `#id`
+  void begin_list();  ///< (
+  void end_list();  ///< )
+  void begin_typed(std::string_view type_name);  ///< NAME(
+  void end_typed();  ///< )
+  /// Copies a parsed value; reals and strings keep their source spelling.
   void value(const Value& v);
 
-  // The first problem met, if any.
+  /// The first problem met, if any.
   const std::optional<std::string>& error() const { return error_; }
-  // In-memory mode: the text so far. File mode: the unflushed tail.
+  /// In-memory mode: the text so far. File mode: the unflushed tail.
   std::string_view text() const { return {buffer_.data(), size_}; }
+  /// In-memory mode: the text, leaving the writer empty.
   std::string take();
-  // Flushes to the file (file mode) and returns the first problem, if any.
+  /// Flushes to the file (file mode) and returns the first problem, if any.
   std::optional<std::string> finish();
 
  private:
-  // The output buffer: write at room(n) (at least n bytes), then
-  // commit(end). Values are spelled straight into it, with no string
-  // appends per token: this is the writer's hot path.
+  /// The output buffer: write at room(n) (at least n bytes), then
+  /// commit(end). Values are spelled straight into it, with no string
+  /// appends per token: this is the writer's hot path.
   char* room(std::size_t n) {
     if (buffer_.size() - size_ < n) grow(n);
     return buffer_.data() + size_;
   }
   void commit(const char* end) { size_ = static_cast<std::size_t>(end - buffer_.data()); }
   void grow(std::size_t n);
-  // Inline, so that the short constant tokens become plain stores.
+  /// Inline, so that the short constant tokens become plain stores.
   void put(std::string_view s) {
-    if (s.empty()) return;  // an empty view may have no data pointer, which memcpy must not get
+    if (s.empty()) return;  ///< an empty view may have no data pointer, which memcpy must not get
     char* p = room(s.size());
     std::memcpy(p, s.data(), s.size());
     commit(p + s.size());
   }
-  // The comma before a value (if one is due), with room for `n` more bytes.
+  /// The comma before a value (if one is due), with room for `n` more bytes.
   char* begin_value(std::size_t n);
-  // A name written as given: checked to be a Part 21 keyword first.
+  /// A name written as given: checked to be a Part 21 keyword first.
   void put_keyword(std::string_view name, const char* what);
-  void begin_record(std::uint64_t id);  // #id=
+  void begin_record(std::uint64_t id);  ///< `#id=`
   void fail(std::string message);
   void maybe_flush();
   void open_parenthesis();
   void close_parenthesis();
 
   AtomicFile* file_ = nullptr;
-  std::string buffer_;    // all of it writable room; the first size_ bytes are output
+  std::string buffer_;    ///< all of it writable room; the first size_ bytes are output
   std::size_t size_ = 0;
-  std::string last_keyword_;  // the last name found valid (names repeat: check each once per run)
-  std::string scratch_;       // tokens spelled before being copied in: escaped strings, normalised values
+  std::string last_keyword_;  ///< the last name found valid (names repeat: check each once per run)
+  std::string scratch_;       ///< tokens spelled before being copied in: escaped strings, normalised values
   std::optional<std::string> error_;
   bool need_comma_ = false;
   int depth_ = 0;
 };
 
-// Appends the canonical form of a record or header entity text: comments
-// and whitespace outside strings and binaries removed.
+/// Appends the canonical form of a record or header entity text: comments
+/// and whitespace outside strings and binaries removed.
 void append_normalised(std::string_view record_text, std::string& out);
 
-// The schema-independent round trip (policy above).
+/// The schema-independent round trip (policy above).
 void write_document(const Document& document, Writer& writer);
+/// The round trip as text.
 std::string to_text(const Document& document);
-// Writes atomically; returns an error message on failure.
+/// Writes atomically; returns an error message on failure.
 std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path);
 
 }  // namespace stepnc::p21

@@ -1,31 +1,33 @@
-// Path queries over a typed model, built on reflection only (seed 000's
-// STEPNC++ Query, XPath-like):
-//
-//   /project/its_workpieces[0]/its_material/standard_identifier
-//   /project/its_workpieces/size()
-//   /project/main_workplan/its_elements[machining_workingstep]/its_feature
-//   /#12/its_operation
-//
-// Grammar:
-//   path      := ( '/' step )+
-//   step      := root | attribute predicate* | 'size()'
-//   root      := entity-name | '#' id          (first step only)
-//   predicate := '[' index ']' | '[*]' | '[' entity-name ']'
-//
-// Semantics. A query yields a sequence of nodes: instances or stored values.
-//   * The first step selects every instance of an entity (subtypes
-//     included) in id order, or one instance by its id.
-//   * An attribute step maps each node to that attribute's value; an unset
-//     OPTIONAL (sparse data, common in STEP-NC) yields nothing rather than
-//     an error. An entity reference, or a SELECT holding one, becomes its
-//     instance. Applied to an aggregate, a step applies to every element.
-//   * `[n]` takes element n (0-based, as in seed 000) of each aggregate;
-//     `[*]` spreads aggregates into their elements; `[entity]` keeps the
-//     instances of that entity (after spreading aggregates).
-//   * `size()`, last only, replaces each aggregate by its element count.
-// A path that cannot mean anything for the model is an error with the
-// column of the offending step: unknown entity or attribute, an index on
-// something that is not an aggregate, an index out of range everywhere.
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// Path queries over a typed model, built on reflection only (seed 000's
+/// STEPNC++ Query, XPath-like):
+///
+///   /project/its_workpieces[0]/its_material/standard_identifier
+///   /project/its_workpieces/size()
+///   /project/main_workplan/its_elements[machining_workingstep]/its_feature
+///   /`#12`/its_operation
+///
+/// Grammar:
+///   path      := ( '/' step )+
+///   step      := root | attribute predicate* | 'size()'
+///   root      := entity-name | '#' id          (first step only)
+///   predicate := '[' index ']' | '[*]' | '[' entity-name ']'
+///
+/// Semantics. A query yields a sequence of nodes: instances or stored values.
+///   * The first step selects every instance of an entity (subtypes
+///     included) in id order, or one instance by its id.
+///   * An attribute step maps each node to that attribute's value; an unset
+///     OPTIONAL (sparse data, common in STEP-NC) yields nothing rather than
+///     an error. An entity reference, or a SELECT holding one, becomes its
+///     instance. Applied to an aggregate, a step applies to every element.
+///   * `[n]` takes element n (0-based, as in seed 000) of each aggregate;
+///     `[*]` spreads aggregates into their elements; `[entity]` keeps the
+///     instances of that entity (after spreading aggregates).
+///   * `size()`, last only, replaces each aggregate by its element count.
+/// A path that cannot mean anything for the model is an error with the
+/// column of the offending step: unknown entity or attribute, an index on
+/// something that is not an aggregate, an index out of range everywhere.
 #pragma once
 
 #include <cstddef>
@@ -41,30 +43,32 @@
 
 namespace stepnc::query {
 
-// One result: an instance, a stored value, or a size() count.
+/// One result: an instance, a stored value, or a size() count.
 struct Node {
-  meta::Instance* instance = nullptr;
-  std::optional<meta::ValueRef> value;
-  std::optional<std::size_t> count;
+  meta::Instance* instance = nullptr;  ///< an instance result
+  std::optional<meta::ValueRef> value;  ///< a value result
+  std::optional<std::size_t> count;  ///< a size() result
 
-  // Part 21 spelling of the node: `#12` for an instance, the value as it
-  // would be written, or the count.
+  /// Part 21 spelling of the node: `#12` for an instance, the value as it
+  /// would be written, or the count.
   std::string to_string() const;
 };
 
+/// Why a path could not be evaluated.
 struct QueryError {
-  std::size_t column = 0;  // 1-based, in the path text
-  std::string message;
-  std::string to_string() const;  // "column N: message"
+  std::size_t column = 0;  ///< 1-based, in the path text
+  std::string message;  ///< what is wrong
+  std::string to_string() const;  ///< "column N: message"
 };
 
+/// The nodes a path selects, or why it selects none.
 struct QueryResult {
-  std::vector<Node> nodes;
-  std::optional<QueryError> error;
-  bool ok() const { return !error.has_value(); }
+  std::vector<Node> nodes;  ///< in model order
+  std::optional<QueryError> error;  ///< set when the path is wrong
+  bool ok() const { return !error.has_value(); }  ///< no error
 };
 
-// Evaluates `path` over `model`; `registry` knows the schemas' entity names.
+/// Evaluates `path` over `model`; `registry` knows the schemas' entity names.
 QueryResult evaluate(std::string_view path, const meta::Model& model, const meta::Registry& registry);
 
 }  // namespace stepnc::query
