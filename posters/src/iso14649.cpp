@@ -140,7 +140,7 @@ class Describer {
       out.security_plane = *first_setup_plane_;
     else if (first_step_plane_)
       out.security_plane = *first_step_plane_;
-    else
+    else if (moves_)
       error(p, p.its_id, "no security plane: no workplan has a setup and no workingstep a security plane");
     if (turning_ && milling_) error(p, p.its_id, "a project mixing milling and turning operations is not supported");
     if (turning_) {
@@ -241,6 +241,7 @@ class Describer {
     };
     if (auto* rapid = as<ms::rapid_movement>(&e)) {
       out.kind = ExecutableKind::rapid_movement;
+      moves_ = true;
       out.step.security_plane = plane_z(rapid->its_secplane);
       if (!rapid->its_toolpath) {
         error(e, e.its_id, "rapid movement without a toolpath");
@@ -250,6 +251,7 @@ class Describer {
       for (Toolpath& path : out.toolpaths) path.rapid = true;
     } else if (auto* ws = as<ms::machining_workingstep>(&e)) {
       out.kind = ExecutableKind::workingstep;
+      moves_ = true;
       if (!ws->its_feature || !ws->its_operation) {
         error(e, e.its_id, "workingstep without a feature or an operation");
         return out;
@@ -691,6 +693,19 @@ class Describer {
       out.nose_radius = dim.nose_radius.value_or(0);
       out.side_cutting_edge_angle_deg = dim.side_cutting_edge_angle.value_or(0);
       out.end_cutting_edge_angle_deg = dim.end_cutting_edge_angle.value_or(0);
+      // K_r and K'_r (ISO 3002-1, as seeds 001 and 002 read Part 121: 95°
+      // for a PCLNR holder); a negative K_r is an ANSI lead angle stored by
+      // mistake. The two edges and the nose close a triangle: K_r + K'_r < 180°.
+      if (dim.side_cutting_edge_angle && (*dim.side_cutting_edge_angle <= 0 || *dim.side_cutting_edge_angle >= 180))
+        error(dim, t.its_id,
+              fmt::format("side_cutting_edge_angle {:g} is not a tool cutting edge angle K_r (0 to 180, 95 for a "
+                          "PCLNR holder); an ANSI lead angle of -5 is K_r 95",
+                          *dim.side_cutting_edge_angle));
+      else if (dim.side_cutting_edge_angle && dim.end_cutting_edge_angle &&
+               *dim.side_cutting_edge_angle + *dim.end_cutting_edge_angle >= 180)
+        error(dim, t.its_id,
+              fmt::format("K_r {:g} plus K'_r {:g} is not below 180 degrees: no insert has these edges",
+                          *dim.side_cutting_edge_angle, *dim.end_cutting_edge_angle));
       if (auto* grooving = as<tt::grooving_tool>(lathe_body)) {
         out.kind = ToolKind::grooving_insert;
         out.cutting_width = grooving->cutting_width;
@@ -949,6 +964,7 @@ class Describer {
   std::map<const ms::workpiece*, std::optional<Box>> blocks_;
   std::optional<Placement> first_setup_origin_;
   std::optional<double> first_setup_plane_, first_step_plane_;
+  bool moves_ = false;  // a workingstep or rapid movement needs a security plane
 };
 
 }  // namespace

@@ -146,7 +146,11 @@ TEST_CASE("explicit toolpaths from the typed model post exactly the points they 
   REQUIRE(op.toolpaths.size() == 2);
   const auto& points = std::get<Polyline>(op.toolpaths[0].elements.at(0)).points;
   REQUIRE(points.size() == 300);
-  const auto& arc = std::get<CircularArc>(op.toolpaths[1].elements.at(0));
+  // An arc comes after its start point (here the polyline's last point).
+  const auto& start = std::get<Polyline>(op.toolpaths[1].elements.at(0)).points;
+  REQUIRE(start.size() == 1);
+  CHECK(start[0].x == points.back().x);
+  const auto& arc = std::get<CircularArc>(op.toolpaths[1].elements.at(1));
   CHECK_FALSE(arc.clockwise);  // sense agrees with a +Z circle
   CHECK(arc.end.x == Approx(-points.back().x));
 
@@ -335,6 +339,9 @@ struct OpenFeatureModel {
     auto& ws = model.create<machining_schema::machining_workingstep>();
     ws.its_feature = &f;
     ws.its_operation = &model.create<milling_schema::bottom_and_side_finish_milling>();
+    auto& security = model.create<machining_schema::plane>();
+    security.position = placement(0, 0, 50);
+    ws.its_secplane = &security;
     plan.its_elements.push_back(&ws);
   }
 };

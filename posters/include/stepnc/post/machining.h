@@ -218,21 +218,29 @@ using Strategy = std::variant<std::monostate, BidirectionalMilling, Unidirection
                               ContourTurning, UnknownStrategy>;
 
 // ----------------------------------------------------- explicit toolpaths --
+// Cutter locations as the file gives them: in the feature's frame for an
+// operation of a machining_workingstep, in the setup's frame for a
+// rapid_movement (ISO 14649-10 4.8; NIST's toolkit reads ex1E.stp so).
 
 struct Polyline {
   std::vector<Vec3> points;
 };
-struct CircularArc {  // in the XY plane; helix when end.z != start z
+struct CircularArc {  // about an axis along Z; helix when end.z differs from the start's
   Vec3 end, centre;
-  bool clockwise = false;
-  int extra_turns = 0;
+  bool clockwise = false;  // seen from +Z
+  int extra_turns = 0;     // full turns before reaching `end`
 };
-using ToolpathElement = std::variant<Polyline, CircularArc>;
+struct ToolpathDwell {  // feedstop
+  double seconds = 0;
+};
+using ToolpathElement = std::variant<Polyline, CircularArc, ToolpathDwell>;
 
 struct Toolpath {
   Source source;
-  bool rapid = false;
-  std::vector<ToolpathElement> elements;
+  bool rapid = false;       // non_contact or connect type, or its_speed .RAPID.
+  double feed_ratio = 1;    // its_speed as a positive_ratio_measure of the operation's feed
+  std::optional<Technology> technology;  // its_technology: replaces the operation's for this path
+  std::vector<ToolpathElement> elements;  // every arc is preceded by its start point
 };
 
 // ----------------------------------------------------------- operations --
@@ -295,19 +303,25 @@ struct Workingstep {
 
 enum class ExecutableKind {
   workingstep,
+  rapid_movement,  // toolpaths at rapid, setup coordinates
   workplan,
   parallel,
   selective,
   non_sequential,
   program_stop,
   optional_stop,
-  unsupported,  // if_statement, while_statement, ...: reported, never guessed
+  display_message,
+  exchange_pallet,
+  unsupported,  // if_statement, while_statement, index_table, ...: reported, never guessed
 };
 
 struct Executable {
   ExecutableKind kind = ExecutableKind::workplan;
   Source source;
-  Workingstep step;                   // kind == workingstep
+  Workingstep step;                   // kind == workingstep; its security plane also for rapid_movement
+  std::vector<Toolpath> toolpaths;    // kind == rapid_movement
+  std::optional<double> setup_security_plane;  // workplan with its own setup: applies to what it holds
+  std::string text;                   // display_message
   std::vector<Executable> children;   // program structures
   std::string entity_name;            // kind == unsupported
 };

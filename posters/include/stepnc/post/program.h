@@ -113,11 +113,16 @@ struct Tolerance {
 };
 struct ProgramStop {
   bool optional = false;
+  bool pallet_exchange = false;  // exchange_pallet: stop while the pallets change (LinuxCNC M60)
+};
+// display_message: text the control shows the operator.
+struct Message {
+  std::string text;
 };
 
 using Statement = std::variant<ToolChange, SpindleOn, SpindleOff, FeedRate, Coolant, Rapid,
                                Linear, Arc, Dwell, DrillCycle, FeatureCycle, Comment,
-                               Tolerance, ProgramStop>;
+                               Tolerance, ProgramStop, Message>;
 
 struct Block {
   Statement statement;
