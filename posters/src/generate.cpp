@@ -955,7 +955,7 @@ void Generator::explicit_toolpaths(const Job& job) {
       count += std::holds_alternative<Polyline>(element) ? std::get<Polyline>(element).points.size() : 1;
   program_.blocks.reserve(program_.blocks.size() + count + 8);
   // Milling cutter locations are in the feature's frame (ISO 14649-10 4.8).
-  const Placement frame = turning() ? Placement{} : job.feature->placement;
+  const Placement frame = turning() ? Placement{} : job.feature->toolpath_frame.value_or(job.feature->placement);
   const double c = std::cos(frame.angle_deg * geom::pi / 180), s = std::sin(frame.angle_deg * geom::pi / 180);
   auto place = [&](Vec3 p) {
     return Vec3{frame.location.x + c * p.x - s * p.y, frame.location.y + s * p.x + c * p.y, frame.location.z + p.z};

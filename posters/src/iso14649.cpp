@@ -304,6 +304,7 @@ class Describer {
       unsupported(f, f.its_id, "feature");
     } else if (auto p = placement(mf->feature_placement, f, f.its_id)) {
       out.placement = *p;
+      out.toolpath_frame = *p;
       // The depth plane is placed relative to the feature.
       if (auto z = plane_z(mf->depth)) out.depth = -*z;
       if (auto* face = as<ms::planar_face>(&f)) {

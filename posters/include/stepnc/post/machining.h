@@ -181,6 +181,10 @@ struct Feature {
   Placement placement;  // milling features only
   double depth = 0;     // milling: from the placement plane down (positive)
   FeatureShape shape;
+  // The file's feature_placement, where it differs from `placement` (a
+  // planar face's is turned to its course of travel): explicit toolpaths
+  // are given in it. Empty: `placement`.
+  std::optional<Placement> toolpath_frame;
 };
 
 // ----------------------------------------------------------- strategies --
