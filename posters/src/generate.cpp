@@ -428,6 +428,14 @@ void Generator::visit(const Executable& executable) {
     case ExecutableKind::optional_stop:
     case ExecutableKind::exchange_pallet:
       provenance_ = 0;
+      if (executable.kind != ExecutableKind::optional_stop) {
+        // Someone reaches in or the pallet moves: tool up, spindle and coolant off.
+        if (!turning() && current_tool_ != 0 && pos_.z < program_.clear_z - eps)
+          rapid({pos_.x, pos_.y, program_.clear_z});
+        if (spindle_) emit(SpindleOff{});
+        spindle_.reset();
+        coolant(MachineFunctions{});
+      }
       emit(ProgramStop{executable.kind == ExecutableKind::optional_stop,
                        executable.kind == ExecutableKind::exchange_pallet});
       return;

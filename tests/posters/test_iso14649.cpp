@@ -10,6 +10,8 @@
 #include "simulation.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/iso14649.h"
+#include "stepnc/post/plot.h"
+#include "test_files.h"
 
 using namespace stepnc;
 using namespace stepnc::post;
@@ -502,4 +504,120 @@ TEST_CASE("closed pocket parts the posters cannot machine are errors naming the 
       "#900=THROUGH_POCKET_BOTTOM_CONDITION();");
   for (const auto& d : through.diagnostics) INFO(d.to_string());
   CHECK(through.ok());
+}
+
+namespace {
+
+std::string simulation_problems(const MachiningProject& project, const Program& program) {
+  std::string problems;
+  for (const auto& problem : testing::simulate_milling(project, program).problems) problems += problem + "\n";
+  return problems;
+}
+
+}  // namespace
+
+TEST_CASE("samples/milling/facing_toolpath.stp posts, its retract plane below the security plane, and cuts the face") {
+  const DescribeResult described = testing::describe_sample("milling/facing_toolpath.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  CHECK(generated.diagnostics.empty());
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  // The cutter locations are in the face's frame (top Z 30): the cut runs
+  // at Z 28; the approach path at half the feed (its_speed 0.5).
+  CHECK(ngc.find("F750\nG0 X10 Y-30 Z35\nG1 Z28\nF1500\nY150\nX50\nY-30\nX90\nY150\nZ35\n") != std::string::npos);
+  CHECK(ngc.find("(rapid movement RAPID HOME #32)\nG0 X0 Y0 Z100\n") != std::string::npos);
+  CHECK(simulation_problems(described.project, generated.program) == "");
+  CHECK_FALSE(plot_svg(described.project, generated.program).empty());
+}
+
+TEST_CASE("a nested workplan's own setup, NC functions and rapid movements post in every dialect") {
+  const DescribeResult described = testing::describe_sample("milling/nested_setup_functions.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const MachiningProject& p = described.project;
+  // The main workplan has no setup: the nested one's plane is the program's.
+  CHECK(p.security_plane == 50);
+  REQUIRE(p.main_workplan.children.size() == 3);
+  CHECK(p.main_workplan.children[0].kind == ExecutableKind::display_message);
+  CHECK(p.main_workplan.children[1].setup_security_plane == 50);
+  CHECK(p.main_workplan.children[2].kind == ExecutableKind::exchange_pallet);
+  const auto& nested = p.main_workplan.children[1].children;
+  REQUIRE(nested.size() == 4);
+  CHECK(nested[1].kind == ExecutableKind::rapid_movement);
+  CHECK(nested[2].kind == ExecutableKind::optional_stop);
+  CHECK(nested[3].kind == ExecutableKind::non_sequential);
+  // The composite curve: lines and half circles by parameters, the lift run backwards.
+  const auto& paths = p.operations.at(0).toolpaths;
+  REQUIRE(paths.size() == 3);
+  const auto& cut = paths[1].elements;
+  REQUIRE(cut.size() == 5);  // line, arc, line, arc, line (each arc after its start point)
+  const auto& turn1 = std::get<CircularArc>(cut[1]);
+  CHECK_FALSE(turn1.clockwise);
+  CHECK(turn1.end.x == Approx(130));
+  CHECK(turn1.end.y == Approx(40));
+  const auto& turn2 = std::get<CircularArc>(cut[3]);
+  CHECK(turn2.clockwise);  // sense .F.
+  CHECK(turn2.end.y == Approx(70));
+  const auto& lift = std::get<Polyline>(paths[2].elements.at(0)).points;
+  REQUIRE(lift.size() == 2);
+  CHECK(lift.back().z == 5);  // its_direction .F.: from the cut up
+
+  const auto generated = generate(p);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  CHECK(generated.program.clear_z == 50);
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  CHECK(ngc.find("(MSG, CLAMP THE 100 X 80 BLOCK ON PALLET 1)\n") < ngc.find("T1 M6"));
+  CHECK(ngc.find("G1 Z29\nX130\nG3 X130 Y40 I0 J15\nG1 X-30\nG2 X-30 Y70 I0 J15\nG1 X130\n") != std::string::npos);
+  // The rapid movement from the end of the lift: up to the nested setup's plane and across.
+  CHECK(ngc.find("(rapid movement RAPID OVER HOLE 1 #32)\nG0 Z50\nX25 Y40\nM1\n") != std::string::npos);
+  // The pallet moves with the spindle and coolant off, the tool at the security plane.
+  CHECK(ngc.find("Z50\nM5\nM9\nM60\nM2\n") != std::string::npos);
+  CHECK(ngc.find("G81 X25 Y40") < ngc.find("G81 X75 Y40"));  // non_sequential: file order
+  const std::string siemens = print(generated.program, Dialect::siemens840d).text;
+  CHECK(siemens.find("MSG(\"CLAMP THE 100 X 80 BLOCK ON PALLET 1\")") != std::string::npos);
+  CHECK(siemens.find("; EXCHANGE PALLET\n") != std::string::npos);
+  const std::string fanuc = print(generated.program, Dialect::fanuc).text;
+  CHECK(fanuc.find("G2 X-30. Y70. I0. J15.") != std::string::npos);
+  CHECK(fanuc.find("(EXCHANGE PALLET)\n") != std::string::npos);
+  // Every rapid between the workingsteps runs at the nested setup's plane or above material.
+  CHECK(simulation_problems(p, generated.program) == "");
+}
+
+TEST_CASE("toolpath curves the posters cannot follow are named by #id") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  SECTION("a tool axis that is not +Z") {
+    const std::string from = "#230=CUTTER_LOCATION_TRAJECTORY(.T.,.LIFT.,$,$,$,.F.,#244,$,$);";
+    text.replace(text.find(from), from.size(),
+                 "#230=CUTTER_LOCATION_TRAJECTORY(.T.,.LIFT.,$,$,$,.F.,#244,#246,$);\n"
+                 "#246=POLYLINE('AXIS',(#247,#247));\n#247=CARTESIAN_POINT('',(0.000,0.600,0.800));");
+    const auto described = testing::describe_text(text);
+    CHECK_FALSE(described.ok());
+    CHECK(described.diagnostics.at(0).to_string() ==
+          "#247 '': error: tool axis (0, 0.6, 0.8) is not +Z: the posters drive 3 axes");
+  }
+  SECTION("a helix trimmed by parameters against its sense") {
+    const std::string from = "#233=CIRCLE('TURN 1',#234,15.000);";
+    text.replace(text.find(from), from.size(), "#233=HELIX('TURN 1',#234,15.000,2.000);");
+    const std::string trim = "(PARAMETER_VALUE(-90.000)),(PARAMETER_VALUE(90.000)),.T.";
+    text.replace(text.find(trim), trim.size(), "(PARAMETER_VALUE(-90.000)),(PARAMETER_VALUE(90.000)),.F.");
+    const auto described = testing::describe_text(text);
+    CHECK_FALSE(described.ok());
+    CHECK(described.diagnostics.at(0).to_string() ==
+          "#230002 '': error: sense_agreement .F. contradicts the helix parameters -90 to 90");
+  }
+}
+
+TEST_CASE("NIST's ex1E.stp: the explicit toolpaths machine Example 1's features in the simulation") {
+  const DescribeResult described = testing::describe_sample("milling/nist/ex1E.stp");
+  REQUIRE(described.ok());
+  // NIST's file trims one line against its sense (#413); named, not fatal.
+  REQUIRE(described.diagnostics.size() == 1);
+  CHECK(described.diagnostics[0].to_string().rfind("#413 '': warning: sense_agreement .F. contradicts", 0) == 0);
+  const auto generated = generate(described.project);
+  REQUIRE(generated.ok());
+  CHECK(simulation_problems(described.project, generated.program) == "");
 }
