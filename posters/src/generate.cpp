@@ -366,7 +366,7 @@ std::optional<ResolvedTechnology> Generator::resolve_technology(const std::optio
     return std::nullopt;
   }
   if (out.feed.value <= 0) {
-    error(where, fmt::format("feedrate {} is not positive", out.feed.value));
+    error(where, fmt::format("feedrate {:g} is not positive", out.feed.value));
     return std::nullopt;
   }
   return out;
@@ -479,7 +479,7 @@ bool Generator::prepare(const Executable& executable, Job& job) {
   job.top = job.feature->placement.location.z;
   job.retract = job.top + op.retract_plane.value_or(options_.safety_distance);
   if (!turning() && job.retract > job.clear + eps) {
-    error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", job.retract, job.clear));
+    error(op.source, fmt::format("retract plane z={:g} lies above the security plane z={:g}", job.retract, job.clear));
     return false;
   }
   return sizes_make_sense(job);
@@ -503,21 +503,21 @@ bool Generator::sizes_make_sense(const Job& job) {
     error(where, std::move(message));
     return false;
   };
-  if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {}", f.depth));
+  if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {:g}", f.depth));
   if (explicit_motion) return true;
   if (!turning() && job.tool->diameter <= eps)
     return refuse(job.tool->source, "milling and drilling tools need a positive diameter");
   if (op.axial_cutting_depth && *op.axial_cutting_depth <= eps)
-    return refuse(op.source, fmt::format("axial cutting depth {} is not positive", *op.axial_cutting_depth));
+    return refuse(op.source, fmt::format("axial cutting depth {:g} is not positive", *op.axial_cutting_depth));
   // At most this many passes, layers or laps: beyond it the input is wrong.
   constexpr double max_passes = 1e5;
   const double depth = turning() ? project_.workpiece.stock_radius : f.depth;
   if (op.axial_cutting_depth && depth / *op.axial_cutting_depth > max_passes)
-    return refuse(op.source, fmt::format("axial cutting depth {} makes more than {} layers", *op.axial_cutting_depth,
+    return refuse(op.source, fmt::format("axial cutting depth {:g} makes more than {:g} layers", *op.axial_cutting_depth,
                                          max_passes));
   if (!turning()) {
     const double s = stepover(job);
-    if (s <= eps) return refuse(op.source, fmt::format("stepover {} is not positive", s));
+    if (s <= eps) return refuse(op.source, fmt::format("stepover {:g} is not positive", s));
     const Vec2 extent = std::visit(
         [](const auto& shape) -> Vec2 {
           using S = std::decay_t<decltype(shape)>;
@@ -534,9 +534,9 @@ bool Generator::sizes_make_sense(const Job& job) {
         },
         f.shape);
     if (extent.x <= 0 || extent.y <= 0)
-      return refuse(f.source, fmt::format("feature size {} x {} is not positive", extent.x, extent.y));
+      return refuse(f.source, fmt::format("feature size {:g} x {:g} is not positive", extent.x, extent.y));
     if (std::max(extent.x, extent.y) / s > max_passes)
-      return refuse(op.source, fmt::format("stepover {} makes more than {} passes", s, max_passes));
+      return refuse(op.source, fmt::format("stepover {:g} makes more than {:g} passes", s, max_passes));
   } else {
     if (project_.workpiece.stock_radius <= eps) return refuse(project_.workpiece.source, "bar stock without a radius");
     const auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy);
@@ -546,7 +546,7 @@ bool Generator::sizes_make_sense(const Job& job) {
       const double smallest = *std::min_element(depths->begin(), depths->end());
       if (smallest <= eps) return refuse(op.source, "cutting depths must be positive");
       if (project_.workpiece.stock_radius / depths->back() > max_passes)
-        return refuse(op.source, fmt::format("cutting depth {} makes more than {} passes", depths->back(), max_passes));
+        return refuse(op.source, fmt::format("cutting depth {:g} makes more than {:g} passes", depths->back(), max_passes));
     }
   }
   return true;
@@ -675,15 +675,15 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   const double d_final = r + side;
   const double m = geom::inradius(region);
   if (m < d_final - eps) {
-    error(job.feature->source, fmt::format("tool '{}' (diameter {}) plus side allowance {} does not fit the "
-                                            "feature (largest inscribed radius {})",
+    error(job.feature->source, fmt::format("tool '{}' (diameter {:g}) plus side allowance {:g} does not fit the "
+                                            "feature (largest inscribed radius {:.4g})",
                                             job.tool->source.name, job.tool->diameter, side, m));
     return;
   }
   if (const auto* rect = std::get_if<geom::RoundedRect>(&region)) {
     for (const double corner : rect->radius) {
       if (corner > eps && r > corner + side + eps) {
-        error(job.feature->source, fmt::format("tool radius {} is larger than the pocket corner radius {}; "
+        error(job.feature->source, fmt::format("tool radius {:g} is larger than the pocket corner radius {:g}; "
                                                 "the tool cannot reach the corners",
                                                 r, corner));
         return;
@@ -703,8 +703,8 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   }
   if (auto* pocket = std::get_if<ClosedPocket>(&job.feature->shape);
       pocket && job.tool->corner_radius > pocket->planar_radius + eps)
-    warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {}) is smaller than the "
-                                              "tool's corner radius {}",
+    warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {:g}) is smaller than the "
+                                              "tool's corner radius {:g}",
                                               pocket->planar_radius, job.tool->corner_radius));
   if (auto* polygon = std::get_if<geom::Polygon>(&region); polygon && contour && !geom::is_convex(*polygon)) {
     error(op.source, "contour_parallel on a non-convex general profile is not supported; use bidirectional_milling");
@@ -837,7 +837,7 @@ void Generator::slot(const Job& job, const Slot& slot_shape) {
   const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
   const double side = rough ? op.allowance_side : 0;
   if (2 * (r + side) > slot_shape.width + eps) {
-    error(job.feature->source, fmt::format("tool diameter {} plus allowances does not fit the slot width {}",
+    error(job.feature->source, fmt::format("tool diameter {:g} plus allowances does not fit the slot width {:g}",
                                             job.tool->diameter, slot_shape.width));
     return;
   }
@@ -867,12 +867,12 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   const Tool& tool = *job.tool;
   // A tap is as wide as the thread, wider than the hole drilled for it.
   if (op.kind != OperationKind::tapping && tool.diameter > hole_shape.diameter + eps) {
-    error(op.source, fmt::format("tool '{}' (diameter {}) is larger than hole '{}' (diameter {})", tool.source.name,
+    error(op.source, fmt::format("tool '{}' (diameter {:g}) is larger than hole '{}' (diameter {:g})", tool.source.name,
                                  tool.diameter, job.feature->source.name, hole_shape.diameter));
     return;
   }
   if (op.kind == OperationKind::reaming && std::abs(tool.diameter - hole_shape.diameter) > 1e-3)
-    warning(op.source, fmt::format("reamer diameter {} differs from hole diameter {}", tool.diameter,
+    warning(op.source, fmt::format("reamer diameter {:g} differs from hole diameter {:g}", tool.diameter,
                                    hole_shape.diameter));
   double depth = op.cutting_depth.value_or(job.feature->depth);
   if (hole_shape.bottom == HoleBottom::through && !op.cutting_depth && op.kind != OperationKind::center_drilling) {
@@ -1242,7 +1242,7 @@ void Generator::grooving(const Job& job, const Groove& groove) {
     return;
   }
   if (w > groove.width + eps) {
-    error(job.op->source, fmt::format("grooving insert width {} is wider than the groove ({})", w, groove.width));
+    error(job.op->source, fmt::format("grooving insert width {:g} is wider than the groove ({:g})", w, groove.width));
     return;
   }
   // The insert's reference corner is on its front (+z) side; plunges step

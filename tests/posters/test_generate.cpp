@@ -123,6 +123,12 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     CHECK_FALSE(result.ok());
     CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
   }
+  SECTION("numbers in messages are rounded") {
+    project.operations[3].strategy = ContourBidirectional{1 - 2.2};  // -1.2000000000000002
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#22 'ROUGH POCKET1': error: stepover -1.2 is not positive"));
+  }
   SECTION("missing technology") {
     project.operations[1].technology.reset();
     const auto result = generate(project);
