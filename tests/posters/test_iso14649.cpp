@@ -621,3 +621,89 @@ TEST_CASE("NIST's ex1E.stp: the explicit toolpaths machine Example 1's features 
   REQUIRE(generated.ok());
   CHECK(simulation_problems(described.project, generated.program) == "");
 }
+
+TEST_CASE("toolpath curves: a rational B-spline within 1 um, a helix by parameters in a reversed composite segment") {
+  namespace ms = machining_schema;
+  meta::Model model = testing::explicit_toolpath_model(10);
+  ms::cutter_location_trajectory* arc_path = nullptr;
+  for (meta::Instance* instance : model.instances())
+    if (auto* t = dynamic_cast<ms::cutter_location_trajectory*>(instance);
+        t && dynamic_cast<ms::trimmed_curve*>(t->basiccurve))
+      arc_path = t;
+  REQUIRE(arc_path);
+  auto point = [&](double x, double y, double z) {
+    auto& p = model.create<ms::cartesian_point>();
+    p.coordinates = {x, y, z};
+    return &p;
+  };
+  auto second_path = [](const DescribeResult& described) -> const std::vector<ToolpathElement>& {
+    return described.project.operations.at(0).toolpaths.at(1).elements;
+  };
+  SECTION("a rational quadratic quarter circle") {
+    auto& q = model.create<ms::b_spline_curve_with_knots_and_rational_b_spline_curve>();
+    q.degree = 2;
+    q.control_points_list = {point(10, 0, -2), point(10, 10, -2), point(0, 10, -2)};
+    q.knot_multiplicities = {3, 3};
+    q.knots = {0.0, 1.0};
+    q.weights_data = {1, std::sqrt(0.5), 1};
+    arc_path->basiccurve = &q;
+    const auto described = describe_project(model);
+    for (const auto& d : described.diagnostics) INFO(d.to_string());
+    REQUIRE(described.ok());
+    REQUIRE(second_path(described).size() == 1);
+    const auto& points = std::get<Polyline>(second_path(described)[0]).points;
+    REQUIRE(points.size() > 10);
+    CHECK(points.front().x == Approx(10));
+    CHECK(points.back().y == Approx(10));
+    double worst = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      CHECK(std::hypot(points[i].x, points[i].y) == Approx(10).margin(1e-9));  // on the circle
+      if (i > 0) {  // the chord's sagitta
+        const double mid = std::hypot((points[i].x + points[i - 1].x) / 2, (points[i].y + points[i - 1].y) / 2);
+        worst = std::max(worst, 10 - mid);
+      }
+    }
+    CHECK(worst <= 0.001);
+    CHECK(worst > 0.0002);  // no needless points either
+  }
+  SECTION("a helix trimmed by parameters, in a composite segment run backwards") {
+    auto& up = model.create<ms::direction>();
+    up.direction_ratios = {0.0, 0.0, 1.0};
+    auto& frame = model.create<ms::axis2_placement_3d>();
+    frame.location = point(0, 0, -2);
+    frame.axis = &up;
+    auto& helix = model.create<ms::helix>();
+    helix.position = &frame;
+    helix.radius = 5;
+    helix.pitch = 2;
+    auto& trimmed = model.create<ms::trimmed_curve>();
+    trimmed.basis_curve = &helix;
+    trimmed.trim_1 = {ms::trimming_select()};
+    trimmed.trim_1[0].set_parameter_value(0);
+    trimmed.trim_2 = {ms::trimming_select()};
+    trimmed.trim_2[0].set_parameter_value(810);  // 2 1/4 turns, 4.5 mm up
+    trimmed.sense_agreement = true;
+    trimmed.master_representation = ms::trimming_preference::parameter;
+    auto& segment = model.create<ms::composite_curve_segment>();
+    segment.transition = ms::transition_code::discontinuous;
+    segment.same_sense = false;
+    segment.parent_curve = &trimmed;
+    auto& composite = model.create<ms::composite_curve>();
+    composite.segments = {&segment};
+    arc_path->basiccurve = &composite;
+    const auto described = describe_project(model);
+    for (const auto& d : described.diagnostics) INFO(d.to_string());
+    REQUIRE(described.ok());
+    REQUIRE(second_path(described).size() == 2);
+    const Vec3 start = std::get<Polyline>(second_path(described)[0]).points.at(0);
+    CHECK(start.x == Approx(0).margin(1e-12));
+    CHECK(start.y == Approx(5));
+    CHECK(start.z == Approx(2.5));
+    const auto& arc = std::get<CircularArc>(second_path(described)[1]);
+    CHECK(arc.end.x == Approx(5));
+    CHECK(arc.end.y == Approx(0).margin(1e-12));
+    CHECK(arc.end.z == Approx(-2));
+    CHECK(arc.clockwise);  // backwards along a counter-clockwise helix
+    CHECK(arc.extra_turns == 2);
+  }
+}
