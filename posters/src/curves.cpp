@@ -27,14 +27,6 @@ Vec3 unit(Vec3 a) {
 }
 bool same(Vec3 a, Vec3 b) { return norm(a - b) <= same_point; }
 
-Vec3 point(const ms::cartesian_point* p) {
-  Vec3 v;
-  if (!p) return v;
-  if (p->coordinates.size() > 0) v.x = p->coordinates[0];
-  if (p->coordinates.size() > 1) v.y = p->coordinates[1];
-  if (p->coordinates.size() > 2) v.z = p->coordinates[2];
-  return v;
-}
 Vec3 direction(const ms::direction* d, Vec3 fallback) {
   if (!d || d->direction_ratios.empty()) return fallback;
   const auto& r = d->direction_ratios;
@@ -317,6 +309,15 @@ class Reader {
 };
 
 }  // namespace
+
+Vec3 point(const ms::cartesian_point* p) {
+  Vec3 v;
+  if (!p) return v;
+  if (p->coordinates.size() > 0) v.x = p->coordinates[0];
+  if (p->coordinates.size() > 1) v.y = p->coordinates[1];
+  if (p->coordinates.size() > 2) v.z = p->coordinates[2];
+  return v;
+}
 
 void append_curve(const ms::curve& curve, bool reversed, std::vector<ToolpathElement>& out,
                   std::vector<CurveProblem>& problems) {

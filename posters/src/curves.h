@@ -21,6 +21,9 @@ struct CurveProblem {
   bool warning = false;
 };
 
+// A cartesian point's coordinates (missing ones 0).
+Vec3 point(const machining_schema::cartesian_point* p);
+
 // Appends `curve` (run backwards when `reversed`) to `out`: points join the
 // last polyline, every arc is preceded by its start point. Parameter values
 // of circles and helices are degrees (ISO 14649 plane angle unit).

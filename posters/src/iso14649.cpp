@@ -76,14 +76,7 @@ class Describer {
     error(where, name, fmt::format("{} {} is not supported by the posters' adapter", what, where.entity_info().name));
   }
 
-  static Vec3 point(const ms::cartesian_point* p) {
-    Vec3 v;
-    if (!p) return v;
-    if (p->coordinates.size() > 0) v.x = p->coordinates[0];
-    if (p->coordinates.size() > 1) v.y = p->coordinates[1];
-    if (p->coordinates.size() > 2) v.z = p->coordinates[2];
-    return v;
-  }
+  static Vec3 point(const ms::cartesian_point* p) { return detail::point(p); }
   static double size(const ms::toleranced_length_measure* m) { return m ? m->theoretical_size : 0; }
   // The angle of a direction in its frame's XY plane, degrees.
   static double direction_angle(const ms::direction& d) {
