@@ -188,6 +188,9 @@ class Generator {
                                                        const Source& where, const Tool& tool, bool may_stop);
   // The security plane of the setup that applies here (innermost workplan with a setup).
   double setup_clear() const { return setup_planes_.empty() ? program_.clear_z : setup_planes_.back(); }
+  // A workingstep's: the setup's plane, or its own where that is higher
+  // (neither may bring the tool lower than the other allows).
+  double security_plane(std::optional<double> own) const { return std::max(own.value_or(-1e300), setup_clear()); }
   double tool_radius(const Job& job) const { return job.tool->diameter / 2; }
   double stepover(const Job& job) const;
   bool turning() const { return project_.machine == MachineKind::turning; }
@@ -474,8 +477,7 @@ bool Generator::prepare(const Executable& executable, Job& job) {
   int& number = tool_numbers_[static_cast<std::size_t>(op.tool)];
   if (number == 0) number = *std::max_element(tool_numbers_.begin(), tool_numbers_.end()) + 1;
   job.tool_number = number;
-  // The workingstep's own plane, else the one of the setup that applies.
-  job.clear = ws.security_plane.value_or(setup_clear());
+  job.clear = security_plane(ws.security_plane);
   job.top = job.feature->placement.location.z;
   job.retract = job.top + op.retract_plane.value_or(options_.safety_distance);
   if (!turning() && job.retract > job.clear + eps) {
@@ -1024,7 +1026,7 @@ void Generator::rapid_movement(const Executable& executable) {
   program_.provenance.push_back({executable.source, {}, {}});
   provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
   emit(Comment{fmt::format("rapid movement {} #{}", executable.source.name, executable.source.id)});
-  const double clear = executable.step.security_plane.value_or(setup_clear());
+  const double clear = security_plane(executable.step.security_plane);
   bool first = true;
   for (const Toolpath& path : executable.toolpaths) {
     for (const ToolpathElement& element : path.elements) {

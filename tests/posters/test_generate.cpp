@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "projects.h"
 #include "stepnc/post/dialect.h"
@@ -107,6 +108,25 @@ TEST_CASE("executable order: nested workplans and non_sequential in file order; 
   CHECK_FALSE(refused.ok());
   CHECK(mentions(refused, "#91 'PLAN': error: parallel #91 with 2 branches is not posted"));
   CHECK(mentions(refused, "#92 'PLAN': error: selective #92 with 2 branches is not posted"));
+}
+
+TEST_CASE("a nested workplan's own setup gives the security plane of what it holds") {
+  auto project = testing::example1();  // security plane Z 30
+  auto ws = project.main_workplan.children;
+  Executable nested = plan(ExecutableKind::workplan, 90, {ws[1], ws[2]});  // drill and ream
+  nested.setup_security_plane = 60;
+  project.main_workplan.children = {ws[0], nested, ws[3], ws[4]};
+  const auto result = generate(project);
+  REQUIRE(result.ok());
+  // Each workingstep ends at its security plane: 60 inside the nested workplan, 30 outside.
+  std::map<std::int64_t, double> last;
+  for (const Block& b : result.program.blocks)
+    if (auto* r = std::get_if<Rapid>(&b.statement)) last[result.program.provenance[b.provenance].workingstep.id] = r->to.z;
+  CHECK(last[10] == 30);
+  CHECK(last[11] == 60);
+  CHECK(last[12] == 60);
+  CHECK(last[13] == 30);
+  CHECK(last[14] == 30);
 }
 
 TEST_CASE("diagnostics name the instance and stop the program") {

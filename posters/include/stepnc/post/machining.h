@@ -302,7 +302,7 @@ struct Operation {
 struct Workingstep {
   int feature = -1;    // index into MachiningProject::features
   int operation = -1;  // index into MachiningProject::operations
-  std::optional<double> security_plane;  // absolute z; else the setup's
+  std::optional<double> security_plane;  // absolute z; the applying setup's where that is higher
 };
 
 enum class ExecutableKind {
