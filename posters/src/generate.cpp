@@ -75,6 +75,15 @@ using geom::Region;
 
 constexpr double eps = 1e-9;
 
+// Why an NC function cannot be posted, where it is not plain.
+std::string_view unsupported_reason(std::string_view entity) {
+  if (entity == "index_table" || entity == "index_pallet")
+    return ": its index positions are machine data ISO 14649 does not give";
+  if (entity == "set_mark" || entity == "wait_for_mark") return ": channels are synchronised by a scheduler, not yet";
+  if (entity == "load_tool" || entity == "unload_tool") return ": tool changes follow the operations' tools";
+  return "";
+}
+
 bool is_rough(OperationKind kind) {
   return kind == OperationKind::plane_rough_milling ||
          kind == OperationKind::bottom_and_side_rough_milling ||
@@ -447,7 +456,8 @@ void Generator::visit(const Executable& executable) {
       emit(Message{executable.text});
       return;
     case ExecutableKind::unsupported:
-      error(executable.source, fmt::format("{} is not supported by the posters", executable.entity_name));
+      error(executable.source, fmt::format("{} is not supported by the posters{}", executable.entity_name,
+                                           unsupported_reason(executable.entity_name)));
       return;
   }
 }

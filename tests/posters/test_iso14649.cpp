@@ -707,3 +707,38 @@ TEST_CASE("toolpath curves: a rational B-spline within 1 um, a helix by paramete
     CHECK(arc.extra_turns == 2);
   }
 }
+
+TEST_CASE("NC functions and structures the posters cannot decide are refused by #id") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  const std::string plan = "#3=WORKPLAN('SETUP 1 WORK',(#31,#32,#33,#34),$,#20,$);";
+  REQUIRE(text.find(plan) != std::string::npos);
+  text.replace(text.find(plan), plan.size(),
+               "#3=WORKPLAN('SETUP 1 WORK',(#31,#32,#38,#33,#39),$,#20,$);\n#38=INDEX_TABLE('TABLE TO 2',2);\n"
+               "#39=PARALLEL('HOLES AT ONCE',(#35,#37));");
+  const auto described = testing::describe_text(text);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  REQUIRE_FALSE(generated.ok());
+  REQUIRE(generated.diagnostics.size() == 2);
+  CHECK(generated.diagnostics[0].to_string() ==
+        "#38 'TABLE TO 2': error: index_table is not supported by the posters: its index positions are machine data "
+        "ISO 14649 does not give");
+  CHECK(generated.diagnostics[1].to_string() ==
+        "#39 'HOLES AT ONCE': error: parallel #39 with 2 branches is not posted: choosing their order or one of them "
+        "needs a scheduler");
+}
+
+TEST_CASE("a feedstop in a toolpath list dwells where the tool is") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  const std::string list = "#200=TOOLPATH_LIST((#210,#220,#230));";
+  REQUIRE(text.find(list) != std::string::npos);
+  text.replace(text.find(list), list.size(),
+               "#200=TOOLPATH_LIST((#210,#220,#248,#230));\n#248=FEEDSTOP(.T.,.CONTACT.,$,$,$,0.500);");
+  const auto described = testing::describe_text(text);
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  REQUIRE(generated.ok());
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  CHECK(ngc.find("G2 X-30 Y70 I0 J15\nG1 X130\nG4 P0.5\nZ35\n") != std::string::npos);
+}
