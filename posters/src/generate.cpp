@@ -1033,7 +1033,7 @@ void Generator::rapid_movement(const Executable& executable) {
                                "a tool and its length offset are active");
     return;
   }
-  program_.provenance.push_back({executable.source, {}, {}});
+  program_.provenance.push_back({executable.source, executable.source, {}});  // both workingstep and operation
   provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
   emit(Comment{fmt::format("rapid movement {} #{}", executable.source.name, executable.source.id)});
   const double clear = security_plane(executable.step.security_plane);
