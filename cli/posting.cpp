@@ -3,17 +3,31 @@
 #include <fmt/format.h>
 
 #include "load.h"
+#include "stepnc/p21/document.h"
 #include "stepnc/p21/writer.h"
 #include "stepnc/post/iso14649.h"
 
 namespace stepnc::cli {
 namespace {
 
-// Prints posting diagnostics; true when none is an error.
+// Prints posting diagnostics as file:line:col of the instance they name;
+// true when none is an error. The file is indexed again only to find those
+// lines.
 bool report(const std::filesystem::path& path, const std::vector<post::Diagnostic>& diagnostics) {
   bool ok = true;
+  std::optional<p21::ReadResult> index;
   for (const post::Diagnostic& diagnostic : diagnostics) {
-    fmt::print(stderr, "{}: {}\n", path.string(), diagnostic.to_string());
+    std::string where = path.string();
+    if (diagnostic.where.id > 0) {
+      if (!index) index = p21::read_file(path);
+      const p21::RecordEntry* record =
+          index->document ? index->document->find(static_cast<std::uint64_t>(diagnostic.where.id)) : nullptr;
+      if (record) {
+        const p21::SourceLocation at = index->document->location(record->offset);
+        where = fmt::format("{}:{}:{}", where, at.line, at.column);
+      }
+    }
+    fmt::print(stderr, "{}: {}\n", where, diagnostic.to_string());
     ok = ok && diagnostic.severity != post::Diagnostic::Severity::error;
   }
   return ok;

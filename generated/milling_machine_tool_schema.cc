@@ -69,7 +69,7 @@ constexpr const EntityInfo* milling_machine_tool_body_supertypes[] = {
 };
 constexpr const EntityInfo* milling_machine_tool_body_subtypes[] = {
     &milling_machine_tool_schema::boring_tool::meta_entity,
-    &milling_machine_tool_schema::centerdrill::meta_entity,
+    &milling_machine_tool_schema::center_drill::meta_entity,
     &milling_machine_tool_schema::counterbore::meta_entity,
     &milling_machine_tool_schema::countersink::meta_entity,
     &milling_machine_tool_schema::drill::meta_entity,
@@ -123,30 +123,30 @@ constexpr Upcast milling_tool_dimension_upcasts[] = {
     {&milling_machine_tool_schema::milling_tool_dimension::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::milling_tool_dimension, milling_machine_tool_schema::milling_tool_dimension>},
 };
 
-// centerdrill
-constexpr const EntityInfo* centerdrill_supertypes[] = {
+// center_drill
+constexpr const EntityInfo* center_drill_supertypes[] = {
     &milling_machine_tool_schema::milling_machine_tool_body::meta_entity,
 };
-constexpr AttributeInfo centerdrill_attributes[] = {
+constexpr AttributeInfo center_drill_attributes[] = {
     {.name = "dimension", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::milling_tool_dimension,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::center_drill, &milling_machine_tool_schema::milling_machine_tool_body::dimension>},
     {.name = "number_of_teeth", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::integer_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::center_drill, &milling_machine_tool_schema::milling_machine_tool_body::number_of_teeth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::int64_t>>},
     {.name = "hand_of_cut", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &milling_machine_tool_schema::type_info::hand, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::center_drill, &milling_machine_tool_schema::milling_machine_tool_body::hand_of_cut>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<milling_machine_tool_schema::hand>>},
     {.name = "coolant_through_tool", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::center_drill, &milling_machine_tool_schema::milling_machine_tool_body::coolant_through_tool>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
-     .locate = &stepnc::meta::field<milling_machine_tool_schema::centerdrill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
+     .locate = &stepnc::meta::field<milling_machine_tool_schema::center_drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
-constexpr Upcast centerdrill_upcasts[] = {
-    {&milling_machine_tool_schema::centerdrill::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::centerdrill, milling_machine_tool_schema::centerdrill>},
-    {&milling_machine_tool_schema::milling_machine_tool_body::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::centerdrill, milling_machine_tool_schema::milling_machine_tool_body>},
-    {&machining_schema::tool_body::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::centerdrill, machining_schema::tool_body>},
+constexpr Upcast center_drill_upcasts[] = {
+    {&milling_machine_tool_schema::center_drill::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::center_drill, milling_machine_tool_schema::center_drill>},
+    {&milling_machine_tool_schema::milling_machine_tool_body::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::center_drill, milling_machine_tool_schema::milling_machine_tool_body>},
+    {&machining_schema::tool_body::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::center_drill, machining_schema::tool_body>},
 };
 
 // countersink
@@ -969,7 +969,7 @@ constexpr const EntityInfo* schema_entities[] = {
     &milling_machine_tool_schema::milling_cutting_tool::meta_entity,
     &milling_machine_tool_schema::milling_machine_tool_body::meta_entity,
     &milling_machine_tool_schema::milling_tool_dimension::meta_entity,
-    &milling_machine_tool_schema::centerdrill::meta_entity,
+    &milling_machine_tool_schema::center_drill::meta_entity,
     &milling_machine_tool_schema::countersink::meta_entity,
     &milling_machine_tool_schema::backside_countersink::meta_entity,
     &milling_machine_tool_schema::drill::meta_entity,
@@ -1033,8 +1033,8 @@ constinit const TypeInfo milling_machine_tool_body{.kind = TypeKind::Entity, .na
                                .entity = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .reference = &stepnc::meta::reference_ops<milling_machine_tool_schema::milling_machine_tool_body>};
 constinit const TypeInfo milling_tool_dimension{.kind = TypeKind::Entity, .name = "milling_tool_dimension", .schema = &meta_schema,
                                .entity = &milling_machine_tool_schema::milling_tool_dimension::meta_entity, .reference = &stepnc::meta::reference_ops<milling_machine_tool_schema::milling_tool_dimension>};
-constinit const TypeInfo centerdrill{.kind = TypeKind::Entity, .name = "centerdrill", .schema = &meta_schema,
-                               .entity = &milling_machine_tool_schema::centerdrill::meta_entity, .reference = &stepnc::meta::reference_ops<milling_machine_tool_schema::centerdrill>};
+constinit const TypeInfo center_drill{.kind = TypeKind::Entity, .name = "center_drill", .schema = &meta_schema,
+                               .entity = &milling_machine_tool_schema::center_drill::meta_entity, .reference = &stepnc::meta::reference_ops<milling_machine_tool_schema::center_drill>};
 constinit const TypeInfo countersink{.kind = TypeKind::Entity, .name = "countersink", .schema = &meta_schema,
                                .entity = &milling_machine_tool_schema::countersink::meta_entity, .reference = &stepnc::meta::reference_ops<milling_machine_tool_schema::countersink>};
 constinit const TypeInfo backside_countersink{.kind = TypeKind::Entity, .name = "backside_countersink", .schema = &meta_schema,
@@ -1129,16 +1129,16 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_to
     .upcasts = meta_tables::milling_tool_dimension_upcasts,
 };
 
-const stepnc::meta::EntityInfo& milling_machine_tool_schema::centerdrill::entity_info() const noexcept { return meta_entity; }
+const stepnc::meta::EntityInfo& milling_machine_tool_schema::center_drill::entity_info() const noexcept { return meta_entity; }
 
-constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::centerdrill::meta_entity{
-    .name = "centerdrill",
-    .p21_name = "CENTERDRILL",
+constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::center_drill::meta_entity{
+    .name = "center_drill",
+    .p21_name = "CENTER_DRILL",
     .schema = &meta_schema,
-    .supertypes = meta_tables::centerdrill_supertypes,
-    .attributes = meta_tables::centerdrill_attributes,
-    .create = &stepnc::meta::create_in<milling_machine_tool_schema::centerdrill>,
-    .upcasts = meta_tables::centerdrill_upcasts,
+    .supertypes = meta_tables::center_drill_supertypes,
+    .attributes = meta_tables::center_drill_attributes,
+    .create = &stepnc::meta::create_in<milling_machine_tool_schema::center_drill>,
+    .upcasts = meta_tables::center_drill_upcasts,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::countersink::entity_info() const noexcept { return meta_entity; }

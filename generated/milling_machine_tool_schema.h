@@ -23,7 +23,7 @@ extern const stepnc::meta::SchemaInfo meta_schema;
 class milling_cutting_tool;
 class milling_machine_tool_body;
 class milling_tool_dimension;
-class centerdrill;
+class center_drill;
 class countersink;
 class backside_countersink;
 class drill;
@@ -59,7 +59,7 @@ extern const stepnc::meta::TypeInfo hand;
 extern const stepnc::meta::TypeInfo milling_cutting_tool;
 extern const stepnc::meta::TypeInfo milling_machine_tool_body;
 extern const stepnc::meta::TypeInfo milling_tool_dimension;
-extern const stepnc::meta::TypeInfo centerdrill;
+extern const stepnc::meta::TypeInfo center_drill;
 extern const stepnc::meta::TypeInfo countersink;
 extern const stepnc::meta::TypeInfo backside_countersink;
 extern const stepnc::meta::TypeInfo drill;
@@ -135,8 +135,8 @@ class milling_tool_dimension : public virtual stepnc::meta::Instance {
   std::optional<machining_schema::length_measure> edge_center_horizontal{};  // OPTIONAL length_measure
 };
 
-// ENTITY centerdrill SUBTYPE OF (milling_machine_tool_body)
-class centerdrill : public milling_machine_tool_schema::milling_machine_tool_body {
+// ENTITY center_drill SUBTYPE OF (milling_machine_tool_body)
+class center_drill : public milling_machine_tool_schema::milling_machine_tool_body {
  public:
   static const stepnc::meta::EntityInfo meta_entity;
   static constexpr bool meta_entity_is_abstract = false;

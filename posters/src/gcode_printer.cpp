@@ -61,6 +61,11 @@ const Vec3* motion_end(const Statement& s) {
 
 }  // namespace
 
+void GcodePrinter::program_stop(const ProgramStop& s) {
+  if (s.pallet_exchange) comment("EXCHANGE PALLET");
+  line(s.optional ? "M1" : "M0");
+}
+
 void GcodePrinter::statement(const Statement& s, std::size_t index) {
   std::visit(
       [&](const auto& st) {
@@ -110,6 +115,8 @@ void GcodePrinter::statement(const Statement& s, std::size_t index) {
           tolerance(st);
         } else if constexpr (std::is_same_v<S, ProgramStop>) {
           program_stop(st);
+        } else if constexpr (std::is_same_v<S, Message>) {
+          message(st);
         }
       },
       s);

@@ -52,7 +52,9 @@ class GcodePrinter {
   virtual bool feature_cycle(const FeatureCycle&) { return false; }
   virtual void spindle_off() { line("M5"); }
   virtual void coolant(const Coolant& c);
-  virtual void program_stop(const ProgramStop& s) { line(s.optional ? "M1" : "M0"); }
+  // A pallet exchange stops for the operator where the dialect has no pallet word.
+  virtual void program_stop(const ProgramStop& s);
+  virtual void message(const Message& m) { comment(m.text); }
   // Full turns an arc makes before its end point (helices): RS274 P word.
   virtual void turns(int extra) { word('P', 1 + extra); }
 

@@ -76,6 +76,15 @@ using geom::Region;
 
 constexpr double eps = 1e-9;
 
+// Why an NC function cannot be posted, where it is not plain.
+std::string_view unsupported_reason(std::string_view entity) {
+  if (entity == "index_table" || entity == "index_pallet")
+    return ": its index positions are machine data ISO 14649 does not give";
+  if (entity == "set_mark" || entity == "wait_for_mark") return ": channels are synchronised by a scheduler, not yet";
+  if (entity == "load_tool" || entity == "unload_tool") return ": tool changes follow the operations' tools";
+  return "";
+}
+
 bool is_rough(OperationKind kind) {
   return kind == OperationKind::plane_rough_milling ||
          kind == OperationKind::bottom_and_side_rough_milling ||
@@ -157,6 +166,8 @@ class Generator {
   void slot(const Job& job, const Slot& slot);
   void hole(const Job& job, const RoundHole& hole);
   void explicit_toolpaths(const Job& job);
+  void rapid_movement(const Executable& executable);
+  void approach(const Job& job, Vec3 to, bool rapid_path);
   std::optional<std::size_t> begin_feature_cycle(const Job& job);
   void end_feature_cycle(std::optional<std::size_t> index);
 
@@ -183,6 +194,13 @@ class Generator {
   void warning(const Source& where, std::string message);
 
   std::optional<ResolvedTechnology> resolve_technology(const Operation& op, const Tool& tool);
+  std::optional<ResolvedTechnology> resolve_technology(const std::optional<Technology>& technology,
+                                                       const Source& where, const Tool& tool, bool may_stop);
+  // The security plane of the setup that applies here (innermost workplan with a setup).
+  double setup_clear() const { return setup_planes_.empty() ? program_.clear_z : setup_planes_.back(); }
+  // A workingstep's: the setup's plane, or its own where that is higher
+  // (neither may bring the tool lower than the other allows).
+  double security_plane(std::optional<double> own) const { return std::max(own.value_or(-1e300), setup_clear()); }
   double tool_radius(const Job& job) const { return job.tool->diameter / 2; }
   double stepover(const Job& job) const;
   bool turning() const { return project_.machine == MachineKind::turning; }
@@ -203,6 +221,7 @@ class Generator {
   Coolant coolant_{};
   std::vector<int> tool_numbers_;
   int workingstep_count_ = 0;
+  std::vector<double> setup_planes_;
 };
 
 void Generator::error(const Source& where, std::string message) {
@@ -225,6 +244,11 @@ void Generator::rapid(Vec3 to) { emit(Rapid{to}); }
 void Generator::feed(Vec3 to) { emit(Linear{to}); }
 
 void Generator::spindle(const SpindleOn& on) {
+  if (!on.css && on.rpm <= 0) {  // a toolpath's technology stops the spindle
+    if (spindle_) emit(SpindleOff{});
+    spindle_.reset();
+    return;
+  }
   if (spindle_ && spindle_->rpm == on.rpm && spindle_->clockwise == on.clockwise &&
       spindle_->css == on.css && spindle_->surface_speed == on.surface_speed)
     return;
@@ -302,27 +326,36 @@ double Generator::stepover(const Job& job) const {
 }
 
 std::optional<ResolvedTechnology> Generator::resolve_technology(const Operation& op, const Tool& tool) {
-  if (!op.technology) {
-    error(op.source, "missing technology: the operation has no feed or spindle speed");
+  return resolve_technology(op.technology, op.source, tool, false);
+}
+
+// `may_stop`: an explicit toolpath's own technology may stop the spindle
+// (speed 0), as NIST's ex1E.stp does to pull the reamer out.
+std::optional<ResolvedTechnology> Generator::resolve_technology(const std::optional<Technology>& technology,
+                                                                const Source& where, const Tool& tool, bool may_stop) {
+  if (!technology) {
+    error(where, "missing technology: the operation has no feed or spindle speed");
     return std::nullopt;
   }
-  const Technology& t = *op.technology;
+  const Technology& t = *technology;
   ResolvedTechnology out;
   double rpm = 0;
-  if (t.spindle_rpm && *t.spindle_rpm != 0) {
+  if (may_stop && t.spindle_rpm && *t.spindle_rpm == 0 && !t.constant_surface_speed) {
+    rpm = 0;
+  } else if (t.spindle_rpm && *t.spindle_rpm != 0) {
     rpm = std::abs(*t.spindle_rpm);
     out.spindle.clockwise = *t.spindle_rpm < 0;  // ISO 14649 sign convention
   } else if (t.cutting_speed && tool.diameter > 0 && !t.constant_surface_speed) {
     rpm = 1000 * *t.cutting_speed / (geom::pi * tool.diameter);
     out.spindle.clockwise = !t.counter_clockwise;
   } else if (!(t.constant_surface_speed && t.cutting_speed)) {
-    error(op.source, "missing technology: no spindle speed and no usable cutting speed");
+    error(where, "missing technology: no spindle speed and no usable cutting speed");
     return std::nullopt;
   }
   out.spindle.rpm = rpm;
   if (t.constant_surface_speed) {
     if (!t.cutting_speed) {
-      error(op.source, "constant surface speed without a cutting speed");
+      error(where, "constant surface speed without a cutting speed");
       return std::nullopt;
     }
     out.spindle.css = true;
@@ -337,16 +370,16 @@ std::optional<ResolvedTechnology> Generator::resolve_technology(const Operation&
   } else if (t.feed_per_revolution) {
     out.feed = turning() ? FeedRate{*t.feed_per_revolution, true} : FeedRate{*t.feed_per_revolution * rpm, false};
     if (!turning() && rpm <= 0) {
-      error(op.source, "missing technology: feed per revolution without a spindle speed");
+      error(where, "missing technology: feed per revolution without a spindle speed");
       return std::nullopt;
     }
   } else {
-    error(op.source, t.feed_per_tooth ? "missing technology: feed per tooth needs the tool's flute count"
+    error(where, t.feed_per_tooth ? "missing technology: feed per tooth needs the tool's flute count"
                                       : "missing technology: no feedrate");
     return std::nullopt;
   }
   if (out.feed.value <= 0) {
-    error(op.source, fmt::format("feedrate {} is not positive", out.feed.value));
+    error(where, fmt::format("feedrate {:g} is not positive", out.feed.value));
     return std::nullopt;
   }
   return out;
@@ -382,28 +415,50 @@ void Generator::visit(const Executable& executable) {
     case ExecutableKind::workingstep:
       workingstep(executable);
       return;
-    case ExecutableKind::workplan:
-    case ExecutableKind::non_sequential:
-    case ExecutableKind::parallel:
+    case ExecutableKind::rapid_movement:
+      rapid_movement(executable);
+      return;
+    case ExecutableKind::workplan: {
+      // A workplan with its own setup: its security plane applies inside.
+      const bool own_setup = executable.setup_security_plane.has_value();
+      if (own_setup) setup_planes_.push_back(*executable.setup_security_plane);
+      for (const auto& child : executable.children) visit(child);
+      if (own_setup) setup_planes_.pop_back();
+      return;
+    }
+    case ExecutableKind::non_sequential:  // any order will do: the file's
       for (const auto& child : executable.children) visit(child);
       return;
+    case ExecutableKind::parallel:
     case ExecutableKind::selective:
-      if (!executable.children.empty()) {
-        if (executable.children.size() > 1) {
-          provenance_ = 0;
-          emit(Comment{fmt::format("selective #{}: first of {} alternatives", executable.source.id,
-                                   executable.children.size())});
-        }
-        visit(executable.children.front());
-      }
+      error(executable.source,
+            fmt::format("{} #{} with {} branches is not posted: choosing their order or one of them needs a "
+                        "scheduler",
+                        executable.kind == ExecutableKind::parallel ? "parallel" : "selective", executable.source.id,
+                        executable.children.size()));
       return;
     case ExecutableKind::program_stop:
     case ExecutableKind::optional_stop:
+    case ExecutableKind::exchange_pallet:
       provenance_ = 0;
-      emit(ProgramStop{executable.kind == ExecutableKind::optional_stop});
+      if (executable.kind != ExecutableKind::optional_stop) {
+        // Someone reaches in or the pallet moves: tool up, spindle and coolant off.
+        if (!turning() && current_tool_ != 0 && pos_.z < program_.clear_z - eps)
+          rapid({pos_.x, pos_.y, program_.clear_z});
+        if (spindle_) emit(SpindleOff{});
+        spindle_.reset();
+        coolant(MachineFunctions{});
+      }
+      emit(ProgramStop{executable.kind == ExecutableKind::optional_stop,
+                       executable.kind == ExecutableKind::exchange_pallet});
+      return;
+    case ExecutableKind::display_message:
+      provenance_ = 0;
+      emit(Message{executable.text});
       return;
     case ExecutableKind::unsupported:
-      error(executable.source, fmt::format("{} is not supported by the posters", executable.entity_name));
+      error(executable.source, fmt::format("{} is not supported by the posters{}", executable.entity_name,
+                                           unsupported_reason(executable.entity_name)));
       return;
   }
 }
@@ -433,11 +488,11 @@ bool Generator::prepare(const Executable& executable, Job& job) {
   int& number = tool_numbers_[static_cast<std::size_t>(op.tool)];
   if (number == 0) number = *std::max_element(tool_numbers_.begin(), tool_numbers_.end()) + 1;
   job.tool_number = number;
-  job.clear = ws.security_plane.value_or(program_.clear_z);
+  job.clear = security_plane(ws.security_plane);
   job.top = job.feature->placement.location.z;
   job.retract = job.top + op.retract_plane.value_or(options_.safety_distance);
   if (!turning() && job.retract > job.clear + eps) {
-    error(op.source, fmt::format("retract plane z={} lies above the security plane z={}", job.retract, job.clear));
+    error(op.source, fmt::format("retract plane z={:g} lies above the security plane z={:g}", job.retract, job.clear));
     return false;
   }
   return sizes_make_sense(job);
@@ -461,21 +516,21 @@ bool Generator::sizes_make_sense(const Job& job) {
     error(where, std::move(message));
     return false;
   };
-  if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {}", f.depth));
+  if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {:g}", f.depth));
   if (explicit_motion) return true;
   if (!turning() && job.tool->diameter <= eps)
     return refuse(job.tool->source, "milling and drilling tools need a positive diameter");
   if (op.axial_cutting_depth && *op.axial_cutting_depth <= eps)
-    return refuse(op.source, fmt::format("axial cutting depth {} is not positive", *op.axial_cutting_depth));
+    return refuse(op.source, fmt::format("axial cutting depth {:g} is not positive", *op.axial_cutting_depth));
   // At most this many passes, layers or laps: beyond it the input is wrong.
   constexpr double max_passes = 1e5;
   const double depth = turning() ? project_.workpiece.stock_radius : f.depth;
   if (op.axial_cutting_depth && depth / *op.axial_cutting_depth > max_passes)
-    return refuse(op.source, fmt::format("axial cutting depth {} makes more than {} layers", *op.axial_cutting_depth,
+    return refuse(op.source, fmt::format("axial cutting depth {:g} makes more than {:g} layers", *op.axial_cutting_depth,
                                          max_passes));
   if (!turning()) {
     const double s = stepover(job);
-    if (s <= eps) return refuse(op.source, fmt::format("stepover {} is not positive", s));
+    if (s <= eps) return refuse(op.source, fmt::format("stepover {:g} is not positive", s));
     const Vec2 extent = std::visit(
         [](const auto& shape) -> Vec2 {
           using S = std::decay_t<decltype(shape)>;
@@ -492,9 +547,9 @@ bool Generator::sizes_make_sense(const Job& job) {
         },
         f.shape);
     if (extent.x <= 0 || extent.y <= 0)
-      return refuse(f.source, fmt::format("feature size {} x {} is not positive", extent.x, extent.y));
+      return refuse(f.source, fmt::format("feature size {:g} x {:g} is not positive", extent.x, extent.y));
     if (std::max(extent.x, extent.y) / s > max_passes)
-      return refuse(op.source, fmt::format("stepover {} makes more than {} passes", s, max_passes));
+      return refuse(op.source, fmt::format("stepover {:g} makes more than {:g} passes", s, max_passes));
   } else {
     if (project_.workpiece.stock_radius <= eps) return refuse(project_.workpiece.source, "bar stock without a radius");
     const auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy);
@@ -504,7 +559,7 @@ bool Generator::sizes_make_sense(const Job& job) {
       const double smallest = *std::min_element(depths->begin(), depths->end());
       if (smallest <= eps) return refuse(op.source, "cutting depths must be positive");
       if (project_.workpiece.stock_radius / depths->back() > max_passes)
-        return refuse(op.source, fmt::format("cutting depth {} makes more than {} passes", depths->back(), max_passes));
+        return refuse(op.source, fmt::format("cutting depth {:g} makes more than {:g} passes", depths->back(), max_passes));
     }
   }
   return true;
@@ -540,11 +595,15 @@ void Generator::workingstep(const Executable& executable) {
   emit(Comment{fmt::format("WS({}) {} #{}: {} #{} on {} #{}", workingstep_count_, executable.source.name,
                            executable.source.id, to_string(job.op->kind), job.op->source.id,
                            job.feature->source.name, job.feature->source.id)});
+  const bool explicit_motion = job.op->kind == OperationKind::freeform || !job.op->toolpaths.empty();
+  // After an explicit toolpath the tool stays where it ended; generated
+  // motion starts from the security plane.
+  if (!explicit_motion && !turning() && pos_.z < job.clear - eps) rapid({pos_.x, pos_.y, job.clear});
   start_operation(job);
   const std::size_t blocks_before = program_.blocks.size();
 
   // An explicit toolpath is what to do, whatever the operation's kind.
-  if (job.op->kind == OperationKind::freeform || !job.op->toolpaths.empty()) {
+  if (explicit_motion) {
     explicit_toolpaths(job);
   } else if (turning()) {
     turning_step(job);
@@ -575,7 +634,9 @@ void Generator::workingstep(const Executable& executable) {
     }
   }
   if (program_.blocks.size() == blocks_before) return;
-  if (!turning()) go_clear({pos_.x, pos_.y}, job.clear);
+  // An explicit toolpath ends where its file says (as NIST's toolkit posts
+  // it); the next move decides how to leave.
+  if (!turning() && !explicit_motion) go_clear({pos_.x, pos_.y}, job.clear);
 }
 
 // ------------------------------------------------------------- milling --
@@ -627,15 +688,15 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   const double d_final = r + side;
   const double m = geom::inradius(region);
   if (m < d_final - eps) {
-    error(job.feature->source, fmt::format("tool '{}' (diameter {}) plus side allowance {} does not fit the "
-                                            "feature (largest inscribed radius {})",
+    error(job.feature->source, fmt::format("tool '{}' (diameter {:g}) plus side allowance {:g} does not fit the "
+                                            "feature (largest inscribed radius {:.4g})",
                                             job.tool->source.name, job.tool->diameter, side, m));
     return;
   }
   if (const auto* rect = std::get_if<geom::RoundedRect>(&region)) {
     for (const double corner : rect->radius) {
       if (corner > eps && r > corner + side + eps) {
-        error(job.feature->source, fmt::format("tool radius {} is larger than the pocket corner radius {}; "
+        error(job.feature->source, fmt::format("tool radius {:g} is larger than the pocket corner radius {:g}; "
                                                 "the tool cannot reach the corners",
                                                 r, corner));
         return;
@@ -655,8 +716,8 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   }
   if (auto* pocket = std::get_if<ClosedPocket>(&job.feature->shape);
       pocket && job.tool->corner_radius > pocket->planar_radius + eps)
-    warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {}) is smaller than the "
-                                              "tool's corner radius {}",
+    warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {:g}) is smaller than the "
+                                              "tool's corner radius {:g}",
                                               pocket->planar_radius, job.tool->corner_radius));
   if (auto* polygon = std::get_if<geom::Polygon>(&region); polygon && contour && !geom::is_convex(*polygon)) {
     error(op.source, "contour_parallel on a non-convex general profile is not supported; use bidirectional_milling");
@@ -789,7 +850,7 @@ void Generator::slot(const Job& job, const Slot& slot_shape) {
   const bool rough = op.kind == OperationKind::bottom_and_side_rough_milling;
   const double side = rough ? op.allowance_side : 0;
   if (2 * (r + side) > slot_shape.width + eps) {
-    error(job.feature->source, fmt::format("tool diameter {} plus allowances does not fit the slot width {}",
+    error(job.feature->source, fmt::format("tool diameter {:g} plus allowances does not fit the slot width {:g}",
                                             job.tool->diameter, slot_shape.width));
     return;
   }
@@ -819,12 +880,12 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   const Tool& tool = *job.tool;
   // A tap is as wide as the thread, wider than the hole drilled for it.
   if (op.kind != OperationKind::tapping && tool.diameter > hole_shape.diameter + eps) {
-    error(op.source, fmt::format("tool '{}' (diameter {}) is larger than hole '{}' (diameter {})", tool.source.name,
+    error(op.source, fmt::format("tool '{}' (diameter {:g}) is larger than hole '{}' (diameter {:g})", tool.source.name,
                                  tool.diameter, job.feature->source.name, hole_shape.diameter));
     return;
   }
   if (op.kind == OperationKind::reaming && std::abs(tool.diameter - hole_shape.diameter) > 1e-3)
-    warning(op.source, fmt::format("reamer diameter {} differs from hole diameter {}", tool.diameter,
+    warning(op.source, fmt::format("reamer diameter {:g} differs from hole diameter {:g}", tool.diameter,
                                    hole_shape.diameter));
   double depth = op.cutting_depth.value_or(job.feature->depth);
   if (hole_shape.bottom == HoleBottom::through && !op.cutting_depth && op.kind != OperationKind::center_drilling) {
@@ -880,6 +941,29 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   rapid({cycle.x, cycle.y, cycle.clear});
 }
 
+bool near(Vec3 a, Vec3 b) { return std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z) < 1e-6; }
+
+// To the first point of an explicit toolpath: nothing when the tool is
+// there; else over the security plane and down, at rapid while at or above
+// the retract plane (clear of material), at feed below it.
+void Generator::approach(const Job& job, Vec3 to, bool rapid_path) {
+  if (near(pos_, to)) return;
+  if (turning()) {
+    rapid({turning_safe().x, 0, to.z});
+  } else {
+    go_clear({to.x, to.y}, job.clear);
+    if (to.z >= job.retract - eps) {
+      rapid(to);
+      return;
+    }
+    if (pos_.z > job.retract + eps) rapid({to.x, to.y, job.retract});
+  }
+  if (rapid_path)
+    rapid(to);
+  else
+    feed(to);
+}
+
 void Generator::explicit_toolpaths(const Job& job) {
   const Operation& op = *job.op;
   if (op.toolpaths.empty()) {
@@ -891,36 +975,89 @@ void Generator::explicit_toolpaths(const Job& job) {
     for (const ToolpathElement& element : path.elements)
       count += std::holds_alternative<Polyline>(element) ? std::get<Polyline>(element).points.size() : 1;
   program_.blocks.reserve(program_.blocks.size() + count + 8);
+  // Milling cutter locations are in the feature's frame (ISO 14649-10 4.8).
+  const Placement frame = turning() ? Placement{} : job.feature->toolpath_frame.value_or(job.feature->placement);
+  const double c = std::cos(frame.angle_deg * geom::pi / 180), s = std::sin(frame.angle_deg * geom::pi / 180);
+  auto place = [&](Vec3 p) {
+    return Vec3{frame.location.x + c * p.x - s * p.y, frame.location.y + s * p.x + c * p.y, frame.location.z + p.z};
+  };
   bool first = true;
   for (const Toolpath& path : op.toolpaths) {
+    // The path's own technology replaces the operation's while it runs.
+    ResolvedTechnology tech = job.tech;
+    if (path.technology) {
+      auto own = resolve_technology(path.technology, path.source, *job.tool, true);
+      if (!own) return;
+      tech = *own;
+    }
+    if (!path.rapid) {
+      spindle(tech.spindle);
+      feedrate({tech.feed.value * path.feed_ratio, tech.feed.per_revolution});
+    }
     for (const ToolpathElement& element : path.elements) {
       if (auto* line = std::get_if<Polyline>(&element)) {
-        for (const Vec3& p : line->points) {
+        for (const Vec3& local : line->points) {
+          const Vec3 p = place(local);
           if (first) {
-            // Approach: straight above the first point, then down to it.
-            if (turning()) {
-              rapid({turning_safe().x, 0, p.z});
-            } else {
-              go_clear({p.x, p.y}, job.clear);
-            }
+            approach(job, p, path.rapid);
             first = false;
+          } else if (!near(pos_, p)) {
+            if (path.rapid)
+              rapid(p);
+            else
+              feed(p);
           }
-          if (path.rapid)
-            rapid(p);
-          else
-            feed(p);
         }
-      } else {
-        const auto& arc = std::get<CircularArc>(element);
+      } else if (auto* arc = std::get_if<CircularArc>(&element)) {
         if (first) {
           error(path.source, "a toolpath must start with a point, not an arc");
           return;
         }
-        emit(Arc{ArcPlane::xy, arc.end, arc.centre, arc.clockwise, arc.extra_turns});
+        if (path.rapid) {
+          error(path.source, "an arc cannot be a rapid move");
+          return;
+        }
+        emit(Arc{ArcPlane::xy, place(arc->end), place(arc->centre), arc->clockwise, arc->extra_turns});
+      } else {
+        emit(Dwell{std::get<ToolpathDwell>(element).seconds});
       }
     }
   }
   if (turning()) rapid({turning_safe().x, 0, pos_.z});
+}
+
+// A rapid movement: its points at rapid, in setup coordinates. From
+// elsewhere it starts over its security plane.
+void Generator::rapid_movement(const Executable& executable) {
+  if (current_tool_ == 0) {
+    warning(executable.source, "a rapid movement before the first tool change is left out: nothing moves before "
+                               "a tool and its length offset are active");
+    return;
+  }
+  program_.provenance.push_back({executable.source, executable.source, {}});  // both workingstep and operation
+  provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
+  emit(Comment{fmt::format("rapid movement {} #{}", executable.source.name, executable.source.id)});
+  const double clear = security_plane(executable.step.security_plane);
+  bool first = true;
+  for (const Toolpath& path : executable.toolpaths) {
+    for (const ToolpathElement& element : path.elements) {
+      const auto* line = std::get_if<Polyline>(&element);
+      if (!line) {
+        error(path.source, "a rapid movement holds points only: arcs and dwells cannot be rapid");
+        return;
+      }
+      for (const Vec3& p : line->points) {
+        if (first && !near(pos_, p)) {
+          if (turning())
+            rapid({turning_safe().x, 0, p.z});
+          else
+            go_clear({p.x, p.y}, clear);
+        }
+        first = false;
+        if (!near(pos_, p)) rapid(p);
+      }
+    }
+  }
 }
 
 // ------------------------------------------------------------- turning --
@@ -1118,7 +1255,7 @@ void Generator::grooving(const Job& job, const Groove& groove) {
     return;
   }
   if (w > groove.width + eps) {
-    error(job.op->source, fmt::format("grooving insert width {} is wider than the groove ({})", w, groove.width));
+    error(job.op->source, fmt::format("grooving insert width {:g} is wider than the groove ({:g})", w, groove.width));
     return;
   }
   // The insert's reference corner is on its front (+z) side; plunges step

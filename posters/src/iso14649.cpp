@@ -14,6 +14,7 @@
 #include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
 #include "stepnc/post/feature_geometry.h"
+#include "curves.h"
 
 namespace stepnc::post {
 
@@ -76,14 +77,7 @@ class Describer {
     error(where, name, fmt::format("{} {} is not supported by the posters' adapter", what, where.entity_info().name));
   }
 
-  static Vec3 point(const ms::cartesian_point* p) {
-    Vec3 v;
-    if (!p) return v;
-    if (p->coordinates.size() > 0) v.x = p->coordinates[0];
-    if (p->coordinates.size() > 1) v.y = p->coordinates[1];
-    if (p->coordinates.size() > 2) v.z = p->coordinates[2];
-    return v;
-  }
+  static Vec3 point(const ms::cartesian_point* p) { return detail::point(p); }
   static double size(const ms::toleranced_length_measure* m) { return m ? m->theoretical_size : 0; }
   // The angle of a direction in its frame's XY plane, degrees.
   static double direction_angle(const ms::direction& d) {
@@ -132,10 +126,16 @@ class Describer {
       out.workpiece.source = {w.id(), std::string(w.its_id.view())};
       if (w.global_tolerance) out.workpiece.global_tolerance = *w.global_tolerance;
     }
-    if (p.main_workplan->its_setup) {
-      if (auto z = plane_z(p.main_workplan->its_setup->its_secplane)) out.security_plane = *z;
-    }
     out.main_workplan = executable(*p.main_workplan);
+    // The program's own safe height (start and end): the main workplan's
+    // setup, else the first nested one (files written by other CAM tools),
+    // else the first workingstep's plane. Never a made-up z = 0.
+    if (first_setup_plane_)
+      out.security_plane = *first_setup_plane_;
+    else if (first_step_plane_)
+      out.security_plane = *first_step_plane_;
+    else if (moves_)
+      error(p, p.its_id, "no security plane: no workplan has a setup and no workingstep a security plane");
     if (turning_ && milling_) error(p, p.its_id, "a project mixing milling and turning operations is not supported");
     if (turning_) {
       out.machine = MachineKind::turning;
@@ -206,6 +206,26 @@ class Describer {
     w.block_max = {hi_x, hi_y, top};
   }
 
+  // A setup's security plane applies to everything its workplan holds. A
+  // second setup must share the first one's origin: the posters write one
+  // work offset.
+  std::optional<double> setup_plane(const ms::setup& setup) {
+    auto z = plane_z(setup.its_secplane);
+    if (!z) error(setup, setup.its_id, "setup without a security plane");
+    const Vec3 origin = setup.its_origin ? point(setup.its_origin->location) : Vec3{};
+    const double angle = setup.its_origin && setup.its_origin->ref_direction ? direction_angle(*setup.its_origin->ref_direction) : 0;
+    if (!first_setup_origin_) {
+      first_setup_origin_ = Placement{origin, angle};
+      if (z) first_setup_plane_ = z;
+    } else if (std::abs(origin.x - first_setup_origin_->location.x) > 1e-9 ||
+               std::abs(origin.y - first_setup_origin_->location.y) > 1e-9 ||
+               std::abs(origin.z - first_setup_origin_->location.z) > 1e-9 ||
+               std::abs(angle - first_setup_origin_->angle_deg) > 1e-9) {
+      error(setup, setup.its_id, "a setup with another origin needs a work offset of its own; the posters write one");
+    }
+    return z;
+  }
+
   Executable executable(const ms::executable& e) {
     Executable out;
     out.source = {e.id(), std::string(e.its_id.view())};
@@ -213,8 +233,19 @@ class Describer {
       for (const ms::executable* child : list)
         if (child) out.children.push_back(executable(*child));
     };
-    if (auto* ws = as<ms::machining_workingstep>(&e)) {
+    if (auto* rapid = as<ms::rapid_movement>(&e)) {
+      out.kind = ExecutableKind::rapid_movement;
+      moves_ = true;
+      out.step.security_plane = plane_z(rapid->its_secplane);
+      if (!rapid->its_toolpath) {
+        error(e, e.its_id, "rapid movement without a toolpath");
+        return out;
+      }
+      out.toolpaths = toolpaths(*rapid->its_toolpath);
+      for (Toolpath& path : out.toolpaths) path.rapid = true;
+    } else if (auto* ws = as<ms::machining_workingstep>(&e)) {
       out.kind = ExecutableKind::workingstep;
+      moves_ = true;
       if (!ws->its_feature || !ws->its_operation) {
         error(e, e.its_id, "workingstep without a feature or an operation");
         return out;
@@ -223,8 +254,10 @@ class Describer {
       out.step.operation = operation(*ws->its_operation);
       out.step.feature = feature(*ws->its_feature);
       out.step.security_plane = plane_z(ws->its_secplane);
+      if (!first_step_plane_) first_step_plane_ = out.step.security_plane;
     } else if (auto* plan = as<ms::workplan>(&e)) {
       out.kind = ExecutableKind::workplan;
+      if (plan->its_setup) out.setup_security_plane = setup_plane(*plan->its_setup);
       children(plan->its_elements);
     } else if (auto* par = as<ms::parallel>(&e)) {
       out.kind = ExecutableKind::parallel;
@@ -239,6 +272,11 @@ class Describer {
       out.kind = ExecutableKind::program_stop;
     } else if (as<ms::optional_stop>(&e)) {
       out.kind = ExecutableKind::optional_stop;
+    } else if (auto* message = as<ms::display_message>(&e)) {
+      out.kind = ExecutableKind::display_message;
+      out.text = std::string(message->its_text.view());
+    } else if (as<mi::exchange_pallet>(&e)) {
+      out.kind = ExecutableKind::exchange_pallet;
     } else {
       out.kind = ExecutableKind::unsupported;
       out.entity_name = std::string(e.entity_info().name);
@@ -260,6 +298,7 @@ class Describer {
       unsupported(f, f.its_id, "feature");
     } else if (auto p = placement(mf->feature_placement, f, f.its_id)) {
       out.placement = *p;
+      out.toolpath_frame = *p;
       // The depth plane is placed relative to the feature.
       if (auto z = plane_z(mf->depth)) out.depth = -*z;
       if (auto* face = as<ms::planar_face>(&f)) {
@@ -649,6 +688,19 @@ class Describer {
       out.nose_radius = dim.nose_radius.value_or(0);
       out.side_cutting_edge_angle_deg = dim.side_cutting_edge_angle.value_or(0);
       out.end_cutting_edge_angle_deg = dim.end_cutting_edge_angle.value_or(0);
+      // K_r and K'_r (ISO 3002-1, as seeds 001 and 002 read Part 121: 95°
+      // for a PCLNR holder); a negative K_r is an ANSI lead angle stored by
+      // mistake. The two edges and the nose close a triangle: K_r + K'_r < 180°.
+      if (dim.side_cutting_edge_angle && (*dim.side_cutting_edge_angle <= 0 || *dim.side_cutting_edge_angle >= 180))
+        error(dim, t.its_id,
+              fmt::format("side_cutting_edge_angle {:g} is not a tool cutting edge angle K_r (0 to 180, 95 for a "
+                          "PCLNR holder); an ANSI lead angle of -5 is K_r 95",
+                          *dim.side_cutting_edge_angle));
+      else if (dim.side_cutting_edge_angle && dim.end_cutting_edge_angle &&
+               *dim.side_cutting_edge_angle + *dim.end_cutting_edge_angle >= 180)
+        error(dim, t.its_id,
+              fmt::format("K_r {:g} plus K'_r {:g} is not below 180 degrees: no insert has these edges",
+                          *dim.side_cutting_edge_angle, *dim.end_cutting_edge_angle));
       if (auto* grooving = as<tt::grooving_tool>(lathe_body)) {
         out.kind = ToolKind::grooving_insert;
         out.cutting_width = grooving->cutting_width;
@@ -671,7 +723,7 @@ class Describer {
         out.length = cutting->its_cutting_edge.front()->tool_offset_length;
       if (as<mt::twist_drill>(body))
         out.kind = ToolKind::twist_drill;
-      else if (as<mt::centerdrill>(body))
+      else if (as<mt::center_drill>(body))
         out.kind = ToolKind::center_drill;
       else if (as<mt::reamer>(body))
         out.kind = ToolKind::reamer;
@@ -803,54 +855,63 @@ class Describer {
     return index;
   }
 
-  // Explicit toolpaths: cutter location trajectories over polylines,
-  // composite curves and trimmed circles (arcs in the XY plane); a
-  // non-contact path is a rapid.
+  // Explicit toolpaths (ISO 14649-10 4.8): cutter location trajectories
+  // over any curve curves.h reads, in list order, each run backwards when
+  // its_direction is false; feedstops dwell. Rapid: non_contact and
+  // connect paths (as NIST's toolkit posts ex1E.stp) and its_speed .RAPID.;
+  // a ratio scales the feed. A tool axis must stay +Z (3-axis posters).
   std::vector<Toolpath> toolpaths(const ms::toolpath_list& list) {
     std::vector<Toolpath> out;
     for (const ms::toolpath* path : list.its_list) {
       if (!path) continue;
+      Toolpath t;
+      t.source = {path->id(), ""};
+      t.rapid = path->its_type == ms::toolpath_type::non_contact || path->its_type == ms::toolpath_type::connect;
+      if (auto name = path->its_speed.as_speed_name(); name && *name == ms::speed_name::rapid) t.rapid = true;
+      if (auto ratio = path->its_speed.as_positive_ratio_measure()) t.feed_ratio = *ratio;
+      if (path->its_speed.as_toolpath_speed())
+        error(*path, "", "a speed profile (toolpath_speed) is not supported by the posters");
+      if (path->its_technology) t.technology = technology(path->its_technology);
+      if (auto* stop = as<ms::feedstop>(path)) {
+        t.elements.push_back(ToolpathDwell{stop->dwell});
+        out.push_back(std::move(t));
+        continue;
+      }
       const auto* cl = as<ms::cutter_location_trajectory>(path);
       if (!cl || !cl->basiccurve) {
         unsupported(*path, "", "toolpath");
         continue;
       }
-      Toolpath t;
-      t.source = {path->id(), ""};
-      t.rapid = path->its_type == ms::toolpath_type::non_contact;
-      curve(*cl->basiccurve, t.elements);
+      if (cl->its_toolaxis) tool_axis(*cl->its_toolaxis);
+      std::vector<detail::CurveProblem> problems;
+      detail::append_curve(*cl->basiccurve, cl->its_direction == false, t.elements, problems);
+      for (auto& problem : problems) {
+        Diagnostic d{problem.warning ? Diagnostic::Severity::warning : Diagnostic::Severity::error,
+                     {problem.id, ""}, std::move(problem.message)};
+        out_.diagnostics.push_back(std::move(d));
+      }
       out.push_back(std::move(t));
     }
     return out;
   }
 
-  void curve(const ms::curve& c, std::vector<ToolpathElement>& out) {
-    if (auto* line = as<ms::polyline>(&c)) {
-      Polyline poly;
-      poly.points.reserve(line->points.size());
-      for (const ms::cartesian_point* p : line->points) poly.points.push_back(point(p));
-      out.push_back(std::move(poly));
-    } else if (auto* composite = as<ms::composite_curve>(&c)) {
-      for (const ms::composite_curve_segment* segment : composite->segments)
-        if (segment && segment->parent_curve) curve(*segment->parent_curve, out);
-    } else if (auto* trimmed = as<ms::trimmed_curve>(&c); trimmed && as<ms::circle>(trimmed->basis_curve)) {
-      const auto* circle = as<ms::circle>(trimmed->basis_curve);
-      const ms::cartesian_point* end = nullptr;
-      for (const auto& trim : trimmed->trim_2)
-        if (trim.as_cartesian_point()) end = trim.as_cartesian_point();
-      if (!end || !circle->position) {
-        error(c, "", "trimmed circle needs a cartesian end point and a placement");
+  // A cutter location trajectory's tool axis: directions along the path,
+  // which 3-axis posters can follow only while they stay +Z.
+  void tool_axis(const ms::bounded_curve& axis) {
+    const auto* line = as<ms::polyline>(&axis);
+    if (!line) {
+      error(axis, "", fmt::format("tool axis {} is not supported: give it as a polyline of +Z directions",
+                                  axis.entity_info().name));
+      return;
+    }
+    for (const ms::cartesian_point* p : line->points) {
+      const Vec3 d = point(p);
+      const double length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+      if (length <= 0 || std::abs(d.z / length - 1) > 1e-6) {
+        error(p ? static_cast<const meta::Instance&>(*p) : axis, "",
+              fmt::format("tool axis ({:g}, {:g}, {:g}) is not +Z: the posters drive 3 axes", d.x, d.y, d.z));
         return;
       }
-      // The circle runs counter-clockwise about its axis; sense_agreement
-      // keeps that direction.
-      double axis_z = 1;
-      if (circle->position->axis && circle->position->axis->direction_ratios.size() == 3)
-        axis_z = circle->position->axis->direction_ratios[2];
-      const bool counter_clockwise = (axis_z > 0) == trimmed->sense_agreement;
-      out.push_back(CircularArc{point(end), point(circle->position->location), !counter_clockwise, 0});
-    } else {
-      unsupported(c, "", "toolpath curve");
     }
   }
 
@@ -896,6 +957,9 @@ class Describer {
   std::map<const ms::machining_operation*, int> operations_;
   std::map<const ms::machining_tool*, int> tools_;
   std::map<const ms::workpiece*, std::optional<Box>> blocks_;
+  std::optional<Placement> first_setup_origin_;
+  std::optional<double> first_setup_plane_, first_step_plane_;
+  bool moves_ = false;  // a workingstep or rapid movement needs a security plane
 };
 
 }  // namespace

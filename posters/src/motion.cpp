@@ -94,6 +94,7 @@ class Expander {
   void on(const Comment&) {}
   void on(const Tolerance&) {}
   void on(const ProgramStop&) {}
+  void on(const Message&) {}
 
   // LinuxCNC canned cycles in G99 mode (retract to R).
   void on(const DrillCycle& c) {

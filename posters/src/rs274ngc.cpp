@@ -63,6 +63,14 @@ class Rs274ngcPrinter final : public GcodePrinter {
     word('P', t.value);
     finish_line();
   }
+  // LinuxCNC: M60 exchanges the pallet shuttles and pauses; (MSG, ...) shows text.
+  void program_stop(const ProgramStop& s) override {
+    if (s.pallet_exchange)
+      line("M60");
+    else
+      GcodePrinter::program_stop(s);
+  }
+  void message(const Message& m) override { comment("MSG, " + m.text); }
   void dwell(const Dwell& d) override {
     start_line();
     word("G4");

@@ -10,6 +10,7 @@
 // Siemens pages.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dialects.h"
@@ -106,6 +107,12 @@ class Siemens840dPrinter final : public GcodePrinter {
     word(f.per_revolution ? "G95" : "G94");
     word('F', f.value);
     finish_line();
+  }
+  // MSG("...") shows the text on the operator panel; quotes cannot nest.
+  void message(const Message& m) override {
+    std::string text = m.text;
+    std::replace(text.begin(), text.end(), '"', '\'');
+    line(fmt::format("MSG(\"{}\")", text));
   }
   void dwell(const Dwell& d) override {
     start_line();

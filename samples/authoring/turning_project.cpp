@@ -24,7 +24,7 @@ tools::turning_machine_tool* turning_tool(Model& m, const char* name, double nos
   auto& size = m.create<tools::turning_tool_dimension>();
   size.cutting_edge_length = edge_length;
   size.end_cutting_edge_angle = 5;
-  size.side_cutting_edge_angle = -5;
+  size.side_cutting_edge_angle = 95;  // K_r of a PCLNR holder (seed 001), not an ANSI lead angle
   size.nose_radius = nose_radius;
 
   auto& body = m.create<tools::general_turning_tool>();

@@ -162,6 +162,22 @@ TEST_CASE("stepnc post writes the program and its trace atomically", "[cli]") {
   for (const auto& f : {program, trace, bad}) fs::remove(f);
 }
 
+TEST_CASE("stepnc post names the file, line and #id of what it refuses, numbers rounded", "[cli]") {
+  std::ifstream in(sample("milling/nested_setup_functions.stp"));
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  // A retract plane 99.1 + 1e-12 above the face (Z 30) lies above the security plane Z 50.
+  const std::string op = "#50=FREEFORM_OPERATION(#200,$,'FACE TOP 1 MM',5.000,";
+  REQUIRE(text.find(op) != std::string::npos);
+  text.replace(text.find(op), op.size(), "#50=FREEFORM_OPERATION(#200,$,'FACE TOP 1 MM',99.100000000001,");
+  const fs::path bad = write_temp("stepnc-cli-retract.stp", text);
+  const Run run = stepnc("post " + bad.string() + " -d rs274ngc");
+  CHECK(run.exit_code == 1);
+  CHECK_THAT(run.out, Catch::Contains(bad.string() +
+                                      ":57:1: #50 'FACE TOP 1 MM': error: retract plane z=129.1 lies above the "
+                                      "security plane z=50\n"));
+  fs::remove(bad);
+}
+
 TEST_CASE("stepnc plot draws an SVG", "[cli]") {
   const fs::path svg = fs::temp_directory_path() / "stepnc-cli-shaft.svg";
   const Run run = stepnc("plot " + sample("turning/shaft.stp") + " -o " + svg.string());

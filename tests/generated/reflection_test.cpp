@@ -190,7 +190,7 @@ TEST_CASE("walking the milling_cutting_tool hierarchy", "[generated][reflection]
   const meta::EntityInfo* body = registry.find_entity("milling_machine_tool_body");
   REQUIRE(body != nullptr);
   const auto bodies = all_subtypes(*body);
-  for (const char* expected : {"drill", "milling_cutter", "tap", "reamer", "boring_tool", "centerdrill"})
+  for (const char* expected : {"drill", "milling_cutter", "tap", "reamer", "boring_tool", "center_drill"})
     CHECK(bodies.count(expected) == 1);
 }
 

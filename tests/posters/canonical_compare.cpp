@@ -15,11 +15,21 @@ struct Call {
   std::vector<double> numbers;
 };
 
-// "   12 N..... NAME(a, b, c)" -> NAME and its numeric arguments.
+// "   12 N..... NAME(a, b, c)" (rs274 -g) or "   12 NAME(a, b, c)" (NIST's
+// toolkit listings) -> NAME and its numeric arguments.
 bool parse_call(std::string_view line, Call& call) {
-  const auto marker = line.find("N..... ");
-  if (marker == std::string_view::npos) return false;
-  const std::string_view rest = line.substr(marker + 7);
+  std::string_view rest;
+  if (const auto marker = line.find("N..... "); marker != std::string_view::npos) {
+    rest = line.substr(marker + 7);
+  } else {
+    const auto number = line.find_first_not_of(' ');
+    const auto name = line.find(' ', number);
+    if (number == std::string_view::npos || name == std::string_view::npos || name == number ||
+        line.substr(number, name - number).find_first_not_of("0123456789") != std::string_view::npos)
+      return false;
+    rest = line.substr(name + 1);
+  }
+  if (rest.empty()) return false;
   const auto open = rest.find('(');
   if (open == std::string_view::npos || rest.back() != ')') return false;
   call.name = rest.substr(0, open);

@@ -63,7 +63,7 @@ Operation operation(std::int64_t id, std::string name, OperationKind kind, int t
 }
 
 Feature feature(std::int64_t id, std::string name, Placement placement, double depth, FeatureShape shape) {
-  return Feature{{id, std::move(name)}, placement, depth, std::move(shape)};
+  return Feature{{id, std::move(name)}, placement, depth, std::move(shape), std::nullopt};
 }
 
 }  // namespace

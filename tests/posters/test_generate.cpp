@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "projects.h"
 #include "stepnc/post/dialect.h"
@@ -85,27 +86,48 @@ TEST_CASE("technology: ISO signs, feed per tooth and cutting speed") {
   }
 }
 
-TEST_CASE("executable order: nested workplans, parallel and selective") {
+TEST_CASE("executable order: nested workplans and non_sequential in file order; parallel and selective refused") {
   auto project = testing::example1();
   auto ws = project.main_workplan.children;
   project.main_workplan.children = {
-      plan(ExecutableKind::workplan, 90, {ws[0], plan(ExecutableKind::parallel, 91, {ws[1], ws[2]})}),
-      plan(ExecutableKind::selective, 92, {ws[3], ws[4]}),
-      ws[4]};
+      plan(ExecutableKind::workplan, 90, {ws[0], plan(ExecutableKind::non_sequential, 91, {ws[1], ws[2]})}),
+      ws[3], ws[4]};
   const auto result = generate(project);
   REQUIRE(result.ok());
   const auto comments = workingstep_comments(result.program);
   REQUIRE(comments.size() == 5);
   CHECK(comments[0].find("#10") != std::string::npos);
-  CHECK(comments[1].find("#11") != std::string::npos);  // parallel: listed order
+  CHECK(comments[1].find("#11") != std::string::npos);  // non_sequential: file order
   CHECK(comments[2].find("#12") != std::string::npos);
-  CHECK(comments[3].find("#13") != std::string::npos);  // selective: the first alternative
+  CHECK(comments[3].find("#13") != std::string::npos);
   CHECK(comments[4].find("#14") != std::string::npos);
-  const bool noted = std::any_of(result.program.blocks.begin(), result.program.blocks.end(), [](const Block& b) {
-    auto* c = std::get_if<Comment>(&b.statement);
-    return c && c->text == "selective #92: first of 2 alternatives";
-  });
-  CHECK(noted);
+
+  // Which branch, or in which order, is the scheduler's to decide.
+  project.main_workplan.children = {ws[0], plan(ExecutableKind::parallel, 91, {ws[1], ws[2]}),
+                                    plan(ExecutableKind::selective, 92, {ws[3], ws[4]})};
+  const auto refused = generate(project);
+  CHECK_FALSE(refused.ok());
+  CHECK(mentions(refused, "#91 'PLAN': error: parallel #91 with 2 branches is not posted"));
+  CHECK(mentions(refused, "#92 'PLAN': error: selective #92 with 2 branches is not posted"));
+}
+
+TEST_CASE("a nested workplan's own setup gives the security plane of what it holds") {
+  auto project = testing::example1();  // security plane Z 30
+  auto ws = project.main_workplan.children;
+  Executable nested = plan(ExecutableKind::workplan, 90, {ws[1], ws[2]});  // drill and ream
+  nested.setup_security_plane = 60;
+  project.main_workplan.children = {ws[0], nested, ws[3], ws[4]};
+  const auto result = generate(project);
+  REQUIRE(result.ok());
+  // Each workingstep ends at its security plane: 60 inside the nested workplan, 30 outside.
+  std::map<std::int64_t, double> last;
+  for (const Block& b : result.program.blocks)
+    if (auto* r = std::get_if<Rapid>(&b.statement)) last[result.program.provenance[b.provenance].workingstep.id] = r->to.z;
+  CHECK(last[10] == 30);
+  CHECK(last[11] == 60);
+  CHECK(last[12] == 60);
+  CHECK(last[13] == 30);
+  CHECK(last[14] == 30);
 }
 
 TEST_CASE("diagnostics name the instance and stop the program") {
@@ -121,6 +143,12 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     const auto result = generate(project);
     CHECK_FALSE(result.ok());
     CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
+  }
+  SECTION("numbers in messages are rounded") {
+    project.operations[3].strategy = ContourBidirectional{1 - 2.2};  // -1.2000000000000002
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#22 'ROUGH POCKET1': error: stepover -1.2 is not positive"));
   }
   SECTION("missing technology") {
     project.operations[1].technology.reset();

@@ -11,6 +11,8 @@
 #include "simulation.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/iso14649.h"
+#include "stepnc/post/plot.h"
+#include "test_files.h"
 
 using namespace stepnc;
 using namespace stepnc::post;
@@ -147,7 +149,11 @@ TEST_CASE("explicit toolpaths from the typed model post exactly the points they 
   REQUIRE(op.toolpaths.size() == 2);
   const auto& points = std::get<Polyline>(op.toolpaths[0].elements.at(0)).points;
   REQUIRE(points.size() == 300);
-  const auto& arc = std::get<CircularArc>(op.toolpaths[1].elements.at(0));
+  // An arc comes after its start point (here the polyline's last point).
+  const auto& start = std::get<Polyline>(op.toolpaths[1].elements.at(0)).points;
+  REQUIRE(start.size() == 1);
+  CHECK(start[0].x == points.back().x);
+  const auto& arc = std::get<CircularArc>(op.toolpaths[1].elements.at(1));
   CHECK_FALSE(arc.clockwise);  // sense agrees with a +Z circle
   CHECK(arc.end.x == Approx(-points.back().x));
 
@@ -336,6 +342,9 @@ struct OpenFeatureModel {
     auto& ws = model.create<machining_schema::machining_workingstep>();
     ws.its_feature = &f;
     ws.its_operation = &model.create<milling_schema::bottom_and_side_finish_milling>();
+    auto& security = model.create<machining_schema::plane>();
+    security.position = placement(0, 0, 50);
+    ws.its_secplane = &security;
     plan.its_elements.push_back(&ws);
   }
 };
@@ -496,4 +505,241 @@ TEST_CASE("closed pocket parts the posters cannot machine are errors naming the 
       "#900=THROUGH_POCKET_BOTTOM_CONDITION();");
   for (const auto& d : through.diagnostics) INFO(d.to_string());
   CHECK(through.ok());
+}
+
+namespace {
+
+std::string simulation_problems(const MachiningProject& project, const Program& program) {
+  std::string problems;
+  for (const auto& problem : testing::simulate_milling(project, program).problems) problems += problem + "\n";
+  return problems;
+}
+
+}  // namespace
+
+TEST_CASE("samples/milling/facing_toolpath.stp posts, its retract plane below the security plane, and cuts the face") {
+  const DescribeResult described = testing::describe_sample("milling/facing_toolpath.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  CHECK(generated.diagnostics.empty());
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  // The cutter locations are in the face's frame (top Z 30): the cut runs
+  // at Z 28; the approach path at half the feed (its_speed 0.5).
+  CHECK(ngc.find("F750\nG0 X10 Y-30 Z35\nG1 Z28\nF1500\nY150\nX50\nY-30\nX90\nY150\nZ35\n") != std::string::npos);
+  CHECK(ngc.find("(rapid movement RAPID HOME #32)\nG0 X0 Y0 Z100\n") != std::string::npos);
+  CHECK(simulation_problems(described.project, generated.program) == "");
+  CHECK_FALSE(plot_svg(described.project, generated.program).empty());
+}
+
+TEST_CASE("a nested workplan's own setup, NC functions and rapid movements post in every dialect") {
+  const DescribeResult described = testing::describe_sample("milling/nested_setup_functions.stp");
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const MachiningProject& p = described.project;
+  // The main workplan has no setup: the nested one's plane is the program's.
+  CHECK(p.security_plane == 50);
+  REQUIRE(p.main_workplan.children.size() == 3);
+  CHECK(p.main_workplan.children[0].kind == ExecutableKind::display_message);
+  CHECK(p.main_workplan.children[1].setup_security_plane == 50);
+  CHECK(p.main_workplan.children[2].kind == ExecutableKind::exchange_pallet);
+  const auto& nested = p.main_workplan.children[1].children;
+  REQUIRE(nested.size() == 4);
+  CHECK(nested[1].kind == ExecutableKind::rapid_movement);
+  CHECK(nested[2].kind == ExecutableKind::optional_stop);
+  CHECK(nested[3].kind == ExecutableKind::non_sequential);
+  // The composite curve: lines and half circles by parameters, the lift run backwards.
+  const auto& paths = p.operations.at(0).toolpaths;
+  REQUIRE(paths.size() == 3);
+  const auto& cut = paths[1].elements;
+  REQUIRE(cut.size() == 5);  // line, arc, line, arc, line (each arc after its start point)
+  const auto& turn1 = std::get<CircularArc>(cut[1]);
+  CHECK_FALSE(turn1.clockwise);
+  CHECK(turn1.end.x == Approx(130));
+  CHECK(turn1.end.y == Approx(40));
+  const auto& turn2 = std::get<CircularArc>(cut[3]);
+  CHECK(turn2.clockwise);  // sense .F.
+  CHECK(turn2.end.y == Approx(70));
+  const auto& lift = std::get<Polyline>(paths[2].elements.at(0)).points;
+  REQUIRE(lift.size() == 2);
+  CHECK(lift.back().z == 5);  // its_direction .F.: from the cut up
+
+  const auto generated = generate(p);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  CHECK(generated.program.clear_z == 50);
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  CHECK(ngc.find("(MSG, CLAMP THE 100 X 80 BLOCK ON PALLET 1)\n") < ngc.find("T1 M6"));
+  CHECK(ngc.find("G1 Z29\nX130\nG3 X130 Y40 I0 J15\nG1 X-30\nG2 X-30 Y70 I0 J15\nG1 X130\n") != std::string::npos);
+  // The rapid movement from the end of the lift: up to the nested setup's plane and across.
+  CHECK(ngc.find("(rapid movement RAPID OVER HOLE 1 #32)\nG0 Z50\nX25 Y40\nM1\n") != std::string::npos);
+  // The pallet moves with the spindle and coolant off, the tool at the security plane.
+  CHECK(ngc.find("Z50\nM5\nM9\nM60\nM2\n") != std::string::npos);
+  CHECK(ngc.find("G81 X25 Y40") < ngc.find("G81 X75 Y40"));  // non_sequential: file order
+  const std::string siemens = print(generated.program, Dialect::siemens840d).text;
+  CHECK(siemens.find("MSG(\"CLAMP THE 100 X 80 BLOCK ON PALLET 1\")") != std::string::npos);
+  CHECK(siemens.find("; EXCHANGE PALLET\n") != std::string::npos);
+  const std::string fanuc = print(generated.program, Dialect::fanuc).text;
+  CHECK(fanuc.find("G2 X-30. Y70. I0. J15.") != std::string::npos);
+  CHECK(fanuc.find("(EXCHANGE PALLET)\n") != std::string::npos);
+  // Every rapid between the workingsteps runs at the nested setup's plane or above material.
+  CHECK(simulation_problems(p, generated.program) == "");
+}
+
+TEST_CASE("toolpath curves the posters cannot follow are named by #id") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  SECTION("a tool axis that is not +Z") {
+    const std::string from = "#230=CUTTER_LOCATION_TRAJECTORY(.T.,.LIFT.,$,$,$,.F.,#244,$,$);";
+    text.replace(text.find(from), from.size(),
+                 "#230=CUTTER_LOCATION_TRAJECTORY(.T.,.LIFT.,$,$,$,.F.,#244,#246,$);\n"
+                 "#246=POLYLINE('AXIS',(#247,#247));\n#247=CARTESIAN_POINT('',(0.000,0.600,0.800));");
+    const auto described = testing::describe_text(text);
+    CHECK_FALSE(described.ok());
+    CHECK(described.diagnostics.at(0).to_string() ==
+          "#247 '': error: tool axis (0, 0.6, 0.8) is not +Z: the posters drive 3 axes");
+  }
+  SECTION("a helix trimmed by parameters against its sense") {
+    const std::string from = "#233=CIRCLE('TURN 1',#234,15.000);";
+    text.replace(text.find(from), from.size(), "#233=HELIX('TURN 1',#234,15.000,2.000);");
+    const std::string trim = "(PARAMETER_VALUE(-90.000)),(PARAMETER_VALUE(90.000)),.T.";
+    text.replace(text.find(trim), trim.size(), "(PARAMETER_VALUE(-90.000)),(PARAMETER_VALUE(90.000)),.F.");
+    const auto described = testing::describe_text(text);
+    CHECK_FALSE(described.ok());
+    CHECK(described.diagnostics.at(0).to_string() ==
+          "#230002 '': error: sense_agreement .F. contradicts the helix parameters -90 to 90");
+  }
+}
+
+TEST_CASE("NIST's ex1E.stp: the explicit toolpaths machine Example 1's features in the simulation") {
+  const DescribeResult described = testing::describe_sample("milling/nist/ex1E.stp");
+  REQUIRE(described.ok());
+  // NIST's file trims one line against its sense (#413); named, not fatal.
+  REQUIRE(described.diagnostics.size() == 1);
+  CHECK(described.diagnostics[0].to_string().rfind("#413 '': warning: sense_agreement .F. contradicts", 0) == 0);
+  const auto generated = generate(described.project);
+  REQUIRE(generated.ok());
+  CHECK(simulation_problems(described.project, generated.program) == "");
+}
+
+TEST_CASE("toolpath curves: a rational B-spline within 1 um, a helix by parameters in a reversed composite segment") {
+  namespace ms = machining_schema;
+  meta::Model model = testing::explicit_toolpath_model(10);
+  ms::cutter_location_trajectory* arc_path = nullptr;
+  for (meta::Instance* instance : model.instances())
+    if (auto* t = dynamic_cast<ms::cutter_location_trajectory*>(instance);
+        t && dynamic_cast<ms::trimmed_curve*>(t->basiccurve))
+      arc_path = t;
+  REQUIRE(arc_path);
+  auto point = [&](double x, double y, double z) {
+    auto& p = model.create<ms::cartesian_point>();
+    p.coordinates = {x, y, z};
+    return &p;
+  };
+  auto second_path = [](const DescribeResult& described) -> const std::vector<ToolpathElement>& {
+    return described.project.operations.at(0).toolpaths.at(1).elements;
+  };
+  SECTION("a rational quadratic quarter circle") {
+    auto& q = model.create<ms::b_spline_curve_with_knots_and_rational_b_spline_curve>();
+    q.degree = 2;
+    q.control_points_list = {point(10, 0, -2), point(10, 10, -2), point(0, 10, -2)};
+    q.knot_multiplicities = {3, 3};
+    q.knots = {0.0, 1.0};
+    q.weights_data = {1, std::sqrt(0.5), 1};
+    arc_path->basiccurve = &q;
+    const auto described = describe_project(model);
+    for (const auto& d : described.diagnostics) INFO(d.to_string());
+    REQUIRE(described.ok());
+    REQUIRE(second_path(described).size() == 1);
+    const auto& points = std::get<Polyline>(second_path(described)[0]).points;
+    REQUIRE(points.size() > 10);
+    CHECK(points.front().x == Approx(10));
+    CHECK(points.back().y == Approx(10));
+    double worst = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      CHECK(std::hypot(points[i].x, points[i].y) == Approx(10).margin(1e-9));  // on the circle
+      if (i > 0) {  // the chord's sagitta
+        const double mid = std::hypot((points[i].x + points[i - 1].x) / 2, (points[i].y + points[i - 1].y) / 2);
+        worst = std::max(worst, 10 - mid);
+      }
+    }
+    CHECK(worst <= 0.001);
+    CHECK(worst > 0.0002);  // no needless points either
+  }
+  SECTION("a helix trimmed by parameters, in a composite segment run backwards") {
+    auto& up = model.create<ms::direction>();
+    up.direction_ratios = {0.0, 0.0, 1.0};
+    auto& frame = model.create<ms::axis2_placement_3d>();
+    frame.location = point(0, 0, -2);
+    frame.axis = &up;
+    auto& helix = model.create<ms::helix>();
+    helix.position = &frame;
+    helix.radius = 5;
+    helix.pitch = 2;
+    auto& trimmed = model.create<ms::trimmed_curve>();
+    trimmed.basis_curve = &helix;
+    trimmed.trim_1 = {ms::trimming_select()};
+    trimmed.trim_1[0].set_parameter_value(0);
+    trimmed.trim_2 = {ms::trimming_select()};
+    trimmed.trim_2[0].set_parameter_value(810);  // 2 1/4 turns, 4.5 mm up
+    trimmed.sense_agreement = true;
+    trimmed.master_representation = ms::trimming_preference::parameter;
+    auto& segment = model.create<ms::composite_curve_segment>();
+    segment.transition = ms::transition_code::discontinuous;
+    segment.same_sense = false;
+    segment.parent_curve = &trimmed;
+    auto& composite = model.create<ms::composite_curve>();
+    composite.segments = {&segment};
+    arc_path->basiccurve = &composite;
+    const auto described = describe_project(model);
+    for (const auto& d : described.diagnostics) INFO(d.to_string());
+    REQUIRE(described.ok());
+    REQUIRE(second_path(described).size() == 2);
+    const Vec3 start = std::get<Polyline>(second_path(described)[0]).points.at(0);
+    CHECK(start.x == Approx(0).margin(1e-12));
+    CHECK(start.y == Approx(5));
+    CHECK(start.z == Approx(2.5));
+    const auto& arc = std::get<CircularArc>(second_path(described)[1]);
+    CHECK(arc.end.x == Approx(5));
+    CHECK(arc.end.y == Approx(0).margin(1e-12));
+    CHECK(arc.end.z == Approx(-2));
+    CHECK(arc.clockwise);  // backwards along a counter-clockwise helix
+    CHECK(arc.extra_turns == 2);
+  }
+}
+
+TEST_CASE("NC functions and structures the posters cannot decide are refused by #id") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  const std::string plan = "#3=WORKPLAN('SETUP 1 WORK',(#31,#32,#33,#34),$,#20,$);";
+  REQUIRE(text.find(plan) != std::string::npos);
+  text.replace(text.find(plan), plan.size(),
+               "#3=WORKPLAN('SETUP 1 WORK',(#31,#32,#38,#33,#39),$,#20,$);\n#38=INDEX_TABLE('TABLE TO 2',2);\n"
+               "#39=PARALLEL('HOLES AT ONCE',(#35,#37));");
+  const auto described = testing::describe_text(text);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  REQUIRE_FALSE(generated.ok());
+  REQUIRE(generated.diagnostics.size() == 2);
+  CHECK(generated.diagnostics[0].to_string() ==
+        "#38 'TABLE TO 2': error: index_table is not supported by the posters: its index positions are machine data "
+        "ISO 14649 does not give");
+  CHECK(generated.diagnostics[1].to_string() ==
+        "#39 'HOLES AT ONCE': error: parallel #39 with 2 branches is not posted: choosing their order or one of them "
+        "needs a scheduler");
+}
+
+TEST_CASE("a feedstop in a toolpath list dwells where the tool is") {
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/nested_setup_functions.stp"));
+  const std::string list = "#200=TOOLPATH_LIST((#210,#220,#230));";
+  REQUIRE(text.find(list) != std::string::npos);
+  text.replace(text.find(list), list.size(),
+               "#200=TOOLPATH_LIST((#210,#220,#248,#230));\n#248=FEEDSTOP(.T.,.CONTACT.,$,$,$,0.500);");
+  const auto described = testing::describe_text(text);
+  REQUIRE(described.ok());
+  const auto generated = generate(described.project);
+  REQUIRE(generated.ok());
+  const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
+  CHECK(ngc.find("G2 X-30 Y70 I0 J15\nG1 X130\nG4 P0.5\nZ35\n") != std::string::npos);
 }

@@ -217,6 +217,10 @@ struct Feature {
   Placement placement;  ///< milling features only
   double depth = 0;     ///< milling: from the placement plane down (positive)
   FeatureShape shape;  ///< the shape in the feature's frame
+  /// The file's feature_placement, where it differs from `placement` (a
+  /// planar face's is turned to its course of travel): explicit toolpaths
+  /// are given in it. Empty: `placement`.
+  std::optional<Placement> toolpath_frame;
 };
 
 // ----------------------------------------------------------- strategies --
@@ -264,26 +268,35 @@ using Strategy = std::variant<std::monostate, BidirectionalMilling, Unidirection
                               ContourTurning, UnknownStrategy>;
 
 // ----------------------------------------------------- explicit toolpaths --
+// Cutter locations as the file gives them: in the feature's frame for an
+// operation of a machining_workingstep, in the setup's frame for a
+// rapid_movement (ISO 14649-10 4.8; NIST's toolkit reads ex1E.stp so).
 
 /// Straight moves through points, mm.
 struct Polyline {
   std::vector<Vec3> points;  ///< in setup coordinates
 };
-/// in the XY plane; helix when end.z != start z
+/// An arc about an axis along Z; a helix when end.z differs from the start's.
 struct CircularArc {
   Vec3 end;  ///< end point
   Vec3 centre;  ///< centre
   bool clockwise = false;  ///< direction seen from +Z
   int extra_turns = 0;  ///< full turns before reaching the end
 };
+/// A feedstop: the tool waits.
+struct ToolpathDwell {
+  double seconds = 0;  ///< how long
+};
 /// One piece of an explicit toolpath.
-using ToolpathElement = std::variant<Polyline, CircularArc>;
+using ToolpathElement = std::variant<Polyline, CircularArc, ToolpathDwell>;
 
 /// An explicit toolpath of an operation (ISO 14649-10 toolpath).
 struct Toolpath {
   Source source;  ///< the toolpath instance
-  bool rapid = false;  ///< rapid (G0) instead of feed moves
-  std::vector<ToolpathElement> elements;  ///< in order
+  bool rapid = false;       ///< non_contact or connect type, or its_speed .RAPID.
+  double feed_ratio = 1;    ///< its_speed as a positive_ratio_measure of the operation's feed
+  std::optional<Technology> technology;  ///< its_technology: replaces the operation's for this path
+  std::vector<ToolpathElement> elements;  ///< in order; every arc is preceded by its start point
 };
 
 // ----------------------------------------------------------- operations --
@@ -345,26 +358,32 @@ struct Operation {
 struct Workingstep {
   int feature = -1;    ///< index into MachiningProject::features
   int operation = -1;  ///< index into MachiningProject::operations
-  std::optional<double> security_plane;  ///< absolute z; else the setup's
+  std::optional<double> security_plane;  ///< absolute z; the applying setup's where that is higher
 };
 
 /// The kinds of executable in a workplan (ISO 14649-10).
 enum class ExecutableKind {
   workingstep,
+  rapid_movement,  ///< toolpaths at rapid, setup coordinates
   workplan,
   parallel,
   selective,
   non_sequential,
   program_stop,
   optional_stop,
-  unsupported,  ///< if_statement, while_statement, ...: reported, never guessed
+  display_message,
+  exchange_pallet,
+  unsupported,  ///< if_statement, while_statement, index_table, ...: reported, never guessed
 };
 
 /// An element of a workplan, with its children for program structures.
 struct Executable {
   ExecutableKind kind = ExecutableKind::workplan;  ///< which executable
   Source source;  ///< the executable instance
-  Workingstep step;                   ///< kind == workingstep
+  Workingstep step;                   ///< kind == workingstep; its security plane also for rapid_movement
+  std::vector<Toolpath> toolpaths;    ///< kind == rapid_movement
+  std::optional<double> setup_security_plane;  ///< workplan with its own setup: applies to what it holds
+  std::string text;                   ///< display_message
   std::vector<Executable> children;   ///< program structures
   std::string entity_name;            ///< kind == unsupported
 };

@@ -133,12 +133,17 @@ struct Tolerance {
 /// Stop the program (M0, or M1 when optional).
 struct ProgramStop {
   bool optional = false;  ///< M1 instead of M0
+  bool pallet_exchange = false;  ///< exchange_pallet: stop while the pallets change (LinuxCNC M60)
+};
+/// display_message: text the control shows the operator.
+struct Message {
+  std::string text;  ///< the text
 };
 
 /// One NC statement.
 using Statement = std::variant<ToolChange, SpindleOn, SpindleOff, FeedRate, Coolant, Rapid,
                                Linear, Arc, Dwell, DrillCycle, FeatureCycle, Comment,
-                               Tolerance, ProgramStop>;
+                               Tolerance, ProgramStop, Message>;
 
 /// A statement and where it came from.
 struct Block {
