@@ -274,7 +274,7 @@ using Strategy = std::variant<std::monostate, BidirectionalMilling, Unidirection
 
 /// Straight moves through points, mm.
 struct Polyline {
-  std::vector<Vec3> points;  ///< in setup coordinates
+  std::vector<Vec3> points;  ///< cutter locations, in the frame given above
 };
 /// An arc about an axis along Z; a helix when end.z differs from the start's.
 struct CircularArc {
