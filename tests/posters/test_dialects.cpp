@@ -86,7 +86,7 @@ TEST_CASE("840D CYCLE71 keeps _STA in [0, 180): a face whose axis points the oth
 TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is constant") {
   auto project = testing::shaft();
   const std::string ngc = posted(project, Dialect::rs274ngc);
-  CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G80"));
+  CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G49 G80 G54"));
   CHECK(has_line(ngc, "G96 D3000 S200 M3"));
   CHECK(has_line(ngc, "G95 F0.3"));
   CHECK(has_line(ngc, "G1 Z-90"));  // a rough pass

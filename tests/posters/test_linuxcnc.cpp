@@ -4,6 +4,8 @@
 // 1 micrometre.
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -59,8 +61,17 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   // Zero length offsets: G43 then leaves the programmed coordinates as they
   // are, which is what our canonical listing holds.
   write(table, linuxcnc_tool_table(program, false));
-  const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' '" + ngc.string() + "' '" +
-                              out.string() + "' > /dev/null 2> '" + err.string() + "'";
+  // Put the machine-safe retract where our listing puts it
+  // (Program::machine_safe): a mill's G54 Z offset below machine Z0, a
+  // lathe's G28 position. rs274 keeps parameters in inches.
+  const fs::path vars = dir / (name + ".var");
+  constexpr double inch = 25.4;
+  const Vec3 safe = program.machine_safe;
+  write(vars, program.machine == MachineKind::turning
+                  ? fmt::format("5161 {:.6f}\n5162 0\n5163 {:.6f}\n5220 1\n", safe.x / inch, safe.z / inch)
+                  : fmt::format("5220 1\n5221 0\n5222 0\n5223 {:.6f}\n", -safe.z / inch));
+  const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' -v '" + vars.string() + "' '" +
+                              ngc.string() + "' '" + out.string() + "' > /dev/null 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());
   const std::string errors = read(err), listing = read(out);
   INFO("program: " << ngc.string() << "\nrs274 stderr: " << errors);

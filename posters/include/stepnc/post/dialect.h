@@ -26,7 +26,13 @@ struct PrintedProgram {
   std::vector<TraceEntry> trace;
 };
 
-PrintedProgram print(const Program& program, Dialect dialect);
+struct PrintOptions {
+  // 840D: write $TC_DP tool data from the model. Off by default: it would
+  // overwrite the lengths and radii the controller measured.
+  bool write_tool_data = false;
+};
+
+PrintedProgram print(const Program& program, Dialect dialect, const PrintOptions& options = {});
 
 // The sidecar map as JSON: every traced line with its workingstep,
 // operation and feature (#id and name).

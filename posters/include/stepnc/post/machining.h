@@ -46,6 +46,8 @@ struct Placement {
 
 // ---------------------------------------------------------------- tools --
 
+enum class Hand { unspecified, right, left, neutral };
+
 enum class ToolKind {
   flat_end_mill,
   bull_nose_end_mill,
@@ -72,6 +74,7 @@ struct Tool {
   double length = 0;               // overall assembly length (tool data)
   double tip_angle_deg = 118;      // drills, centre drills
   double thread_pitch = 0;         // taps
+  Hand hand = Hand::unspecified;   // hand_of_cut: right = cuts turning M3
   // Turning inserts (Part 121); angles feed the seed 001 roughness model.
   double nose_radius = 0;
   double side_cutting_edge_angle_deg = 0;  // K_r
@@ -217,6 +220,38 @@ using Strategy = std::variant<std::monostate, BidirectionalMilling, Unidirection
                               ContourBidirectional, ContourParallel, UnidirectionalTurning,
                               ContourTurning, UnknownStrategy>;
 
+// ISO 14649-11 approach_retract_strategy (milling_type_operation's
+// approach and retract). Angles in degrees from the horizontal.
+struct PlungeToolaxis {};
+struct PlungeRamp {
+  double angle_deg = 0;
+};
+struct PlungeHelix {
+  double radius = 0;
+  double angle_deg = 0;
+};
+struct PlungeZigzag {
+  double angle_deg = 0;
+  double width = 0;
+};
+struct RetractAngle {  // ap_retract_angle
+  double angle_deg = 0;
+  double travel_length = 0;
+};
+struct RetractTangent {  // ap_retract_tangent
+  double radius = 0;
+};
+using ApproachRetract = std::variant<std::monostate, PlungeToolaxis, PlungeRamp, PlungeHelix, PlungeZigzag,
+                                     RetractAngle, RetractTangent, UnknownStrategy>;
+
+// ISO 14649-11 drilling_type_strategy: within depth_of_start below the hole
+// top and depth_of_end above its bottom, the feed (and, for pecks, the
+// depth of cut) are scaled by the reduced ratios.
+struct DrillingStrategy {
+  double reduced_cut_at_start = 1, reduced_feed_at_start = 1, depth_of_start = 0;
+  double reduced_cut_at_end = 1, reduced_feed_at_end = 1, depth_of_end = 0;
+};
+
 // ----------------------------------------------------- explicit toolpaths --
 
 struct Polyline {
@@ -267,6 +302,7 @@ struct Operation {
   MachineFunctions machine_functions;
   std::optional<double> retract_plane;  // above the feature top (relative)
   Strategy strategy;
+  ApproachRetract approach, retract;    // milling; monostate = the posters' default
   // Milling
   std::optional<double> axial_cutting_depth;
   std::optional<double> radial_cutting_depth;  // stepover when the strategy has none
@@ -277,6 +313,7 @@ struct Operation {
   double dwell_time_bottom = 0;         // s
   std::optional<double> depth_of_step;  // multistep (peck) drilling
   std::optional<double> first_depth;
+  std::optional<DrillingStrategy> drilling_strategy;
   double feed_on_retract = 0;       // ratio of the feed used when retracting (reaming)
   bool spindle_stop_at_bottom = false;  // boring, reaming
   // Turning

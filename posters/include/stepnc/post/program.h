@@ -114,10 +114,17 @@ struct Tolerance {
 struct ProgramStop {
   bool optional = false;
 };
+// Up to the machine-safe height in machine coordinates, before every tool
+// change and at the end: mills lift Z to its reference (LinuxCNC
+// `G53 G0 Z0`, Fanuc `G91 G28 Z0.`, 840D `G0 SUPA Z0 D0`); lathes go to
+// their reference point, X first (LinuxCNC `G28`, Fanuc `G28 U0.` then
+// `G28 W0.`, 840D `G74 X1=0` then `G74 Z1=0`). The place is the machine's,
+// not the program's: see Program::machine_safe.
+struct MachineRetract {};
 
 using Statement = std::variant<ToolChange, SpindleOn, SpindleOff, FeedRate, Coolant, Rapid,
                                Linear, Arc, Dwell, DrillCycle, FeatureCycle, Comment,
-                               Tolerance, ProgramStop>;
+                               Tolerance, ProgramStop, MachineRetract>;
 
 struct Block {
   Statement statement;
@@ -129,6 +136,11 @@ struct Program {
   MachineKind machine = MachineKind::milling;
   double tolerance = 0.01;  // model tolerance (840D CYCLE832)
   double clear_z = 0;       // safe height (milling) used at start and end
+  // Where a MachineRetract ends, in program coordinates, for listings,
+  // plots and simulations: the real place depends on the work offset the
+  // operator sets, so this stand-in lies above (lathe: outside and in front
+  // of) everything the program does. Mills use z only.
+  Vec3 machine_safe;
   std::vector<ToolEntry> tools;
   std::vector<Provenance> provenance{Provenance{}};
   std::vector<Block> blocks;
