@@ -375,19 +375,19 @@ void Generator::enter(const Job& job, Vec3 target, double approach_z, const Entr
   const Vec2 ramp{ramp_end.x - ramp_start.x, ramp_end.y - ramp_start.y};
   const double min_ramp = r;  // shorter ramps plunge almost vertically
   const ApproachRetract& approach = job.op->approach;
-  bool done = false;
+  bool done = false, file_used = false;
   if (predrilled(job, target) || std::holds_alternative<PlungeToolaxis>(approach)) {
     // straight down, below
   } else if (auto* helix = std::get_if<PlungeHelix>(&approach); helix && room.helix >= 2 * helix->radius - eps) {
     helix_down(job, target, helix->radius, helix->angle_deg);
-    done = true;
+    done = file_used = true;
   } else if (auto* r_ramp = std::get_if<PlungeRamp>(&approach); r_ramp && room.ramp_length >= min_ramp) {
     ramp_down(job, target, ramp, room.ramp_length, r_ramp->angle_deg);
-    done = true;
+    done = file_used = true;
   } else if (auto* zigzag = std::get_if<PlungeZigzag>(&approach);
              zigzag && std::min(zigzag->width, room.ramp_length) >= min_ramp) {
     ramp_down(job, target, ramp, std::min(zigzag->width, room.ramp_length), zigzag->angle_deg);
-    done = true;
+    done = file_used = true;
   } else if (room.helix >= 0.5 * r) {
     // The default helix: diameter up to the tool's, inside the room.
     helix_down(job, target, std::min(room.helix, 2 * r) / 2, angle);
@@ -396,14 +396,12 @@ void Generator::enter(const Job& job, Vec3 target, double approach_z, const Entr
     ramp_down(job, target, ramp, std::min(room.ramp_length, 4 * job.tool->diameter), angle);
     done = true;
   }
-  if (!done) {
-    if (!std::holds_alternative<std::monostate>(approach) && !std::holds_alternative<PlungeToolaxis>(approach) &&
-        !predrilled(job, target))
-      warning(job.op->source, fmt::format("no room for the approach strategy at ({:.3f}, {:.3f}); plunging along "
-                                          "the tool axis at the plunge feed",
-                                          target.x, target.y));
-    feed(target);
-  }
+  const bool file_plunge = std::holds_alternative<PlungeHelix>(approach) || std::holds_alternative<PlungeRamp>(approach) ||
+                           std::holds_alternative<PlungeZigzag>(approach);
+  if (file_plunge && !file_used && !predrilled(job, target))
+    warning(job.op->source, fmt::format("no room for the approach strategy at ({:.3f}, {:.3f}); {}", target.x,
+                                        target.y, done ? "the posters' default entry used" : "plunging at the plunge feed"));
+  if (!done) feed(target);
   feedrate(cutting);
 }
 
@@ -1022,7 +1020,7 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
 
 std::optional<std::size_t> Generator::begin_feature_cycle(const Job& job) {
   CycleInput input{*job.feature, *job.op, *job.tool, job.tech.spindle, job.tech.feed,
-                   job.top, job.retract, options_.safety_distance};
+                   job.tech.feed.value * options_.plunge_feed_ratio, job.top, job.retract, options_.safety_distance};
   auto cycle = siemens_feature_cycle(input);
   if (!cycle) return std::nullopt;
   emit(std::move(*cycle));

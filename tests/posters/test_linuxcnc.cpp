@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <unistd.h>
 
@@ -53,7 +54,9 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   REQUIRE(generated.ok());
   const Program& program = generated.program;
 
-  const fs::path dir = fs::temp_directory_path() / ("stepnc_posters_" + std::to_string(::getpid()));
+  // Process ids repeat across sandboxes sharing /tmp: add a random part.
+  const fs::path dir = fs::temp_directory_path() /
+                       ("stepnc_posters_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
   fs::create_directories(dir);
   const fs::path ngc = dir / (name + ".ngc"), table = dir / (name + ".tbl"), out = dir / (name + ".canon"),
                  err = dir / (name + ".err");
