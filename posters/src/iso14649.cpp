@@ -794,7 +794,9 @@ class Describer {
       out.cutting_depth = drilling->cutting_depth;
       out.dwell_time_bottom = drilling->dwell_time_bottom.value_or(0);
       out.feed_on_retract = drilling->feed_on_retract.value_or(0);
-      if (const mi::drilling_type_strategy* st = drilling->its_machining_strategy) {
+      // A strategy without zones (no depth_of_start/_end) changes nothing.
+      if (const mi::drilling_type_strategy* st = drilling->its_machining_strategy;
+          st && (st->depth_of_start.value_or(0) > 0 || st->depth_of_end.value_or(0) > 0)) {
         out.drilling_strategy = DrillingStrategy{st->reduced_cut_at_start.value_or(1), st->reduced_feed_at_start.value_or(1),
                                                  st->depth_of_start.value_or(0),       st->reduced_cut_at_end.value_or(1),
                                                  st->reduced_feed_at_end.value_or(1),   st->depth_of_end.value_or(0)};

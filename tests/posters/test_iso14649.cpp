@@ -497,3 +497,44 @@ TEST_CASE("closed pocket parts the posters cannot machine are errors naming the 
   for (const auto& d : through.diagnostics) INFO(d.to_string());
   CHECK(through.ok());
 }
+
+TEST_CASE("approach, retract and drilling strategies are read from the file") {
+  std::ifstream in(testing::sample_path("milling/example1.stp"));
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  // Example 1's drill has a drilling_type_strategy (#46); the reamer's (#49)
+  // has no zones and changes nothing.
+  const DescribeResult plain = testing::describe_text(text);
+  REQUIRE(plain.ok());
+  const auto& drill = plain.project.operations[1];
+  REQUIRE(drill.source.id == 20);
+  REQUIRE(drill.drilling_strategy.has_value());
+  CHECK(drill.drilling_strategy->reduced_feed_at_start == Approx(0.5));
+  CHECK(drill.drilling_strategy->depth_of_start == Approx(2));
+  CHECK(drill.drilling_strategy->reduced_feed_at_end == Approx(0.75));
+  CHECK(drill.drilling_strategy->depth_of_end == Approx(8));
+  CHECK_FALSE(plain.project.operations[2].drilling_strategy.has_value());
+
+  // The rough pocket with a helix approach and an angle retract.
+  const std::string rough = "#22=BOTTOM_AND_SIDE_ROUGH_MILLING($,$,'ROUGH POCKET1',15.000,$,#39,#50,#41,$,$,$,#51,";
+  REQUIRE(text.find(rough) != std::string::npos);
+  text.replace(text.find(rough), rough.size(),
+               "#22=BOTTOM_AND_SIDE_ROUGH_MILLING($,$,'ROUGH POCKET1',15.000,$,#39,#50,#41,$,#901,#902,#51,");
+  text.insert(text.rfind("ENDSEC;"), "#901=PLUNGE_HELIX($,4.,3.);\n#902=AP_RETRACT_ANGLE($,45.,5.);\n");
+  const DescribeResult edited = testing::describe_text(text);
+  for (const auto& d : edited.diagnostics) INFO(d.to_string());
+  REQUIRE(edited.ok());
+  const Operation& op = edited.project.operations[3];
+  REQUIRE(op.source.id == 22);
+  REQUIRE(std::holds_alternative<PlungeHelix>(op.approach));
+  CHECK(std::get<PlungeHelix>(op.approach).radius == Approx(4));
+  CHECK(std::get<PlungeHelix>(op.approach).angle_deg == Approx(3));
+  REQUIRE(std::holds_alternative<RetractAngle>(op.retract));
+  CHECK(std::get<RetractAngle>(op.retract).travel_length == Approx(5));
+  const auto generated = generate(edited.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const auto report = testing::simulate_milling(edited.project, generated.program);
+  std::string problems;
+  for (const auto& p : report.problems) problems += p + "\n";
+  CHECK(problems == "");
+}

@@ -79,10 +79,8 @@ M08
 F1800.
 G0 X20. Y60. Z30.
 Z10.
-Z2.
-G1 Z0.
-Z-31.
-Z2.
+G99 G85 X20. Y60. Z-31. R2. F1800.
+G80
 G0 Z10.
 Z30.
 (WS[4] WS ROUGH POCKET1 #13: bottom_and_side_rough_milling #22 on POCKET1 #18)

@@ -117,9 +117,10 @@ struct ProgramStop {
 // Up to the machine-safe height in machine coordinates, before every tool
 // change and at the end: mills lift Z to its reference (LinuxCNC
 // `G53 G0 Z0`, Fanuc `G91 G28 Z0.`, 840D `G0 SUPA Z0 D0`); lathes go to
-// their reference point, X first (LinuxCNC `G28`, Fanuc `G28 U0.` then
-// `G28 W0.`, 840D `G74 X1=0` then `G74 Z1=0`). The place is the machine's,
-// not the program's: see Program::machine_safe.
+// their reference point from outside the stock (LinuxCNC `G28`, Fanuc
+// `G28 U0.` then `G28 W0.`, 840D `G74 X1=0` then `G74 Z1=0`). The place is
+// the machine's, not the program's: see Program::machine_safe; the choice
+// per dialect is in posters/README.md.
 struct MachineRetract {};
 
 using Statement = std::variant<ToolChange, SpindleOn, SpindleOff, FeedRate, Coolant, Rapid,
