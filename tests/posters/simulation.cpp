@@ -87,6 +87,12 @@ class HeightMap {
 
 }  // namespace
 
+std::string SimulationReport::text() const {
+  std::string out;
+  for (const auto& problem : problems) out += problem + "\n";
+  return out;
+}
+
 SimulationReport simulate_milling(const MachiningProject& project, const Program& program, double cell) {
   SimulationReport report;
   const Workpiece& w = project.workpiece;

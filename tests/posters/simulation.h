@@ -17,6 +17,8 @@ struct SimulationReport {
   std::size_t rapids_checked = 0;
   std::size_t plunges_checked = 0;  // milling: vertical feed moves of milling cutters
   std::size_t cells_checked = 0;
+
+  std::string text() const;  // the problems, one per line ("" when clean)
 };
 
 // Checks, for the final state after the whole program:

@@ -204,9 +204,7 @@ TEST_CASE("safe motion: every sample and dialect") {
     // full-feed plunge into material.
     const auto report = lathe ? testing::simulate_turning(c.project, generated.program)
                               : testing::simulate_milling(c.project, generated.program);
-    std::string problems;
-    for (const auto& p : report.problems) problems += p + "\n";
-    CHECK(problems == "");
+    CHECK(report.text() == "");
     CHECK(report.rapids_checked > 0);
   }
   // example1.stp, open_pocket_step.stp and shaft.stp at least.
@@ -238,9 +236,7 @@ TEST_CASE("safe motion: approach and retract strategies are honoured") {
     for (const auto& d : result.diagnostics) INFO(d.to_string());
     REQUIRE(result.ok());
     const auto report = testing::simulate_milling(project, result.program);
-    std::string problems;
-    for (const auto& p : report.problems) problems += p + "\n";
-    CHECK(problems == "");
+    CHECK(report.text() == "");
     return result.program;
   };
   auto arcs_with_turns = [](const Program& program) {
@@ -371,9 +367,7 @@ TEST_CASE("cycles: reaming feeds out, drilling_type_strategy as motion") {
   REQUIRE(std::holds_alternative<ClosedPocket>(project.features[2].shape));
   project.features.pop_back();
   const auto report = testing::simulate_milling(project, program);
-  std::string problems;
-  for (const auto& p : report.problems) problems += p + "\n";
-  CHECK(problems == "");
+  CHECK(report.text() == "");
 }
 
 TEST_CASE("warnings: implausible feeds and a spindle against the tool's hand") {
