@@ -101,13 +101,11 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
   bool cutting_tool = true, milling_cutter = false;
   bool first_move = true;
   const auto moves = expand_motion(program);
-  // Each tool's cutting feed: the highest feed programmed while it is in.
-  std::map<int, double> cutting_feed;
-  int tool = 0;
-  for (const Move& m : moves) {
-    if (m.kind == Move::Kind::tool_change) tool = static_cast<int>(m.value);
-    if (m.kind == Move::Kind::feed_rate) cutting_feed[tool] = std::max(cutting_feed[tool], m.value);
-  }
+  // Each workingstep's cutting feed: the highest feed it programs.
+  std::map<std::uint32_t, double> cutting_feed;
+  auto workingstep = [&](const Move& m) { return program.blocks[m.block].provenance; };
+  for (const Move& m : moves)
+    if (m.kind == Move::Kind::feed_rate) cutting_feed[workingstep(m)] = std::max(cutting_feed[workingstep(m)], m.value);
   double feed = 0;
   for (const Move& m : moves) {
     if (m.kind == Move::Kind::tool_change) {
@@ -117,7 +115,6 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
       const ToolKind kind = entry ? entry->tool.kind : ToolKind::twist_drill;
       milling_cutter = kind == ToolKind::flat_end_mill || kind == ToolKind::bull_nose_end_mill ||
                        kind == ToolKind::ball_end_mill || kind == ToolKind::facemill;
-      tool = static_cast<int>(m.value);
       continue;
     }
     if (m.kind == Move::Kind::feed_rate) feed = m.value;
@@ -156,7 +153,7 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
       map.disc(m.to, std::max(0.6 * radius, cell), [&](int i, int j) {
         deepest = std::max(deepest, std::min(map.at(i, j), m.from.z) - m.to.z);
       });
-      if (deepest > tolerance && feed >= 0.999 * cutting_feed[tool])
+      if (deepest > tolerance && feed >= 0.999 * cutting_feed[workingstep(m)])
         report.problems.push_back(fmt::format("feed plunge (block {}) {:.3f} mm into material at ({:.3f}, {:.3f}, "
                                               "{:.3f}) at the cutting feed F{:g}",
                                               m.block, deepest, m.to.x, m.to.y, m.to.z, feed));

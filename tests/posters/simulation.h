@@ -29,8 +29,8 @@ struct SimulationReport {
 //  - no rapid move runs through material (the first move, from an unknown
 //    start, excepted);
 //  - no milling cutter feeds straight down (steeper than 45 degrees) into
-//    material at its cutting feed (the highest feed programmed for that
-//    tool): entries ramp, helix or plunge at a reduced feed. Material
+//    material at its cutting feed (the highest feed its workingstep
+//    programs): entries ramp, helix or plunge at a reduced feed. Material
 //    counts under the cutter's middle (0.6 r, the part an end mill does not
 //    cut well with), so plunging into a pre-drilled hole passes. Drills,
 //    reamers, taps and boring bars feed along their axis by design.

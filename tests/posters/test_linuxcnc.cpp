@@ -73,7 +73,9 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   write(vars, program.machine == MachineKind::turning
                   ? fmt::format("5161 {:.6f}\n5162 0\n5163 {:.6f}\n5220 1\n", safe.x / inch, safe.z / inch)
                   : fmt::format("5220 1\n5221 0\n5222 0\n5223 {:.6f}\n", -safe.z / inch));
-  const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' -v '" + vars.string() + "' '" +
+  // rs274 keeps its tool data in $HOME/.tool.mmap: a HOME of its own keeps
+  // parallel runs (other tests, other checkouts) from sharing it.
+  const std::string command = "HOME='" + dir.string() + "' '" + rs274 + "' -g -t '" + table.string() + "' -v '" + vars.string() + "' '" +
                               ngc.string() + "' '" + out.string() + "' > /dev/null 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());
   const std::string errors = read(err), listing = read(out);
