@@ -140,3 +140,14 @@ TEST_CASE("LinuxCNC runs the open pocket and step read from samples/milling/open
   REQUIRE(described.ok());
   check_with_linuxcnc("open_pocket_step_sample", described.project);
 }
+
+TEST_CASE("LinuxCNC runs the approach, retract and drilling strategies") {
+  auto project = testing::example1();
+  project.operations[1].drilling_strategy = DrillingStrategy{1, 0.5, 3, 1, 0.25, 2};
+  project.operations[3].strategy = ContourParallel{};
+  project.operations[3].approach = PlungeHelix{4, 5};
+  project.operations[3].retract = RetractTangent{5};
+  project.operations[4].approach = PlungeZigzag{5, 15};
+  project.operations[4].retract = RetractAngle{30, 6};
+  check_with_linuxcnc("strategies", project);
+}
