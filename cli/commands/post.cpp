@@ -1,4 +1,4 @@
-// stepnc post FILE --dialect D [-o OUT] [--trace MAP.json]: write the NC
+// stepnc post FILE --dialect D [-o OUT] [--trace MAP.json] [--write-tool-data]: write the NC
 // program for a file's project, and optionally the map from each NC block
 // back to its workingstep, operation and feature.
 #include <fmt/format.h>
@@ -15,13 +15,16 @@ struct PostOptions {
   std::string dialect;
   std::string output;
   std::string trace;
+  bool write_tool_data = false;
 };
 
 int run_post(const PostOptions& options) {
   const post::Dialect dialect = *post::dialect_from_name(options.dialect);  // checked by CLI11
   const std::optional<PostedProject> posted = post_file(options.file);
   if (!posted) return exit_invalid_input;
-  const post::PrintedProgram printed = post::print(posted->program, dialect);
+  post::PrintOptions print_options;
+  print_options.write_tool_data = options.write_tool_data;
+  const post::PrintedProgram printed = post::print(posted->program, dialect, print_options);
   // The trace first: a program is only published with its map.
   if (!options.trace.empty() && !write_output(options.trace, post::trace_json(posted->program, printed))) {
     return exit_failure;
@@ -45,6 +48,8 @@ void add_post_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"rs274ngc", "fanuc", "siemens840d", "canonical"}));
   command->add_option("-o,--output", options->output, "Output file (default: standard output)");
   command->add_option("--trace", options->trace, "Also write the NC block -> workingstep/operation/feature map (JSON)");
+  command->add_flag("--write-tool-data", options->write_tool_data,
+                    "siemens840d: write the model's tool data ($TC_DP); off by default, it overwrites measured values");
   command->callback([&action, options] { action = [options] { return run_post(*options); }; });
 }
 

@@ -27,11 +27,11 @@ std::string_view to_string(Dialect dialect) {
   return "unknown";
 }
 
-PrintedProgram print(const Program& program, Dialect dialect) {
+PrintedProgram print(const Program& program, Dialect dialect, const PrintOptions& options) {
   switch (dialect) {
     case Dialect::rs274ngc: return detail::print_rs274ngc(program);
     case Dialect::fanuc: return detail::print_fanuc(program);
-    case Dialect::siemens840d: return detail::print_siemens840d(program);
+    case Dialect::siemens840d: return detail::print_siemens840d(program, options);
     case Dialect::canonical: return detail::print_canonical(program);
   }
   return {};

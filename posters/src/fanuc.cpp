@@ -25,17 +25,23 @@ class FanucPrinter final : public GcodePrinter {
     start_line();
     word("O1000");
     finish_line();
-    line(lathe() ? "G18 G21 G40 G97 G99" : "G17 G21 G40 G49 G80 G90 G94");
+    // G54: the setup's origin is the operator's first work offset.
+    line(lathe() ? "G18 G21 G40 G97 G99 G54" : "G17 G21 G40 G49 G80 G90 G94 G54");
   }
   void epilogue() override {
+    line("M30");
+    line("%");
+  }
+  // Reference point return (0i manual, G28): incremental zero moves the
+  // axis straight home; on a lathe X first, away from the part.
+  void machine_retract() override {
     if (lathe()) {
-      line("G28 U0. W0.");
+      line("G28 U0.");
+      line("G28 W0.");
     } else {
       line("G91 G28 Z0.");
       line("G90");
     }
-    line("M30");
-    line("%");
   }
   void tool_change(const ToolChange& t) override {
     if (lathe()) {

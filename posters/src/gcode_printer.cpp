@@ -117,6 +117,11 @@ void GcodePrinter::statement(const Statement& s, std::size_t index) {
           program_stop(st);
         } else if constexpr (std::is_same_v<S, Message>) {
           message(st);
+        } else if constexpr (std::is_same_v<S, MachineRetract>) {
+          // Machine coordinates: the next move states every axis again.
+          machine_retract();
+          forget_motion_mode();
+          forget_position();
         }
       },
       s);
@@ -227,10 +232,8 @@ void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
   auto changed = [&](double a, double b) { return !known_ || force_all || std::abs(a - b) >= resolution; };
   const bool lathe = program_.machine == MachineKind::turning;
   start_line();
-  if (motion_mode_ != g) {
-    word(g);
-    motion_mode_ = std::string(g);
-  }
+  const bool new_mode = motion_mode_ != g;
+  if (new_mode) word(g);
   const bool dx = changed(to.x, last_.x), dy = !lathe && changed(to.y, last_.y), dz = changed(to.z, last_.z);
   if (dx) x_word(to.x);
   if (dy) word('Y', to.y);
@@ -240,6 +243,8 @@ void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
     if (style_.block_number_step > 0) block_number_ -= style_.block_number_step;
     return;
   }
+  // The mode changes only with a block that is written.
+  if (new_mode) motion_mode_ = std::string(g);
   finish_line();
   last_ = to;
   known_ = true;

@@ -39,6 +39,8 @@ class GcodePrinter {
   virtual void prologue() = 0;
   virtual void epilogue() = 0;
   virtual void tool_change(const ToolChange& t) = 0;
+  // Up to the machine-safe height in machine coordinates (program.h).
+  virtual void machine_retract() = 0;
   virtual void spindle_on(const SpindleOn& s) = 0;
   virtual void feed_rate(const FeedRate& f) = 0;
   virtual void drill_cycle(const DrillCycle& c) = 0;

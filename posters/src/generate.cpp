@@ -135,6 +135,14 @@ struct ResolvedTechnology {
   FeedRate feed;
 };
 
+// How far from a cut start the tool centre may wander while entering
+// (helix), and along which line (ramp); feature frame.
+struct EntryRoom {
+  double helix = 0;
+  Vec2 ramp_direction{};
+  double ramp_length = 0;
+};
+
 class Generator {
  public:
   Generator(const MachiningProject& project, const GenerateOptions& options)
@@ -152,6 +160,11 @@ class Generator {
     double clear = 0;    // security plane (absolute z)
     double top = 0;      // feature top (absolute z)
     double retract = 0;  // retract plane (absolute z), between passes over material
+  };
+
+  struct DrilledHole {  // a hole this program drilled, for plunges into it
+    Vec2 centre;
+    double radius = 0, bottom = 0;
   };
 
   void visit(const Executable& executable);
@@ -184,7 +197,17 @@ class Generator {
   void rapid(Vec3 to);
   void feed(Vec3 to);
   void path_at(const Job& job, const Path& path, double z);
-  void move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset);
+  void move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset,
+                     const EntryRoom& room = EntryRoom{});
+  void enter(const Job& job, Vec3 target, double approach_z, const EntryRoom& room);
+  void helix_down(const Job& job, Vec3 target, double radius, double angle_deg);
+  void ramp_down(const Job& job, Vec3 target, Vec2 direction, double length, double angle_deg);
+  bool in_air(const Job& job, Vec3 target) const;
+  bool predrilled(const Job& job, Vec3 target) const;
+  EntryRoom room_at(const Region& region, Vec2 local, double d_final, const Path* along) const;
+  void leave(const Job& job);
+  void drill_explicit(const Job& job, const DrillCycle& cycle, const DrillingStrategy& strategy);
+  void check_technology(const Job& job);
   Vec3 global(const Job& job, Vec2 local, double z, Vec2 offset = {}) const;
   void go_clear(Vec2 xy, double clear);
   void spindle(const SpindleOn& on);
@@ -222,6 +245,9 @@ class Generator {
   std::vector<int> tool_numbers_;
   int workingstep_count_ = 0;
   std::vector<double> setup_planes_;
+  bool at_machine_safe_ = false;  // after a MachineRetract, before any other move
+  Vec3 last_direction_{};          // of the last feed move, for tangent retracts
+  std::vector<DrilledHole> drilled_;
 };
 
 void Generator::error(const Source& where, std::string message) {
@@ -233,15 +259,39 @@ void Generator::warning(const Source& where, std::string message) {
 }
 
 void Generator::emit(Statement statement) {
+  const bool moves = std::holds_alternative<Rapid>(statement) || std::holds_alternative<Linear>(statement) ||
+                     std::holds_alternative<Arc>(statement) || std::holds_alternative<DrillCycle>(statement);
+  if (moves) at_machine_safe_ = false;
   if (auto* r = std::get_if<Rapid>(&statement)) pos_ = r->to;
-  if (auto* l = std::get_if<Linear>(&statement)) pos_ = l->to;
-  if (auto* a = std::get_if<Arc>(&statement)) pos_ = a->to;
+  if (auto* l = std::get_if<Linear>(&statement)) {
+    last_direction_ = {l->to.x - pos_.x, l->to.y - pos_.y, l->to.z - pos_.z};
+    pos_ = l->to;
+  }
+  if (auto* a = std::get_if<Arc>(&statement)) {
+    // Tangent at the end: the radius turned a quarter against the sense.
+    const double rx = a->to.x - a->centre.x, ry = a->to.y - a->centre.y;
+    last_direction_ = a->clockwise ? Vec3{ry, -rx, 0} : Vec3{-ry, rx, 0};
+    pos_ = a->to;
+  }
   if (auto* c = std::get_if<DrillCycle>(&statement)) pos_ = {c->x, c->y, c->r};
+  if (std::holds_alternative<MachineRetract>(statement)) {
+    at_machine_safe_ = true;
+    pos_ = turning() ? program_.machine_safe : Vec3{pos_.x, pos_.y, program_.machine_safe.z};
+  }
   program_.blocks.push_back({std::move(statement), provenance_});
 }
 
-void Generator::rapid(Vec3 to) { emit(Rapid{to}); }
-void Generator::feed(Vec3 to) { emit(Linear{to}); }
+namespace {
+bool same_point(Vec3 a, Vec3 b) { return std::abs(a.x - b.x) < eps && std::abs(a.y - b.y) < eps && std::abs(a.z - b.z) < eps; }
+}  // namespace
+
+// A move to where the tool is is left out (printers skip it too).
+void Generator::rapid(Vec3 to) {
+  if (at_machine_safe_ || !same_point(to, pos_)) emit(Rapid{to});
+}
+void Generator::feed(Vec3 to) {
+  if (at_machine_safe_ || !same_point(to, pos_)) emit(Linear{to});
+}
 
 void Generator::spindle(const SpindleOn& on) {
   if (!on.css && on.rpm <= 0) {  // a toolpath's technology stops the spindle
@@ -276,7 +326,10 @@ Vec3 Generator::global(const Job& job, Vec2 local, double z, Vec2 offset) const 
 }
 
 // Up to the security plane, then across: the only way between features.
+// From the machine-safe height, straight to the security plane above the
+// target: that line stays above the plane.
 void Generator::go_clear(Vec2 xy, double clear) {
+  if (at_machine_safe_) return rapid({xy.x, xy.y, clear});
   if (pos_.z < clear - eps) rapid({pos_.x, pos_.y, clear});
   rapid({xy.x, xy.y, std::max(pos_.z, clear)});
 }
@@ -295,16 +348,153 @@ void Generator::path_at(const Job& job, const Path& path, double z) {
 
 // From anywhere above the feature to a cut start: up to the retract plane
 // unless already straight above it, across, rapid down to `approach_z`,
-// feed down to `cut_z`.
-void Generator::move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset) {
+// then enter the material down to `cut_z`.
+void Generator::move_to_start(const Job& job, Vec2 local, double approach_z, double cut_z, Vec2 offset,
+                              const EntryRoom& room) {
   const Vec3 target = global(job, local, cut_z, offset);
+  if (at_machine_safe_) rapid({target.x, target.y, job.clear});
   const bool above = std::abs(pos_.x - target.x) < eps && std::abs(pos_.y - target.y) < eps;
   if (!above) {
     if (pos_.z < job.retract - eps) rapid({pos_.x, pos_.y, job.retract});
     rapid({target.x, target.y, std::max(pos_.z, job.retract)});
   }
   if (pos_.z > approach_z + eps) rapid({target.x, target.y, approach_z});
-  feed(target);
+  enter(job, target, pos_.z, room);
+}
+
+// Nothing to cut on the way down: above the stock, or beside it by more
+// than the tool radius.
+bool Generator::in_air(const Job& job, Vec3 target) const {
+  const Workpiece& w = project_.workpiece;
+  if (w.block_max.z <= w.block_min.z) return false;  // no block known
+  if (target.z >= w.block_max.z - eps) return true;
+  const double r = tool_radius(job);
+  return target.x < w.block_min.x - r || target.x > w.block_max.x + r || target.y < w.block_min.y - r ||
+         target.y > w.block_max.y + r;
+}
+
+// A hole this program drilled earlier lies under the tool's centre part
+// (the non-cutting middle of an end mill, 0.6 r) down to the cut.
+bool Generator::predrilled(const Job& job, Vec3 target) const {
+  const double core = 0.6 * tool_radius(job);
+  return std::any_of(drilled_.begin(), drilled_.end(), [&](const DrilledHole& h) {
+    return h.bottom <= target.z + eps && std::hypot(target.x - h.centre.x, target.y - h.centre.y) + core <= h.radius + eps;
+  });
+}
+
+// Down into material from straight above the target (ISO 14649-11
+// approach strategies). Inside material the tool never feeds straight down
+// at the cutting feed: the operation's plunge strategy, else a helix where
+// there is room, else a ramp along the first cut, else (or into a hole
+// drilled before) straight down at the plunge feed. Air strategies
+// (ap_retract_*) need air to approach through; inside material the default
+// applies.
+void Generator::enter(const Job& job, Vec3 target, double approach_z, const EntryRoom& room) {
+  if (approach_z - target.z <= eps) return feed(target);
+  if (turning() || in_air(job, target)) return feed(target);
+  const FeedRate cutting = job.tech.feed;
+  feedrate({cutting.value * options_.plunge_feed_ratio, cutting.per_revolution});
+  const double r = tool_radius(job);
+  const double angle = options_.ramp_angle_deg;
+  const Vec3 ramp_end = global(job, room.ramp_direction, 0), ramp_start = global(job, {}, 0);
+  const Vec2 ramp{ramp_end.x - ramp_start.x, ramp_end.y - ramp_start.y};
+  const double min_ramp = r;  // shorter ramps plunge almost vertically
+  const ApproachRetract& approach = job.op->approach;
+  bool done = false, file_used = false;
+  if (predrilled(job, target) || std::holds_alternative<PlungeToolaxis>(approach)) {
+    // straight down, below
+  } else if (auto* helix = std::get_if<PlungeHelix>(&approach); helix && room.helix >= 2 * helix->radius - eps) {
+    helix_down(job, target, helix->radius, helix->angle_deg);
+    done = file_used = true;
+  } else if (auto* r_ramp = std::get_if<PlungeRamp>(&approach); r_ramp && room.ramp_length >= min_ramp) {
+    ramp_down(job, target, ramp, room.ramp_length, r_ramp->angle_deg);
+    done = file_used = true;
+  } else if (auto* zigzag = std::get_if<PlungeZigzag>(&approach);
+             zigzag && std::min(zigzag->width, room.ramp_length) >= min_ramp) {
+    ramp_down(job, target, ramp, std::min(zigzag->width, room.ramp_length), zigzag->angle_deg);
+    done = file_used = true;
+  } else if (room.helix >= 0.5 * r) {
+    // The default helix: diameter up to the tool's, inside the room.
+    helix_down(job, target, std::min(room.helix, 2 * r) / 2, angle);
+    done = true;
+  } else if (room.ramp_length >= min_ramp) {
+    ramp_down(job, target, ramp, std::min(room.ramp_length, 4 * job.tool->diameter), angle);
+    done = true;
+  }
+  const bool file_plunge = std::holds_alternative<PlungeHelix>(approach) || std::holds_alternative<PlungeRamp>(approach) ||
+                           std::holds_alternative<PlungeZigzag>(approach);
+  if (file_plunge && !file_used && !predrilled(job, target))
+    warning(job.op->source, fmt::format("no room for the approach strategy at ({:.3f}, {:.3f}); {}", target.x,
+                                        target.y, done ? "the posters' default entry used" : "plunging at the plunge feed"));
+  if (!done) feed(target);
+  feedrate(cutting);
+}
+
+// A helix that starts and ends at the target, its centre `radius` to the
+// side, descending at `angle_deg`, then one flat turn to clear the floor.
+void Generator::helix_down(const Job& job, Vec3 target, double radius, double angle_deg) {
+  const double depth = pos_.z - target.z;
+  const double pitch = 2 * geom::pi * radius * std::tan(std::clamp(angle_deg, 0.5, 89.0) * geom::pi / 180);
+  const int turns = std::max(1, static_cast<int>(std::ceil(depth / pitch - 1e-9)));
+  const Vec3 centre{target.x - radius, target.y, target.z};
+  // Climb milling with the spindle's direction: counter-clockwise for M3.
+  const bool clockwise = !job.tech.spindle.clockwise;
+  emit(Arc{ArcPlane::xy, target, {centre.x, centre.y, target.z}, clockwise, turns - 1});
+  emit(Arc{ArcPlane::xy, target, {centre.x, centre.y, target.z}, clockwise, 0});
+}
+
+// Back and forth along `direction` over `length`, descending at most
+// `angle_deg`, ending at the target.
+void Generator::ramp_down(const Job&, Vec3 target, Vec2 direction, double length, double angle_deg) {
+  const double norm = std::hypot(direction.x, direction.y);
+  const Vec2 d{direction.x / norm * length, direction.y / norm * length};
+  const double depth = pos_.z - target.z, top = pos_.z;
+  const double drop = length * std::tan(std::clamp(angle_deg, 0.5, 89.0) * geom::pi / 180);
+  const int passes = std::max(1, static_cast<int>(std::ceil(depth / drop - 1e-9)));
+  for (int i = 1; i <= passes; ++i) {
+    const bool out = i % 2 == 1;
+    feed({target.x + (out ? d.x : 0), target.y + (out ? d.y : 0), top - depth * i / passes});
+  }
+  if (passes % 2 == 1) feed(target);
+}
+
+// How an entry at `local` (feature frame, before the region's offset) may
+// move: the distance to the tool-centre boundary, and the first line of
+// `along` as a ramp.
+EntryRoom Generator::room_at(const Region& region, Vec2 local, double d_final, const Path* along) const {
+  EntryRoom room;
+  room.helix = std::max(0.0, -geom::signed_distance(region, local) - d_final);
+  if (along && !along->segments.empty() && !along->segments.front().arc) {
+    const Vec2 d = along->segments.front().to - along->start;
+    room.ramp_length = std::hypot(d.x, d.y);
+    room.ramp_direction = d;
+  }
+  return room;
+}
+
+// Out of the cut (ISO 14649-11 retract strategies), then up to the
+// retract plane. ap_retract_angle rises along the last direction of
+// travel; ap_retract_tangent on a quarter circle over it (as chords).
+void Generator::leave(const Job& job) {
+  const Vec3 d = last_direction_;
+  const double h = std::hypot(d.x, d.y);
+  if (h > eps && pos_.z < job.retract - eps) {
+    const Vec2 u{d.x / h, d.y / h};
+    if (auto* angle = std::get_if<RetractAngle>(&job.op->retract)) {
+      const double a = angle->angle_deg * geom::pi / 180;
+      feed({pos_.x + u.x * angle->travel_length * std::cos(a), pos_.y + u.y * angle->travel_length * std::cos(a),
+            std::min(job.retract, pos_.z + angle->travel_length * std::sin(a))});
+    } else if (auto* tangent = std::get_if<RetractTangent>(&job.op->retract)) {
+      const Vec3 from = pos_;
+      constexpr int chords = 8;
+      for (int i = 1; i <= chords; ++i) {
+        const double t = geom::pi / 2 * i / chords;
+        feed({from.x + u.x * tangent->radius * std::sin(t), from.y + u.y * tangent->radius * std::sin(t),
+              std::min(job.retract, from.z + tangent->radius * (1 - std::cos(t)))});
+      }
+    }
+  }
+  if (pos_.z < job.retract - eps) rapid({pos_.x, pos_.y, job.retract});
 }
 
 double Generator::stepover(const Job& job) const {
@@ -394,19 +584,20 @@ GenerateResult Generator::run() {
   // Fixed numbers first, then order of first use.
   for (std::size_t i = 0; i < project_.tools.size(); ++i)
     if (project_.tools[i].number) tool_numbers_[i] = *project_.tools[i].number;
+  program_.machine_safe = turning() ? Vec3{turning_safe().x + options_.machine_safe_margin, 0,
+                                            turning_safe().z + options_.machine_safe_margin}
+                                     : Vec3{0, 0, program_.clear_z + options_.machine_safe_margin};
   emit(Comment{fmt::format("{} (#{})", project_.source.name, project_.source.id)});
-  if (turning())
-    rapid(turning_safe());
-  else
-    rapid({0, 0, program_.clear_z});
+  // No move here: the first tool change starts with the machine-safe
+  // retract, and the first move comes after the tool and its offset.
   visit(project_.main_workplan);
   provenance_ = 0;
   if (spindle_) emit(SpindleOff{});
   if (coolant_.flood || coolant_.mist) emit(Coolant{});
-  if (turning())
-    rapid(turning_safe());
-  else if (pos_.z < program_.clear_z - eps)
-    rapid({pos_.x, pos_.y, program_.clear_z});
+  if (current_tool_ != 0) {
+    if (turning()) rapid(turning_safe());
+    emit(MachineRetract{});
+  }
   return std::move(result_);
 }
 
@@ -481,6 +672,27 @@ bool Generator::prepare(const Executable& executable, Job& job) {
   if (auto* unknown = std::get_if<UnknownStrategy>(&op.strategy)) {
     error(op.source, fmt::format("unknown machining strategy '{}'", unknown->entity_name));
     return false;
+  }
+  for (const auto& [which, strategy] : {std::pair{"approach", &op.approach}, std::pair{"retract", &op.retract}}) {
+    if (auto* unknown = std::get_if<UnknownStrategy>(strategy)) {
+      error(op.source, fmt::format("{} strategy '{}' is not supported", which, unknown->entity_name));
+      return false;
+    }
+    const bool bad = std::visit(
+        [](const auto& st) {
+          using S = std::decay_t<decltype(st)>;
+          if constexpr (std::is_same_v<S, PlungeRamp>) return st.angle_deg <= 0 || st.angle_deg >= 90;
+          else if constexpr (std::is_same_v<S, PlungeHelix>) return st.radius <= 0 || st.angle_deg <= 0 || st.angle_deg >= 90;
+          else if constexpr (std::is_same_v<S, PlungeZigzag>) return st.width <= 0 || st.angle_deg <= 0 || st.angle_deg >= 90;
+          else if constexpr (std::is_same_v<S, RetractAngle>) return st.travel_length <= 0 || st.angle_deg <= 0 || st.angle_deg > 90;
+          else if constexpr (std::is_same_v<S, RetractTangent>) return st.radius <= 0;
+          else return false;
+        },
+        *strategy);
+    if (bad) {
+      error(op.source, fmt::format("{} strategy needs a positive size and an angle between 0 and 90 degrees", which));
+      return false;
+    }
   }
   auto tech = resolve_technology(op, *job.tool);
   if (!tech) return false;
@@ -572,18 +784,48 @@ void Generator::start_operation(const Job& job) {
       spindle_.reset();
     }
     if (coolant_.flood || coolant_.mist) coolant(MachineFunctions{});
-    if (turning())
-      rapid(turning_safe());
-    else if (pos_.z < program_.clear_z - eps)
-      rapid({pos_.x, pos_.y, program_.clear_z});
+    // Lathes leave the stock first: the reference point may lie across it.
+    if (turning() && current_tool_ != 0) rapid(turning_safe());
+    emit(MachineRetract{});
     if (!program_.tool(job.tool_number)) program_.tools.push_back({job.tool_number, *job.tool});
     emit(ToolChange{job.tool_number});
     current_tool_ = job.tool_number;
   }
   emit(Tolerance{program_.tolerance, is_rough(job.op->kind)});
+  check_technology(job);
   spindle(job.tech.spindle);
   coolant(job.op->machine_functions);
   feedrate(job.tech.feed);
+}
+
+// Warnings a shop would raise before running the program: a spindle turning
+// against the tool's hand of cut (milling tools: right hand cuts in M3), and
+// feeds far outside the usual range (mm per tooth for milling tools, mm per
+// revolution for drills and turning tools; taps follow their pitch).
+void Generator::check_technology(const Job& job) {
+  const Tool& tool = *job.tool;
+  const SpindleOn& s = job.tech.spindle;
+  const bool lathe_tool = tool.kind == ToolKind::turning_insert || tool.kind == ToolKind::grooving_insert;
+  if (!lathe_tool && tool.hand != Hand::unspecified && tool.hand != Hand::neutral &&
+      (tool.hand == Hand::right) != s.clockwise)
+    warning(job.op->source, fmt::format("spindle {} turns against tool '{}''s {}-hand cut", s.clockwise ? "M3" : "M4",
+                                        tool.source.name, tool.hand == Hand::right ? "right" : "left"));
+  if (tool.kind == ToolKind::tap) return;
+  const FeedRate& f = job.tech.feed;
+  const double per_rev = f.per_revolution ? f.value : s.rpm > 0 && !s.css ? f.value / s.rpm : 0;
+  if (per_rev <= 0) return;
+  auto out_of_range = [&](std::string_view what, double value, double low, double high) {
+    if (value < low || value > high)
+      warning(job.op->source, fmt::format("implausible feed: {} {:.4g} mm (usual {} to {})", what, value, low, high));
+  };
+  const bool milling_cutter = tool.kind == ToolKind::flat_end_mill || tool.kind == ToolKind::bull_nose_end_mill ||
+                              tool.kind == ToolKind::ball_end_mill || tool.kind == ToolKind::facemill;
+  if (milling_cutter && tool.flutes > 0)
+    out_of_range("feed per tooth", per_rev / tool.flutes, 0.005, 0.5);
+  else if (lathe_tool)
+    out_of_range("feed per revolution", per_rev, 0.02, 1.5);
+  else if (!milling_cutter)
+    out_of_range("feed per revolution", per_rev, 0.01, 1.0);
 }
 
 void Generator::workingstep(const Executable& executable) {
@@ -597,8 +839,10 @@ void Generator::workingstep(const Executable& executable) {
                            job.feature->source.name, job.feature->source.id)});
   const bool explicit_motion = job.op->kind == OperationKind::freeform || !job.op->toolpaths.empty();
   // After an explicit toolpath the tool stays where it ended; generated
-  // motion starts from the security plane.
-  if (!explicit_motion && !turning() && pos_.z < job.clear - eps) rapid({pos_.x, pos_.y, job.clear});
+  // motion with the same tool starts from the security plane. (A tool
+  // change retracts to the machine-safe height instead: no move before it.)
+  if (!explicit_motion && !turning() && current_tool_ == job.tool_number && pos_.z < job.clear - eps)
+    rapid({pos_.x, pos_.y, job.clear});
   start_operation(job);
   const std::size_t blocks_before = program_.blocks.size();
 
@@ -668,14 +912,15 @@ void Generator::planar_face(const Job& job, const PlanarFace& face) {
       const Vec2 from{forward ? x_start : x_end, y}, to{forward ? x_end : x_start, y};
       if (i == 0 || unidirectional) {
         // Start outside the face: safe to come down beside it.
-        move_to_start(job, from, last_level + options_.safety_distance, z, {});
+        move_to_start(job, from, last_level + options_.safety_distance, z, {},
+                      EntryRoom{0, to - from, x_end - x_start});
       } else {
         feed(global(job, from, z));  // step over outside the face
       }
       feed(global(job, to, z));
     }
     last_level = z;
-    rapid({pos_.x, pos_.y, job.retract});
+    leave(job);
   }
   end_feature_cycle(cycle);
 }
@@ -786,10 +1031,14 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
             linked = geom::signed_distance(region, p) <= -d_final + 1e-6;
           }
         }
-        if (linked)
+        if (linked) {
           feed(global(job, from, z, offset));
-        else
-          move_to_start(job, from + offset, approach_z, z, {});
+        } else {
+          EntryRoom room = room_at(region, from, d_final, nullptr);
+          room.ramp_direction = to - from;
+          room.ramp_length = std::hypot(to.x - from.x, to.y - from.y);
+          move_to_start(job, from + offset, approach_z, z, {}, room);
+        }
         first = false;
         feed(global(job, to, z, offset));
       }
@@ -810,29 +1059,32 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
     const bool floor = k + 1 == levels.size();
     if (!rough && !floor) {
       // Finishing: the walls layer by layer with the boundary lap only.
-      move_to_start(job, boundary_lap.start, approach_z, z, {});
+      move_to_start(job, boundary_lap.start, approach_z, z, {},
+                    room_at(region, boundary_lap.start - offset, d_final, &boundary_lap));
       path_at(job, boundary_lap, z);
     } else if (contour) {
-      // Plunge at the inner lap, then outwards lap by lap along the start ray.
-      move_to_start(job, laps.front().start, approach_z, z, {});
+      // Enter at the inner lap, then outwards lap by lap along the start ray.
+      move_to_start(job, laps.front().start, approach_z, z, {},
+                    room_at(region, laps.front().start - offset, d_final, &laps.front()));
       for (const Path& lap : laps) {
         feed(global(job, lap.start, z));
         path_at(job, lap, z);
       }
     } else {
       zigzag(z, approach_z);
-      move_to_start(job, boundary_lap.start, approach_z, z, {});
+      move_to_start(job, boundary_lap.start, approach_z, z, {},
+                    room_at(region, boundary_lap.start - offset, d_final, &boundary_lap));
       path_at(job, boundary_lap, z);
     }
     last_level = z;
   }
-  rapid({pos_.x, pos_.y, job.retract});
+  leave(job);
   end_feature_cycle(cycle);
 }
 
 std::optional<std::size_t> Generator::begin_feature_cycle(const Job& job) {
   CycleInput input{*job.feature, *job.op, *job.tool, job.tech.spindle, job.tech.feed,
-                   job.top, job.retract, options_.safety_distance};
+                   job.tech.feed.value * options_.plunge_feed_ratio, job.top, job.retract, options_.safety_distance};
   auto cycle = siemens_feature_cycle(input);
   if (!cycle) return std::nullopt;
   emit(std::move(*cycle));
@@ -866,12 +1118,14 @@ void Generator::slot(const Job& job, const Slot& slot_shape) {
   const auto levels = depth_levels(job.top, job.top - job.feature->depth + (rough ? op.allowance_bottom : 0),
                                    op.axial_cutting_depth);
   const auto cycle = begin_feature_cycle(job);
-  move_to_start(job, a, job.top + options_.safety_distance, levels.front(), {});
+  const double length = b.x - a.x;
+  move_to_start(job, a, job.top + options_.safety_distance, levels.front(), {}, EntryRoom{0, b - a, length});
   for (std::size_t k = 0; k < levels.size(); ++k) {
-    if (k > 0) feed(global(job, k % 2 ? b : a, levels[k]));
+    // Down to the next level by ramping along the slot, not straight down.
+    if (k > 0) enter(job, global(job, k % 2 ? b : a, levels[k]), pos_.z, EntryRoom{0, k % 2 ? a - b : b - a, length});
     feed(global(job, k % 2 ? a : b, levels[k]));
   }
-  rapid({pos_.x, pos_.y, job.retract});
+  leave(job);
   end_feature_cycle(cycle);
 }
 
@@ -916,9 +1170,16 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
         warning(op.source, "first_depth differs from depth_of_step; G83 pecks use depth_of_step throughout");
       break;
     case OperationKind::reaming:
+      // A reamer retracts at feed with the spindle running (G85/CYCLE85):
+      // a stopped reamer pulled out at rapid scores the bore.
+      if (op.spindle_stop_at_bottom)
+        warning(op.source, "spindle_stop_at_bottom ignored: reaming retracts at feed with the spindle running");
+      cycle.kind = DrillKind::bore_feed_out;
+      cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
+      break;
     case OperationKind::boring:
       cycle.kind = op.spindle_stop_at_bottom ? DrillKind::bore_spindle_stop : DrillKind::bore_feed_out;
-      cycle.retract_feed = cycle.feed;
+      cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
       break;
     case OperationKind::tapping:
       if (tool.thread_pitch <= eps || job.tech.spindle.rpm <= eps) {
@@ -936,9 +1197,67 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   if (cycle.r >= cycle.clear - eps) cycle.clear = cycle.r;
   go_clear({cycle.x, cycle.y}, job.clear);
   rapid({cycle.x, cycle.y, cycle.clear});
-  feedrate({cycle.feed, false});
-  emit(cycle);
+  if (op.drilling_strategy && cycle.kind != DrillKind::tap) {
+    drill_explicit(job, cycle, *op.drilling_strategy);
+  } else {
+    feedrate({cycle.feed, false});
+    emit(cycle);
+  }
   rapid({cycle.x, cycle.y, cycle.clear});
+  if (cycle.kind != DrillKind::tap)
+    drilled_.push_back({{cycle.x, cycle.y}, tool.diameter / 2, cycle.bottom});
+}
+
+// A hole with a drilling_type_strategy, as motion (no canned cycle has its
+// zones): feed scaled by reduced_feed_at_start down to depth_of_start and
+// by reduced_feed_at_end over the last depth_of_end; pecks (multistep)
+// scaled by reduced_cut_* in those zones, each followed by a rapid back to
+// R and down to just above the last depth, as G83 does; dwell; out at the
+// retract feed for boring and reaming, else at rapid.
+void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingStrategy& st) {
+  const double start_end = c.top - st.depth_of_start, end_start = c.bottom + st.depth_of_end;
+  auto zone_ratio = [&](double z, double start, double end) {
+    return z > start_end + eps ? start : z <= end_start + eps ? end : 1.0;
+  };
+  rapid({c.x, c.y, c.r});
+  double z = c.r;
+  while (z > c.bottom + eps) {
+    double next = c.bottom;
+    if (c.kind == DrillKind::peck) {
+      const double below = std::min(z, c.top);
+      next = std::max(c.bottom, below - c.peck * zone_ratio(below - eps, st.reduced_cut_at_start, st.reduced_cut_at_end));
+    }
+    // Split the feed at the zone borders.
+    for (const double border : {start_end, end_start}) {
+      if (border < z - eps && border > next + eps) {
+        feedrate({c.feed * zone_ratio(z - eps, st.reduced_feed_at_start, st.reduced_feed_at_end), false});
+        feed({c.x, c.y, border});
+        z = border;
+      }
+    }
+    feedrate({c.feed * zone_ratio(z - eps, st.reduced_feed_at_start, st.reduced_feed_at_end), false});
+    feed({c.x, c.y, next});
+    z = next;
+    if (c.kind == DrillKind::peck && z > c.bottom + eps) {
+      rapid({c.x, c.y, c.r});
+      rapid({c.x, c.y, z + 0.254});  // LinuxCNC's G83 re-approach distance
+      feedrate({c.feed * zone_ratio(z, st.reduced_feed_at_start, st.reduced_feed_at_end), false});
+      feed({c.x, c.y, z});
+    }
+  }
+  if (c.dwell > 0) emit(Dwell{c.dwell});
+  if (c.kind == DrillKind::bore_feed_out || c.kind == DrillKind::bore_spindle_stop) {
+    if (c.kind == DrillKind::bore_spindle_stop) emit(SpindleOff{});
+    if (c.kind == DrillKind::bore_feed_out) {
+      feedrate({c.retract_feed, false});
+      feed({c.x, c.y, c.r});
+    } else {
+      rapid({c.x, c.y, c.r});
+      emit(*spindle_);
+    }
+  } else {
+    rapid({c.x, c.y, c.r});
+  }
 }
 
 bool near(Vec3 a, Vec3 b) { return std::abs(a.x - b.x) + std::abs(a.y - b.y) + std::abs(a.z - b.z) < 1e-6; }

@@ -717,6 +717,10 @@ class Describer {
       out.corner_radius = dim.edge_radius.value_or(0);
       if (dim.tool_tip_half_angle) out.tip_angle_deg = 2 * *dim.tool_tip_half_angle;
       out.flutes = static_cast<int>(body->number_of_teeth.value_or(0));
+      if (body->hand_of_cut)
+        out.hand = *body->hand_of_cut == mt::hand::right  ? Hand::right
+                   : *body->hand_of_cut == mt::hand::left ? Hand::left
+                                                          : Hand::neutral;
       if (cutting->overall_assembly_length)
         out.length = *cutting->overall_assembly_length;
       else if (!cutting->its_cutting_edge.empty() && cutting->its_cutting_edge.front())
@@ -791,6 +795,19 @@ class Describer {
     return UnknownStrategy{std::string(s->entity_info().name)};
   }
 
+  // ISO 14649-11 approach_retract_strategy; along_path (a toolpath of its
+  // own) is not implemented and is named.
+  static ApproachRetract approach_retract(const mi::approach_retract_strategy* s) {
+    if (!s) return std::monostate{};
+    if (as<mi::plunge_toolaxis>(s)) return PlungeToolaxis{};
+    if (auto* ramp = as<mi::plunge_ramp>(s)) return PlungeRamp{ramp->angle};
+    if (auto* helix = as<mi::plunge_helix>(s)) return PlungeHelix{helix->radius, helix->angle};
+    if (auto* zigzag = as<mi::plunge_zigzag>(s)) return PlungeZigzag{zigzag->angle, zigzag->width};
+    if (auto* angle = as<mi::ap_retract_angle>(s)) return RetractAngle{angle->angle, angle->travel_length};
+    if (auto* tangent = as<mi::ap_retract_tangent>(s)) return RetractTangent{tangent->radius};
+    return UnknownStrategy{std::string(s->entity_info().name)};
+  }
+
   int operation(const ms::machining_operation& o) {
     if (auto it = operations_.find(&o); it != operations_.end()) return it->second;
     Operation out;
@@ -804,6 +821,10 @@ class Describer {
       out.machine_functions = {{tf->id(), ""}, tf->coolant, false};
     }
     const double diameter = out.tool >= 0 ? out_.project.tools[static_cast<std::size_t>(out.tool)].diameter : 0;
+    if (auto* milling = as<mi::milling_type_operation>(&o)) {
+      out.approach = approach_retract(milling->approach);
+      out.retract = approach_retract(milling->retract);
+    }
     if (auto* lathe = as<ts::turning_machining_operation>(&o)) {
       turning_ = true;
       turning_operation(*lathe, out);
@@ -826,6 +847,13 @@ class Describer {
       out.cutting_depth = drilling->cutting_depth;
       out.dwell_time_bottom = drilling->dwell_time_bottom.value_or(0);
       out.feed_on_retract = drilling->feed_on_retract.value_or(0);
+      // A strategy without zones (no depth_of_start/_end) changes nothing.
+      if (const mi::drilling_type_strategy* st = drilling->its_machining_strategy;
+          st && (st->depth_of_start.value_or(0) > 0 || st->depth_of_end.value_or(0) > 0)) {
+        out.drilling_strategy = DrillingStrategy{st->reduced_cut_at_start.value_or(1), st->reduced_feed_at_start.value_or(1),
+                                                 st->depth_of_start.value_or(0),       st->reduced_cut_at_end.value_or(1),
+                                                 st->reduced_feed_at_end.value_or(1),   st->depth_of_end.value_or(0)};
+      }
       if (auto* multi = as<mi::multistep_drilling>(&o)) {
         out.kind = OperationKind::multistep_drilling;
         out.depth_of_step = multi->depth_of_step;

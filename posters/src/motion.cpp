@@ -95,6 +95,11 @@ class Expander {
   void on(const Tolerance&) {}
   void on(const ProgramStop&) {}
   void on(const Message&) {}
+  // To the stand-in for the machine's safe place (Program::machine_safe).
+  void on(const MachineRetract&) {
+    const Vec3 safe = program_.machine_safe;
+    traverse(program_.machine == MachineKind::turning ? Vec3{safe.x, 0, safe.z} : Vec3{pos_.x, pos_.y, safe.z});
+  }
 
   // LinuxCNC canned cycles in G99 mode (retract to R).
   void on(const DrillCycle& c) {

@@ -19,23 +19,27 @@ class Rs274ngcPrinter final : public GcodePrinter {
   void prologue() override {
     line("%");
     // Lathe: XZ plane, diameter mode.
-    line(lathe() ? "G18 G7 G21 G90 G40 G80" : "G17 G21 G90 G40 G49 G80 G94");
+    // G54: the setup's origin is the operator's first work offset.
+    line(lathe() ? "G18 G7 G21 G90 G40 G49 G80 G54" : "G17 G21 G90 G40 G49 G80 G94 G54");
   }
   void epilogue() override {
     line("M2");
     line("%");
   }
+  // Mills: machine Z0, the top of travel (LinuxCNC manual, G53). Lathes:
+  // the G28 position (parameters 5161-5166, set with G28.1; LinuxCNC
+  // manual, G28), reached from outside the stock.
+  void machine_retract() override { line(lathe() ? "G28" : "G53 G0 Z0"); }
   void tool_change(const ToolChange& t) override {
     start_line();
     word('T', t.number);
     word("M6");
     finish_line();
-    if (!lathe()) {
-      start_line();
-      word("G43");
-      word('H', t.number);
-      finish_line();
-    }
+    // The tool table's offsets apply only after G43, on lathes too.
+    start_line();
+    word("G43");
+    word('H', t.number);
+    finish_line();
   }
   void spindle_on(const SpindleOn& s) override {
     start_line();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Siemens SINUMERIK 840D: tool data in $TC_DP, CYCLE832 with the model's
+// Siemens SINUMERIK 840D: tool data in $TC_DP when asked, CYCLE832 with the model's
 // tolerance, feature cycles (POCKET1/2, CYCLE71, SLOT1; parameters mapped
 // per seed 000 Table 1 in siemens_cycles.cpp) and drilling cycles
 // CYCLE81..86. An empty position is a parameter left out. The drilling
@@ -39,8 +39,8 @@ int siemens_tool_type(ToolKind kind) {
 
 class Siemens840dPrinter final : public GcodePrinter {
  public:
-  explicit Siemens840dPrinter(const Program& program)
-      : GcodePrinter(program, Style{3, false, ';', 10, program.machine == MachineKind::turning}) {}
+  Siemens840dPrinter(const Program& program, const PrintOptions& options)
+      : GcodePrinter(program, Style{3, false, ';', 10, program.machine == MachineKind::turning}), options_(options) {}
 
  private:
   bool lathe() const { return program_.machine == MachineKind::turning; }
@@ -48,9 +48,14 @@ class Siemens840dPrinter final : public GcodePrinter {
   double spindle_direction() const { return spindle_clockwise_ ? 3 : 4; }
 
   void prologue() override {
-    line(lathe() ? "G18 G71 G90 G40 DIAMON" : "G17 G71 G90 G40 G94");
-    // Tool data, so the control knows each tool's type, length and radius:
-    // $TC_DP1 type, $TC_DP3 length, $TC_DP6 radius (seed 000 6).
+    // G54: the setup's origin is the operator's first settable zero offset
+    // (G500 would leave only the base frame).
+    line(lathe() ? "G18 G71 G90 G40 G54 DIAMON" : "G17 G71 G90 G40 G94 G54");
+    if (options_.write_tool_data) write_tool_data();
+  }
+  // Tool data, only when asked: it overwrites what the controller measured.
+  // $TC_DP1 type, $TC_DP3 length, $TC_DP6 radius (seed 000 6).
+  void write_tool_data() {
     for (const auto& entry : program_.tools) {
       comment(fmt::format("{} {}", to_string(entry.tool.kind), entry.tool.source.name));
       start_line();
@@ -66,6 +71,7 @@ class Siemens840dPrinter final : public GcodePrinter {
   }
   void epilogue() override { line("M30"); }
   void tolerance(const Tolerance& t) override {
+    if (lathe()) return;  // CYCLE832 is the milling high-speed setting
     // CYCLE832(_TOL, _TOLM): contour tolerance from the model; _TOLM
     // 102001 finishing, 102003 roughing, as seed 000 and its NIST STEPNC++
     // poster write them. Order and the units digit (1 finishing, 2 semi-
@@ -77,12 +83,25 @@ class Siemens840dPrinter final : public GcodePrinter {
     call += t.roughing ? ",102003)" : ",102001)";
     line(call);
   }
+  // Mills: machine Z0 with the length offset off (SUPA suppresses the
+  // frames, D0 the tool length). Lathes: reference point approach with the
+  // default machine axis names X1, Z1 (MD10000), X first.
+  void machine_retract() override {
+    if (lathe()) {
+      line("G74 X1=0");
+      line("G74 Z1=0");
+    } else {
+      line("G0 SUPA Z0 D0");
+    }
+  }
+  // A lathe's turret indexes on the T word; a mill changes on M6. D1
+  // activates the tool's offsets either way.
   void tool_change(const ToolChange& t) override {
     start_line();
     word('T', t.number);
     word("D1");
     finish_line();
-    line("M6");
+    if (!lathe()) line("M6");
   }
   void spindle_on(const SpindleOn& s) override {
     spindle_clockwise_ = s.clockwise;
@@ -193,11 +212,14 @@ class Siemens840dPrinter final : public GcodePrinter {
     return true;
   }
 
+  PrintOptions options_;
   bool spindle_clockwise_ = true;  // the last SpindleOn's direction
 };
 
 }  // namespace
 
-PrintedProgram print_siemens840d(const Program& program) { return Siemens840dPrinter(program).print(); }
+PrintedProgram print_siemens840d(const Program& program, const PrintOptions& options) {
+  return Siemens840dPrinter(program, options).print();
+}
 
 }  // namespace stepnc::post::detail

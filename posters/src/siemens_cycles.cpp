@@ -79,7 +79,8 @@ void pocket_technology(const CycleInput& in, Parameters& p) {
   const bool finish = is_finish(in.op.kind);
   const double feed = in.feed.value;
   const double mid = in.op.axial_cutting_depth.value_or(in.feature.depth);
-  p.add("FFD", feed, "\"MillingOp\"/its_technology/feedrate (depth infeed feed is not in approach_retract_strategy)");
+  // The cycles infeed straight down: at the plunge feed, never the cutting feed.
+  p.add("FFD", in.plunge_feed, "plunge feed: \"MillingOp\"/its_technology/feedrate x GenerateOptions::plunge_feed_ratio");
   p.add("FFP1", feed, "\"MillingOp\"/its_technology/feedrate");
   p.add("MID", mid, "\"MillingOp\"/axial_cutting_depth");
   p.add("CDIR", milling_direction(in.op.strategy, in.spindle.clockwise), milling_direction_source);
@@ -113,6 +114,11 @@ std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in) {
   FeatureCycle cycle;
   if (auto* pocket = std::get_if<ClosedPocket>(&in.feature.shape)) {
     if (!contour_like(in.op.strategy)) return std::nullopt;  // POCKET1/2 mill contour-parallel
+    // POCKET1/2 plunge at the centre: a ramp or helix the file asks for
+    // is posted as motion.
+    if (!std::holds_alternative<std::monostate>(in.op.approach) &&
+        !std::holds_alternative<PlungeToolaxis>(in.op.approach))
+      return std::nullopt;
     // A rectangle given as a polygon: its centre is not the placement.
     Vec2 local_centre;
     std::optional<RectangularProfile> polygon_rect;

@@ -16,6 +16,7 @@ struct CycleInput {
   const Tool& tool;
   SpindleOn spindle;
   FeedRate feed;
+  double plunge_feed;  // FFD: depth infeed
   double top;      // RFP
   double retract;  // RTP
   double safety;   // SDIS

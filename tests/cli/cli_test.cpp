@@ -143,9 +143,16 @@ TEST_CASE("stepnc post writes the program and its trace atomically", "[cli]") {
   CHECK(run.exit_code == 0);
   std::ifstream p(program), t(trace);
   const std::string text((std::istreambuf_iterator<char>(p)), {}), map((std::istreambuf_iterator<char>(t)), {});
-  CHECK_THAT(text, Catch::Contains("POCKET1(15,0,2,-30,,50,80,10,70,70,0,2400,2400,2,2,0,2,2,2400,1200)"));
+  CHECK_THAT(text, Catch::Contains("POCKET1(15,0,2,-30,,50,80,10,70,70,0,1200,2400,2,2,0,2,2,2400,1200)"));
   CHECK_THAT(text, Catch::Contains("CYCLE832(0.01,102001)"));
   CHECK_THAT(map, Catch::Contains("POCKET1"));
+  // Tool data only when asked; feed warnings on stderr with the file name.
+  CHECK_THAT(text, !Catch::Contains("$TC_DP"));
+  CHECK_THAT(run.out, Catch::Contains("example1.stp:25:1: #19 'FINISH PLANAR FACE1': warning: implausible feed: feed per "
+                                      "tooth 0.8333 mm"));
+  const Run with_data = stepnc("post " + sample("milling/example1.stp") + " -d siemens840d --write-tool-data");
+  CHECK(with_data.exit_code == 0);
+  CHECK_THAT(with_data.out, Catch::Contains("$TC_DP1[1,1]=121 $TC_DP3[1,1]=80 $TC_DP6[1,1]=10"));
 
   const Run to_stdout = stepnc("post " + sample("turning/shaft.stp") + " -d rs274ngc");
   CHECK(to_stdout.exit_code == 0);

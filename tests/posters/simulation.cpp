@@ -88,20 +88,37 @@ class HeightMap {
 
 }  // namespace
 
+std::string SimulationReport::text() const {
+  std::string out;
+  for (const auto& problem : problems) out += problem + "\n";
+  return out;
+}
+
 SimulationReport simulate_milling(const MachiningProject& project, const Program& program, double cell) {
   SimulationReport report;
   const Workpiece& w = project.workpiece;
   HeightMap map(w.block_min, w.block_max, cell);
   double radius = 0;
-  bool cutting_tool = true;
+  bool cutting_tool = true, milling_cutter = false;
   bool first_move = true;
-  for (const Move& m : expand_motion(program)) {
+  const auto moves = expand_motion(program);
+  // Each workingstep's cutting feed: the highest feed it programs.
+  std::map<std::uint32_t, double> cutting_feed;
+  auto workingstep = [&](const Move& m) { return program.blocks[m.block].provenance; };
+  for (const Move& m : moves)
+    if (m.kind == Move::Kind::feed_rate) cutting_feed[workingstep(m)] = std::max(cutting_feed[workingstep(m)], m.value);
+  double feed = 0;
+  for (const Move& m : moves) {
     if (m.kind == Move::Kind::tool_change) {
       const ToolEntry* entry = program.tool(static_cast<int>(m.value));
       radius = entry ? entry->tool.diameter / 2 : 0;
       cutting_tool = entry && entry->tool.kind != ToolKind::tap;  // a tap cuts threads only
+      const ToolKind kind = entry ? entry->tool.kind : ToolKind::twist_drill;
+      milling_cutter = kind == ToolKind::flat_end_mill || kind == ToolKind::bull_nose_end_mill ||
+                       kind == ToolKind::ball_end_mill || kind == ToolKind::facemill;
       continue;
     }
+    if (m.kind == Move::Kind::feed_rate) feed = m.value;
     if (m.kind == Move::Kind::rapid) {
       if (first_move) {
         first_move = false;
@@ -129,6 +146,19 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
     if (m.kind != Move::Kind::feed && m.kind != Move::Kind::arc) continue;
     first_move = false;
     if (!cutting_tool) continue;
+    const double drop = m.from.z - m.to.z;
+    if (m.kind == Move::Kind::feed && milling_cutter && drop > tolerance &&
+        std::hypot(m.to.x - m.from.x, m.to.y - m.from.y) < drop) {
+      ++report.plunges_checked;
+      double deepest = 0;
+      map.disc(m.to, std::max(0.6 * radius, cell), [&](int i, int j) {
+        deepest = std::max(deepest, std::min(map.at(i, j), m.from.z) - m.to.z);
+      });
+      if (deepest > tolerance && feed >= 0.999 * cutting_feed[workingstep(m)])
+        report.problems.push_back(fmt::format("feed plunge (block {}) {:.3f} mm into material at ({:.3f}, {:.3f}, "
+                                              "{:.3f}) at the cutting feed F{:g}",
+                                              m.block, deepest, m.to.x, m.to.y, m.to.z, feed));
+    }
     sample_move(m, cell / 2, [&](Vec3 p) {
       map.disc(p, radius, [&](int i, int j) {
         double& h = map.at(i, j);

@@ -16,7 +16,10 @@ namespace stepnc::post::testing {
 struct SimulationReport {
   std::vector<std::string> problems;  // empty = every check passed
   std::size_t rapids_checked = 0;
+  std::size_t plunges_checked = 0;  // milling: vertical feed moves of milling cutters
   std::size_t cells_checked = 0;
+
+  std::string text() const;  // the problems, one per line ("" when clean)
 };
 
 // Checks, for the final state after the whole program:
@@ -25,7 +28,13 @@ struct SimulationReport {
 //    general profiles excepted: a round tool cannot reach them);
 //  - nothing outside the features is cut below the top the features allow;
 //  - no rapid move runs through material (the first move, from an unknown
-//    start, excepted).
+//    start, excepted);
+//  - no milling cutter feeds straight down (steeper than 45 degrees) into
+//    material at its cutting feed (the highest feed its workingstep
+//    programs): entries ramp, helix or plunge at a reduced feed. Material
+//    counts under the cutter's middle (0.6 r, the part an end mill does not
+//    cut well with), so plunging into a pre-drilled hole passes. Drills,
+//    reamers, taps and boring bars feed along their axis by design.
 SimulationReport simulate_milling(const MachiningProject& project, const Program& program, double cell = 0.5);
 
 SimulationReport simulate_turning(const MachiningProject& project, const Program& program, double bin = 0.02);

@@ -54,8 +54,8 @@ TEST_CASE("hole cycles in each dialect") {
   CHECK(siemens.find(" CYCLE85(5,0,2,-15,,0.2,300,300)\n") != std::string::npos);
   // Round-ended slot as SLOT1, circular pocket as POCKET2. CDIR is G2/G3:
   // conventional (the STEP-NC default) with M3 runs G2, climb G3.
-  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,2,0,2,3,1200,2400)\n") != std::string::npos);
-  CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,1200,1200,3,3,0.5,1)\n") != std::string::npos);
+  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,600,1200,3,2,0,2,3,1200,2400)\n") != std::string::npos);
+  CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,600,1200,3,3,0.5,1)\n") != std::string::npos);
 }
 
 TEST_CASE("840D tapping and boring restore the spindle direction; a left-hand tap has a negative PIT") {
@@ -68,7 +68,7 @@ TEST_CASE("840D tapping and boring restore the spindle direction; a left-hand ta
   // ..., DTB, SDIR, RPA, RPO, RPAP
   CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,4,0,0,0)\n") != std::string::npos);
   // Conventional milling with M4 runs counter-clockwise: G3.
-  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,1200,1200,3,3,0,2,3,1200,2400)\n") != std::string::npos);
+  CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,600,1200,3,3,0,2,3,1200,2400)\n") != std::string::npos);
 }
 
 TEST_CASE("840D CYCLE71 keeps _STA in [0, 180): a face whose axis points the other way gets negative sides") {
@@ -86,7 +86,7 @@ TEST_CASE("840D CYCLE71 keeps _STA in [0, 180): a face whose axis points the oth
 TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is constant") {
   auto project = testing::shaft();
   const std::string ngc = posted(project, Dialect::rs274ngc);
-  CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G80"));
+  CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G49 G80 G54"));
   CHECK(has_line(ngc, "G96 D3000 S200 M3"));
   CHECK(has_line(ngc, "G95 F0.3"));
   CHECK(has_line(ngc, "G1 Z-90"));  // a rough pass

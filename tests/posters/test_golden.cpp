@@ -97,7 +97,9 @@ TEST_CASE("POCKET1 parameters come from the model as in seed 000 Table 1") {
       {"CPA", 70, "its_feature/feature_placement/location/coordinates[x] (+ profile centre)"},
       {"CPO", 70, "its_feature/feature_placement/location/coordinates[y] (+ profile centre)"},
       {"STA1", 0, "its_feature/feature_placement/ref_direction/direction_ratios"},
-      {"FFD", 2400, "\"MillingOp\"/its_technology/feedrate (depth infeed feed is not in approach_retract_strategy)"},
+      // Table 1 writes the feedrate; the posters infeed at the plunge feed
+      // (half of it by default): a full-feed plunge is not run in a shop.
+      {"FFD", 1200, "plunge feed: \"MillingOp\"/its_technology/feedrate x GenerateOptions::plunge_feed_ratio"},
       {"FFP1", 2400, "\"MillingOp\"/its_technology/feedrate"},
       {"MID", 2, "\"MillingOp\"/axial_cutting_depth"},
       {"CDIR", 2, "\"MillingOp\"/its_machining_strategy/cutmode (or rotation) with the spindle sign: 2 G2, 3 G3"},

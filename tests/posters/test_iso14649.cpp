@@ -74,11 +74,10 @@ TEST_CASE("Example 1 from its Part 21 file posts, simulates clean and keeps the 
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
   const auto report = testing::simulate_milling(described.project, generated.program);
-  std::string problems;
-  for (const auto& problem : report.problems) problems += problem + "\n";
-  CHECK(problems == "");
+  CHECK(report.text() == "");
   const std::string siemens = print(generated.program, Dialect::siemens840d).text;
-  CHECK(siemens.find(" POCKET1(15,0,2,-30,,50,80,10,70,70,0,2400,2400,2,2,0,2,2,2400,1200)\n") != std::string::npos);
+  // Table 1 but FFD: the infeed runs at the plunge feed (half the feedrate).
+  CHECK(siemens.find(" POCKET1(15,0,2,-30,,50,80,10,70,70,0,1200,2400,2,2,0,2,2,2400,1200)\n") != std::string::npos);
 }
 
 TEST_CASE("the adapter names what it cannot map") {
@@ -134,9 +133,7 @@ TEST_CASE("the shaft from its Part 21 file: turning description, posting, simula
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
   const auto report = testing::simulate_turning(p, generated.program);
-  std::string problems;
-  for (const auto& problem : report.problems) problems += problem + "\n";
-  CHECK(problems == "");
+  CHECK(report.text() == "");
 }
 
 TEST_CASE("explicit toolpaths from the typed model post exactly the points they carry") {
@@ -286,9 +283,7 @@ TEST_CASE("an open pocket and a step from their Part 21 file: extents run to the
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
   const auto report = testing::simulate_milling(p, generated.program);
-  std::string problems;
-  for (const auto& problem : report.problems) problems += problem + "\n";
-  CHECK(problems == "");
+  CHECK(report.text() == "");
   CHECK(report.cells_checked > 0);
 }
 
@@ -576,7 +571,7 @@ TEST_CASE("a nested workplan's own setup, NC functions and rapid movements post 
   // The rapid movement from the end of the lift: up to the nested setup's plane and across.
   CHECK(ngc.find("(rapid movement RAPID OVER HOLE 1 #32)\nG0 Z50\nX25 Y40\nM1\n") != std::string::npos);
   // The pallet moves with the spindle and coolant off, the tool at the security plane.
-  CHECK(ngc.find("Z50\nM5\nM9\nM60\nM2\n") != std::string::npos);
+  CHECK(ngc.find("Z50\nM5\nM9\nM60\nG53 G0 Z0\nM2\n") != std::string::npos);
   CHECK(ngc.find("G81 X25 Y40") < ngc.find("G81 X75 Y40"));  // non_sequential: file order
   const std::string siemens = print(generated.program, Dialect::siemens840d).text;
   CHECK(siemens.find("MSG(\"CLAMP THE 100 X 80 BLOCK ON PALLET 1\")") != std::string::npos);
@@ -742,4 +737,43 @@ TEST_CASE("a feedstop in a toolpath list dwells where the tool is") {
   REQUIRE(generated.ok());
   const std::string ngc = print(generated.program, Dialect::rs274ngc).text;
   CHECK(ngc.find("G2 X-30 Y70 I0 J15\nG1 X130\nG4 P0.5\nZ35\n") != std::string::npos);
+}
+
+TEST_CASE("approach, retract and drilling strategies are read from the file") {
+  std::ifstream in(testing::sample_path("milling/example1.stp"));
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  // Example 1's drill has a drilling_type_strategy (#46); the reamer's (#49)
+  // has no zones and changes nothing.
+  const DescribeResult plain = testing::describe_text(text);
+  REQUIRE(plain.ok());
+  const auto& drill = plain.project.operations[1];
+  REQUIRE(drill.source.id == 20);
+  REQUIRE(drill.drilling_strategy.has_value());
+  CHECK(drill.drilling_strategy->reduced_feed_at_start == Approx(0.5));
+  CHECK(drill.drilling_strategy->depth_of_start == Approx(2));
+  CHECK(drill.drilling_strategy->reduced_feed_at_end == Approx(0.75));
+  CHECK(drill.drilling_strategy->depth_of_end == Approx(8));
+  CHECK_FALSE(plain.project.operations[2].drilling_strategy.has_value());
+
+  // The rough pocket with a helix approach and an angle retract.
+  const std::string rough = "#22=BOTTOM_AND_SIDE_ROUGH_MILLING($,$,'ROUGH POCKET1',15.000,$,#39,#50,#41,$,$,$,#51,";
+  REQUIRE(text.find(rough) != std::string::npos);
+  text.replace(text.find(rough), rough.size(),
+               "#22=BOTTOM_AND_SIDE_ROUGH_MILLING($,$,'ROUGH POCKET1',15.000,$,#39,#50,#41,$,#901,#902,#51,");
+  text.insert(text.rfind("ENDSEC;"), "#901=PLUNGE_HELIX($,4.,3.);\n#902=AP_RETRACT_ANGLE($,45.,5.);\n");
+  const DescribeResult edited = testing::describe_text(text);
+  for (const auto& d : edited.diagnostics) INFO(d.to_string());
+  REQUIRE(edited.ok());
+  const Operation& op = edited.project.operations[3];
+  REQUIRE(op.source.id == 22);
+  REQUIRE(std::holds_alternative<PlungeHelix>(op.approach));
+  CHECK(std::get<PlungeHelix>(op.approach).radius == Approx(4));
+  CHECK(std::get<PlungeHelix>(op.approach).angle_deg == Approx(3));
+  REQUIRE(std::holds_alternative<RetractAngle>(op.retract));
+  CHECK(std::get<RetractAngle>(op.retract).travel_length == Approx(5));
+  const auto generated = generate(edited.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const auto report = testing::simulate_milling(edited.project, generated.program);
+  CHECK(report.text() == "");
 }

@@ -5,9 +5,12 @@
 // 1 micrometre.
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <unistd.h>
 
@@ -52,7 +55,9 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   REQUIRE(generated.ok());
   const Program& program = generated.program;
 
-  const fs::path dir = fs::temp_directory_path() / ("stepnc_posters_" + std::to_string(::getpid()));
+  // Process ids repeat across sandboxes sharing /tmp: add a random part.
+  const fs::path dir = fs::temp_directory_path() /
+                       ("stepnc_posters_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
   fs::create_directories(dir);
   const fs::path ngc = dir / (name + ".ngc"), table = dir / (name + ".tbl"), out = dir / (name + ".canon"),
                  err = dir / (name + ".err");
@@ -60,8 +65,19 @@ void check_with_linuxcnc(const std::string& name, const MachiningProject& projec
   // Zero length offsets: G43 then leaves the programmed coordinates as they
   // are, which is what our canonical listing holds.
   write(table, linuxcnc_tool_table(program, false));
-  const std::string command = "'" + rs274 + "' -g -t '" + table.string() + "' '" + ngc.string() + "' '" +
-                              out.string() + "' > /dev/null 2> '" + err.string() + "'";
+  // Put the machine-safe retract where our listing puts it
+  // (Program::machine_safe): a mill's G54 Z offset below machine Z0, a
+  // lathe's G28 position. rs274 keeps parameters in inches.
+  const fs::path vars = dir / (name + ".var");
+  constexpr double inch = 25.4;
+  const Vec3 safe = program.machine_safe;
+  write(vars, program.machine == MachineKind::turning
+                  ? fmt::format("5161 {:.6f}\n5162 0\n5163 {:.6f}\n5220 1\n", safe.x / inch, safe.z / inch)
+                  : fmt::format("5220 1\n5221 0\n5222 0\n5223 {:.6f}\n", -safe.z / inch));
+  // rs274 keeps its tool data in $HOME/.tool.mmap: a HOME of its own keeps
+  // parallel runs (other tests, other checkouts) from sharing it.
+  const std::string command = "HOME='" + dir.string() + "' '" + rs274 + "' -g -t '" + table.string() + "' -v '" + vars.string() + "' '" +
+                              ngc.string() + "' '" + out.string() + "' > /dev/null 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());
   const std::string errors = read(err), listing = read(out);
   INFO("program: " << ngc.string() << "\nrs274 stderr: " << errors);
@@ -179,4 +195,15 @@ TEST_CASE("NIST's ex1E.stp runs in LinuxCNC and feeds exactly as NIST's canonica
   CHECK(arcs(ours) == arcs(nist));
   CHECK(arcs(nist) > 30);
   CHECK(testing::compare_moves(ours, nist, 0.001) == "");
+}
+
+TEST_CASE("LinuxCNC runs the approach, retract and drilling strategies") {
+  auto project = testing::example1();
+  project.operations[1].drilling_strategy = DrillingStrategy{1, 0.5, 3, 1, 0.25, 2};
+  project.operations[3].strategy = ContourParallel{};
+  project.operations[3].approach = PlungeHelix{4, 5};
+  project.operations[3].retract = RetractTangent{5};
+  project.operations[4].approach = PlungeZigzag{5, 15};
+  project.operations[4].retract = RetractAngle{30, 6};
+  check_with_linuxcnc("strategies", project);
 }

@@ -33,8 +33,15 @@ struct PrintedProgram {
   std::vector<TraceEntry> trace;  ///< lines with provenance, in order
 };
 
+/// How a program is printed beyond its dialect.
+struct PrintOptions {
+  /// 840D: write $TC_DP tool data from the model. Off by default: it would
+  /// overwrite the lengths and radii the controller measured.
+  bool write_tool_data = false;
+};
+
 /// Prints `program` in `dialect`.
-PrintedProgram print(const Program& program, Dialect dialect);
+PrintedProgram print(const Program& program, Dialect dialect, const PrintOptions& options = {});
 
 /// The sidecar map as JSON: every traced line with its workingstep,
 /// operation and feature (`#id` and name).

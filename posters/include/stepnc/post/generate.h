@@ -28,6 +28,13 @@ struct Diagnostic {
 struct GenerateOptions {
   double safety_distance = 2;   ///< above the feature top where feeding starts (seed 000: 2 mm)
   double approach_clearance = 1; ///< beyond open edges / stock when entering
+  /// Entries into material (ramps, helices, plunges) run at this share of
+  /// the cutting feed; ISO 14649 milling technology has no plunge feed.
+  double plunge_feed_ratio = 0.5;
+  double ramp_angle_deg = 3;     ///< default ramp and helix angle
+  /// Above the security plane (mills) or beyond the safe corner (lathes):
+  /// where listings and simulations put the machine-safe retract.
+  double machine_safe_margin = 50;
 };
 
 /// A program, and the problems found making it.

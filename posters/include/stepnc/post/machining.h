@@ -56,6 +56,9 @@ struct Placement {
 
 // ---------------------------------------------------------------- tools --
 
+/// A milling tool's hand_of_cut (ISO 14649-111): right cuts turning M3.
+enum class Hand { unspecified, right, left, neutral };
+
 /// The kinds of cutting tool the posters tell apart (ISO 14649-111, -121).
 enum class ToolKind {
   flat_end_mill,
@@ -85,6 +88,7 @@ struct Tool {
   double length = 0;               ///< overall assembly length (tool data)
   double tip_angle_deg = 118;      ///< drills, centre drills
   double thread_pitch = 0;         ///< taps
+  Hand hand = Hand::unspecified;   ///< hand_of_cut: right = cuts turning M3
   // Turning inserts (Part 121); angles feed the seed 001 roughness model.
   double nose_radius = 0;  ///< turning inserts (Part 121)
   double side_cutting_edge_angle_deg = 0;  ///< K_r
@@ -267,6 +271,50 @@ using Strategy = std::variant<std::monostate, BidirectionalMilling, Unidirection
                               ContourBidirectional, ContourParallel, UnidirectionalTurning,
                               ContourTurning, UnknownStrategy>;
 
+// ISO 14649-11 approach_retract_strategy (milling_type_operation's
+// approach and retract). Angles in degrees from the horizontal.
+
+/// plunge_toolaxis: straight down the tool axis.
+struct PlungeToolaxis {};
+/// plunge_ramp: down a straight ramp.
+struct PlungeRamp {
+  double angle_deg = 0;  ///< ramp angle
+};
+/// plunge_helix: down a helix.
+struct PlungeHelix {
+  double radius = 0;     ///< helix radius, mm
+  double angle_deg = 0;  ///< helix angle
+};
+/// plunge_zigzag: down a ramp run back and forth.
+struct PlungeZigzag {
+  double angle_deg = 0;  ///< ramp angle
+  double width = 0;      ///< length of one leg, mm
+};
+/// ap_retract_angle: out along a straight line at an angle.
+struct RetractAngle {
+  double angle_deg = 0;      ///< angle from the horizontal
+  double travel_length = 0;  ///< mm
+};
+/// ap_retract_tangent: out along a tangent arc.
+struct RetractTangent {
+  double radius = 0;  ///< arc radius, mm
+};
+/// An approach or retract strategy; std::monostate when the file names none.
+using ApproachRetract = std::variant<std::monostate, PlungeToolaxis, PlungeRamp, PlungeHelix, PlungeZigzag,
+                                     RetractAngle, RetractTangent, UnknownStrategy>;
+
+/// ISO 14649-11 drilling_type_strategy: within depth_of_start below the hole
+/// top and depth_of_end above its bottom, the feed (and, for pecks, the
+/// depth of cut) are scaled by the reduced ratios.
+struct DrillingStrategy {
+  double reduced_cut_at_start = 1;   ///< ratio of the depth of cut near the top
+  double reduced_feed_at_start = 1;  ///< ratio of the feed near the top
+  double depth_of_start = 0;         ///< mm below the top
+  double reduced_cut_at_end = 1;     ///< ratio of the depth of cut near the bottom
+  double reduced_feed_at_end = 1;    ///< ratio of the feed near the bottom
+  double depth_of_end = 0;           ///< mm above the bottom
+};
+
 // ----------------------------------------------------- explicit toolpaths --
 // Cutter locations as the file gives them: in the feature's frame for an
 // operation of a machining_workingstep, in the setup's frame for a
@@ -334,6 +382,8 @@ struct Operation {
   MachineFunctions machine_functions;  ///< coolant
   std::optional<double> retract_plane;  ///< above the feature top (relative)
   Strategy strategy;  ///< how the tool moves
+  ApproachRetract approach;  ///< milling; monostate = the posters' default
+  ApproachRetract retract;   ///< milling; monostate = the posters' default
   // Milling
   std::optional<double> axial_cutting_depth;  ///< milling: depth per layer, mm
   std::optional<double> radial_cutting_depth;  ///< stepover when the strategy has none
@@ -344,6 +394,7 @@ struct Operation {
   double dwell_time_bottom = 0;         ///< s
   std::optional<double> depth_of_step;  ///< multistep (peck) drilling
   std::optional<double> first_depth;  ///< multistep drilling: depth of the first peck
+  std::optional<DrillingStrategy> drilling_strategy;  ///< reduced feeds at start and end (drilling_type_strategy)
   double feed_on_retract = 0;       ///< ratio of the feed used when retracting (reaming)
   bool spindle_stop_at_bottom = false;  ///< boring, reaming
   // Turning

@@ -20,13 +20,15 @@
 
 namespace stepnc::post {
 
+/// What a plot draws beyond the default picture.
 struct PlotOptions {
-  // The cutter envelope: every feed move swept by the cutting width (tool
-  // diameter; turning: twice the nose radius, grooving: the insert width),
-  // drawn under the toolpath in the top view (milling) or profile (turning).
+  /// The cutter envelope: every feed move swept by the cutting width (tool
+  /// diameter; turning: twice the nose radius, grooving: the insert width),
+  /// drawn under the toolpath in the top view (milling) or profile (turning).
   bool envelope = false;
 };
 
+/// The SVG picture of `program`, posted from `project` (see the file comment).
 std::string plot_svg(const MachiningProject& project, const Program& program, const PlotOptions& options = {});
 
 }  // namespace stepnc::post

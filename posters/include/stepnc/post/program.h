@@ -139,11 +139,19 @@ struct ProgramStop {
 struct Message {
   std::string text;  ///< the text
 };
+// Up to the machine-safe height in machine coordinates, before every tool
+// change and at the end: mills lift Z to its reference (LinuxCNC
+// `G53 G0 Z0`, Fanuc `G91 G28 Z0.`, 840D `G0 SUPA Z0 D0`); lathes go to
+// their reference point from outside the stock (LinuxCNC `G28`, Fanuc
+// `G28 U0.` then `G28 W0.`, 840D `G74 X1=0` then `G74 Z1=0`). The place is
+// the machine's, not the program's: see Program::machine_safe; the choice
+// per dialect is in posters/README.md.
+struct MachineRetract {};
 
 /// One NC statement.
 using Statement = std::variant<ToolChange, SpindleOn, SpindleOff, FeedRate, Coolant, Rapid,
                                Linear, Arc, Dwell, DrillCycle, FeatureCycle, Comment,
-                               Tolerance, ProgramStop, Message>;
+                               Tolerance, ProgramStop, Message, MachineRetract>;
 
 /// A statement and where it came from.
 struct Block {
@@ -157,6 +165,11 @@ struct Program {
   MachineKind machine = MachineKind::milling;  ///< milling or turning
   double tolerance = 0.01;  ///< model tolerance (840D CYCLE832)
   double clear_z = 0;       ///< safe height (milling) used at start and end
+  /// Where a MachineRetract ends, in program coordinates, for listings,
+  /// plots and simulations: the real place depends on the work offset the
+  /// operator sets, so this stand-in lies above (lathe: outside and in front
+  /// of) everything the program does. Mills use z only.
+  Vec3 machine_safe;
   std::vector<ToolEntry> tools;  ///< the tool table
   std::vector<Provenance> provenance{Provenance{}};  ///< where blocks came from; index 0 is the program itself
   std::vector<Block> blocks;  ///< the statements in order
