@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "command.h"
 #include "load.h"
-#include "stepnc/p21/writer.h"
 #include "stepnc/post/iso14649.h"
 
 namespace stepnc::cli {
@@ -13,8 +13,10 @@ namespace {
 bool report(const std::filesystem::path& path, const std::vector<post::Diagnostic>& diagnostics) {
   bool ok = true;
   for (const post::Diagnostic& diagnostic : diagnostics) {
+    const bool error = diagnostic.severity == post::Diagnostic::Severity::error;
+    if (!error && verbosity() == Verbosity::quiet) continue;
     fmt::print(stderr, "{}: {}\n", path.string(), diagnostic.to_string());
-    ok = ok && diagnostic.severity != post::Diagnostic::Severity::error;
+    ok = ok && !error;
   }
   return ok;
 }
@@ -29,15 +31,6 @@ std::optional<PostedProject> post_file(const std::filesystem::path& path) {
   post::GenerateResult generated = post::generate(described.project);
   if (!report(path, generated.diagnostics)) return std::nullopt;
   return PostedProject{std::move(described.project), std::move(generated.program)};
-}
-
-bool write_output(const std::filesystem::path& path, std::string_view text) {
-  p21::AtomicFile out;
-  std::optional<std::string> error = out.open(path);
-  if (!error) error = out.write(text);
-  if (!error) error = out.commit();
-  if (error) fmt::print(stderr, "{}: {}\n", path.string(), *error);
-  return !error;
 }
 
 }  // namespace stepnc::cli

@@ -1,4 +1,4 @@
-// stepnc plot FILE -o OUT.svg: draw the workpiece, the features and the
+// stepnc plot FILE [-o OUT.svg]: draw the workpiece, the features and the
 // toolpaths (XY for milling, XZ for turning; rapids and feeds differ).
 #include "command.h"
 #include "posting.h"
@@ -15,7 +15,7 @@ struct PlotOptions {
 int run_plot(const PlotOptions& options) {
   const std::optional<PostedProject> posted = post_file(options.file);
   if (!posted) return exit_invalid_input;
-  return write_output(options.output, post::plot_svg(posted->project, posted->program)) ? exit_ok : exit_failure;
+  return write_outputs({{options.output, post::plot_svg(posted->project, posted->program)}});
 }
 
 }  // namespace
@@ -23,8 +23,8 @@ int run_plot(const PlotOptions& options) {
 void add_plot_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<PlotOptions>();
   CLI::App* command = app.add_subcommand("plot", "Draw the workpiece, features and toolpaths as SVG");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
-  command->add_option("-o,--output", options->output, "Output SVG file")->required();
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
+  add_output_option(*command, options->output, "Output SVG file");
   command->callback([&action, options] { action = [options] { return run_plot(*options); }; });
 }
 

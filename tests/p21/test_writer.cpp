@@ -152,7 +152,7 @@ TEST_CASE("memory and file output are the same bytes", "[p21][writer]") {
   CHECK(in_memory.text().empty());  // taken
 
   const fs::path dir = scratch_dir("memory_file");
-  AtomicFile file;
+  stepnc::io::OutputFile file;
   REQUIRE_FALSE(file.open(dir / "out.stp").has_value());
   Writer streamed(file);
   write_many_records(streamed);
@@ -167,7 +167,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
   const fs::path target = dir / "out.stp";
 
   SECTION("a committed file holds everything written, and no temporary is left") {
-    AtomicFile file;
+    stepnc::io::OutputFile file;
     REQUIRE_FALSE(file.open(target).has_value());
     Writer w(file);
     w.begin_file();
@@ -193,7 +193,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
       std::ofstream(target) << "previous";
     }
     {
-      AtomicFile file;
+      stepnc::io::OutputFile file;
       REQUIRE_FALSE(file.open(target).has_value());
       Writer w(file);
       w.begin_instance(1, "P");
@@ -207,7 +207,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
   }
 
   SECTION("a directory that does not exist is reported") {
-    AtomicFile file;
+    stepnc::io::OutputFile file;
     const std::optional<std::string> error = file.open(dir / "missing" / "out.stp");
     REQUIRE(error.has_value());
     CHECK(error->find("cannot create temporary file") != std::string::npos);

@@ -77,6 +77,7 @@ struct ModelReadResult {
   bool ok() const { return file != nullptr && !diagnostics.has_errors(); }
 };
 
+// `-` reads standard input.
 ModelReadResult read_model_file(const std::filesystem::path& path, const meta::Registry& registry,
                                 const ModelReadOptions& options = {});
 // Same, from text in memory; `file_name` is used in diagnostics.
@@ -85,7 +86,8 @@ ModelReadResult read_model_text(std::string text, std::string file_name, const m
 
 // The file as Part 21 text (see the policy above).
 std::string to_text(const ModelFile& file);
-// Writes atomically; returns an error message on failure.
+// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
+// returns an error message on failure.
 std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path);
 
 }  // namespace stepnc::exchange

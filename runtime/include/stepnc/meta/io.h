@@ -57,7 +57,8 @@ struct FileHeader {
 // The whole file: header, then every instance in increasing id order.
 void write_model(const Model& model, const FileHeader& header, p21::Writer& writer);
 std::string to_text(const Model& model, const FileHeader& header);
-// Writes atomically (temporary file + rename); returns an error message on failure.
+// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
+// returns an error message on failure.
 std::optional<std::string> write_file(const Model& model, const FileHeader& header,
                                       const std::filesystem::path& path);
 
@@ -111,5 +112,14 @@ std::optional<std::string> bind_reference(const PendingReference& reference, Ins
 // Values use Part 21 spelling; unset optionals show as `$`. Derived
 // attributes the class computes follow, marked `(derived)`.
 std::string dump(const Instance& instance);
+
+// The attributes dump() shows, for callers that lay them out themselves
+// (the CLI's JSON): explicit ones in Part 21 spelling, then derived ones.
+struct AttributeText {
+  std::string_view name;
+  std::string value;
+  bool derived = false;
+};
+std::vector<AttributeText> attribute_texts(const Instance& instance);
 
 }  // namespace stepnc::meta

@@ -1,0 +1,16 @@
+// Reading inputs: `-` is standard input for every input.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace stepnc::io {
+
+// The name diagnostics give standard input.
+inline constexpr const char* standard_input_name = "<stdin>";
+
+// Reads all of standard input into `text`; returns an error message on failure.
+std::optional<std::string> read_standard_input(std::string& text);
+
+}  // namespace stepnc::io
