@@ -14,7 +14,7 @@ namespace {
 // here, so a full disk or /dev/full is an error (exit 3), not silence.
 int finish_stdout(int code) {
   if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
-    fmt::print(stderr, "stepnc: cannot write standard output: {}\n", std::strerror(errno));
+    std::fprintf(stderr, "stepnc: cannot write standard output: %s\n", std::strerror(errno));
     return code == stepnc::cli::exit_ok ? stepnc::cli::exit_failure : code;
   }
   return code;
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   try {
     return finish_stdout(action());
   } catch (const std::exception& e) {  // output errors of stdio (fmt), JSON encoding
-    fmt::print(stderr, "stepnc: {}\n", e.what());
+    std::fprintf(stderr, "stepnc: %s\n", e.what());  // stdio: stderr may be full too
     return exit_failure;
   }
 }

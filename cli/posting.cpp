@@ -4,6 +4,7 @@
 
 #include "command.h"
 #include "load.h"
+#include "stepnc/io/input.h"
 #include "stepnc/post/iso14649.h"
 
 namespace stepnc::cli {
@@ -15,7 +16,8 @@ bool report(const std::filesystem::path& path, const std::vector<post::Diagnosti
   for (const post::Diagnostic& diagnostic : diagnostics) {
     const bool error = diagnostic.severity == post::Diagnostic::Severity::error;
     if (!error && verbosity() == Verbosity::quiet) continue;
-    fmt::print(stderr, "{}: {}\n", path.string(), diagnostic.to_string());
+    fmt::print(stderr, "{}: {}\n", io::is_standard_stream(path) ? io::standard_input_name : path.string(),
+               diagnostic.to_string());
     ok = ok && !error;
   }
   return ok;
