@@ -124,6 +124,8 @@ std::string bash_completion(const CLI::App& app) {
     }
     std::vector<std::string> options = option_names(*command);
     for (std::string& name : option_names(app)) options.push_back(std::move(name));
+    std::sort(options.begin(), options.end());
+    options.erase(std::unique(options.begin(), options.end()), options.end());  // --help is on both
     cases += fmt::format("    {})\n      case $prev in\n{}      esac\n      options='{}' ;;\n", command->get_name(),
                          values, fmt::join(options, " "));
   }

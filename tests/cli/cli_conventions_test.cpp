@@ -331,3 +331,22 @@ TEST_CASE("the bash completion script is generated from the command line definit
   CHECK(complete("stepnc info --j") == "--json\n");
   fs::remove_all(dir);
 }
+
+TEST_CASE("man pages generated from the help, for stepnc and expressc", "[cli][conventions]") {
+#ifdef STEPNC_MAN_PAGES
+  const std::string stepnc_page = stepnc_test::read_file(fs::path(STEPNC_CLI_BUILD_DIR) / "stepnc.1");
+  CHECK_THAT(stepnc_page, Catch::Contains(".TH STEPNC \"1\""));
+  for (const char* text : {"info", "validate", "format", "query", "dump", "post", "plot", "\\-\\-dialect",
+                           "\\-\\-json", "\\-\\-quiet", "Exit status: 0 ok, 1 invalid input"}) {
+    CHECK_THAT(stepnc_page, Catch::Contains(text));
+  }
+  const std::string expressc_page = stepnc_test::read_file(fs::path(STEPNC_CLI_BUILD_DIR) / "expressc.1");
+  CHECK_THAT(expressc_page, Catch::Contains(".TH EXPRESSC \"1\""));
+  CHECK_THAT(expressc_page, Catch::Contains("\\-\\-dump\\-json"));
+  // help2man takes the version line from `--version` of each tool.
+  CHECK_THAT(stepnc_page, Catch::Contains("\"stepnc " STEPNC_VERSION "\""));
+  CHECK_THAT(expressc_page, Catch::Contains("\"expressc " STEPNC_VERSION "\""));
+#else
+  WARN("skipped: help2man was not found at configure time (scripts/setup.sh installs it)");
+#endif
+}
