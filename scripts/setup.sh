@@ -13,6 +13,7 @@ packages=(
   python3                             # benchmark input generator
   clang libclang-rt-14-dev            # libFuzzer and sanitizers for the reader
   linuxcnc-uspace                     # LinuxCNC's rs274 interpreter checks posted programs
+  help2man                            # man pages of stepnc and expressc, from their --help
 )
 
 missing=()
