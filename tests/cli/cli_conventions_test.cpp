@@ -2,45 +2,27 @@
 // exit codes of every subcommand, `-` for standard input and output,
 // outputs that are safe to write anywhere, JSON, "did you mean", --quiet
 // and --verbose, the bash completion.
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli_run.h"
 #include "test_files.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int exit_code = -1;
-  std::string out;  // what the shell command sends to the pipe
-};
+using stepnc_test::bad_file_text;
+using stepnc_test::Run;
+using stepnc_test::shell;
 
-// Runs a shell command line; `{}` stands for the stepnc executable.
-Run shell(std::string command) {
-  for (std::size_t at; (at = command.find("{}")) != std::string::npos;) command.replace(at, 2, STEPNC_CLI);
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-std::string sample(const std::string& relative) {
-  return (fs::path(STEPNC_SOURCE_DIR) / "samples" / relative).string();
-}
+std::string sample(const std::string& relative) { return stepnc_test::sample_path(relative); }
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("stepnc-cli-" + name + "-" + std::to_string(::getpid()));
@@ -52,12 +34,6 @@ fs::path scratch(const std::string& name) {
 void put(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 const std::string example1 = sample("milling/example1.stp");
-
-const std::string bad_file_text =
-    "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-    "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n"
-    "#1=CARTESIAN_POINT('',(1.,2.));\n#2=VENDOR_THING(#1);\n#3=DIRECTION('',(1.,'0'));\n"
-    "ENDSEC;\nEND-ISO-10303-21;\n";
 
 }  // namespace
 
