@@ -44,7 +44,10 @@ int main(int argc, char** argv) {
   std::vector<std::filesystem::path> schemas;
   std::string dump_json;
   bool summary = false;
-  app.add_option("schemas", schemas, "EXPRESS schema files")->required()->check(CLI::ExistingFile);
+  const CLI::Validator existing_or_stdin(
+      [](const std::string& value) { return stepnc::io::is_standard_stream(value) ? std::string() : CLI::ExistingFile(value); },
+      "FILE|-");
+  app.add_option("schemas", schemas, "EXPRESS schema files ('-': standard input)")->required()->check(existing_or_stdin);
   app.add_option("--dump-json", dump_json, "write the resolved model as JSON to FILE ('-' for stdout)")
       ->option_text("FILE|-");
   app.add_flag("--summary", summary, "print per-schema counts");

@@ -7,6 +7,8 @@
 
 namespace stepnc::io {
 
+bool is_standard_stream(const std::filesystem::path& path) { return path.native() == "-"; }
+
 std::optional<std::string> read_standard_input(std::string& text) {
   text.clear();
   char chunk[1 << 16];

@@ -77,8 +77,6 @@ void sync_directory(const std::filesystem::path& file) {
 
 }  // namespace
 
-bool is_standard_stream(const std::filesystem::path& path) { return path.native() == "-"; }
-
 OutputFile::~OutputFile() { discard(); }
 
 std::optional<std::string> OutputFile::fail(std::string_view what, int error_number) {

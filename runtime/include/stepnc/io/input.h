@@ -7,6 +7,9 @@
 
 namespace stepnc::io {
 
+// `-`: standard input for inputs, standard output for outputs.
+bool is_standard_stream(const std::filesystem::path& path);
+
 // The name diagnostics give standard input.
 inline constexpr const char* standard_input_name = "<stdin>";
 

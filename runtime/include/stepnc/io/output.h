@@ -24,10 +24,9 @@
 #include <string>
 #include <string_view>
 
-namespace stepnc::io {
+#include "stepnc/io/input.h"  // is_standard_stream
 
-// `-`: standard output for outputs, standard input for inputs.
-bool is_standard_stream(const std::filesystem::path& path);
+namespace stepnc::io {
 
 class OutputFile {
  public:
