@@ -24,14 +24,9 @@ using stepnc_test::shell;
 
 std::string sample(const std::string& relative) { return stepnc_test::sample_path(relative); }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stepnc-cli-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return stepnc_test::scratch_directory("cli-" + name); }
 
-void put(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void put(const fs::path& path, const std::string& text) { stepnc_test::write_text(path, text); }
 
 const std::string example1 = sample("milling/example1.stp");
 

@@ -27,14 +27,9 @@ using stepnc::io::write_together;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stepnc-io-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return stepnc_test::scratch_directory("io-" + name); }
 
-void put(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void put(const fs::path& path, const std::string& text) { stepnc_test::write_text(path, text); }
 
 struct stat status_of(const fs::path& path) {
   struct stat status {};

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "stepnc/p21/writer.h"
+#include "test_files.h"
 #include "test_helpers.h"
 
 using namespace stepnc::p21;
@@ -14,13 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty directory for one test.
-fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stepnc_p21_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch_dir(const std::string& name) { return stepnc_test::scratch_directory("p21-" + name); }
 
 std::size_t entries(const fs::path& dir) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
