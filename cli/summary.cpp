@@ -73,6 +73,9 @@ nlohmann::ordered_json executables_json(const std::vector<Executable>& executabl
   return list;
 }
 
-void print_json(const nlohmann::ordered_json& document) { fmt::print("{}\n", document.dump(2)); }
+void print_json(const nlohmann::ordered_json& document) {
+  // A string that is not UTF-8 (a file's own bytes) is shown with U+FFFD, not refused.
+  fmt::print("{}\n", document.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace));
+}
 
 }  // namespace stepnc::cli
