@@ -8,7 +8,9 @@
 //    which is flushed to disk (fsync), given the old file's mode and owner,
 //    and renamed over it. Readers see the old file or the new one, never
 //    a part; a failed run leaves the old file untouched and no temporary.
-//    (As with any rename, other hard links keep the old content.)
+//    (As with any rename, other hard links keep the old content; and the
+//    directory must be writable: a writable file in a read-only directory
+//    is refused with a clear error rather than overwritten in place.)
 //  * Symbolic links are followed: the file they point to is replaced and
 //    the link stays a link.
 //  * Anything else (a terminal, /dev/null, a FIFO, a device, /dev/stdout
