@@ -177,7 +177,7 @@ TEST_CASE("-o follows links, keeps modes and writes devices and FIFOs in place",
 
   const fs::path fifo = dir / "pipe";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
-  const Run through_fifo = shell("cat " + fifo.string() + " & {} post " + example1 + " -d fanuc -o " + fifo.string() +
+  const Run through_fifo = shell("timeout 60 cat " + fifo.string() + " & {} post " + example1 + " -d fanuc -o " + fifo.string() +
                                  "; wait");
   CHECK(through_fifo.exit_code == 0);
   CHECK_THAT(through_fifo.out, Catch::Contains("M30"));
