@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
 
   const Values values = extract(doc);
   const double t_tokens = stepnc_bench::best_time(kRuns, [&] {
-    p21::AtomicFile file;
+    stepnc::io::OutputFile file;
     if (auto error = file.open(out_path)) fmt::print(stderr, "{}\n", *error);
     p21::Writer writer(file);
     write_values(values, writer);

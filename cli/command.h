@@ -4,16 +4,26 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "stepnc/io/output.h"
+#include "stepnc/p21/diagnostic.h"
+
 namespace stepnc::cli {
 
-// Exit codes shared by every subcommand.
+// Exit codes shared by every subcommand (README, "Using it").
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_invalid_input = 1;  // the input file has errors
 inline constexpr int exit_usage = 2;          // bad command line (CLI11 reports it)
 inline constexpr int exit_failure = 3;        // the command could not finish (I/O, unsupported input)
+
+// --quiet: errors only. --verbose: also what was read and written.
+enum class Verbosity { quiet, normal, verbose };
+Verbosity verbosity();
+void set_verbosity(Verbosity level);
 
 // The action chosen on the command line, run after parsing succeeds.
 using Action = std::function<int()>;
@@ -25,5 +35,22 @@ void add_query_command(CLI::App& app, Action& action);
 void add_dump_command(CLI::App& app, Action& action);
 void add_post_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
+
+// The FILE argument every subcommand reads: an existing file, or `-` for
+// standard input.
+CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::string& description);
+// `-o,--output`: a file, or `-` (the default) for standard output.
+CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description);
+
+// Prints diagnostics to stderr (warnings only above --quiet), and the note
+// that the error limit stopped the read.
+void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file);
+
+// Writes a command's outputs together (stepnc/io/output.h); prints the
+// reason and returns exit_failure when they could not be written.
+int write_outputs(std::initializer_list<io::Output> outputs);
+
+// Prints what was written, under --verbose.
+void note_written(std::string_view output);
 
 }  // namespace stepnc::cli

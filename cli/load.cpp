@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "command.h"
 #include "machining_schema.h"
 
 namespace stepnc::cli {
@@ -11,19 +12,20 @@ const meta::Registry& iso14649_registry() {
   return registry;
 }
 
-std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path, const LoadOptions& options) {
-  exchange::ModelReadOptions read_options;
-  read_options.strict = options.strict;
-  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), read_options);
-  for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
-    if (diagnostic.severity == p21::Severity::warning && !options.print_warnings) continue;
-    fmt::print(stderr, "{}\n", diagnostic.to_string());
+exchange::ModelReadResult read_and_report(const std::filesystem::path& path,
+                                          const exchange::ModelReadOptions& options) {
+  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), options);
+  print_diagnostics(result.diagnostics, path.string());
+  if (result.file && verbosity() == Verbosity::verbose) {
+    fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), result.file->model.size(),
+               result.file->generic_records.size());
   }
-  if (result.diagnostics.limit_reached()) {
-    fmt::print(stderr, "{}: stopped after {} errors\n", path.string(), result.diagnostics.error_count());
-  }
-  if (!result.file) return nullptr;
-  if (options.strict && result.diagnostics.has_errors()) return nullptr;
+  return result;
+}
+
+std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path) {
+  exchange::ModelReadResult result = read_and_report(path);
+  if (!result.ok()) return nullptr;
   return std::move(result.file);
 }
 

@@ -13,12 +13,11 @@ namespace stepnc::cli {
 // The registry of the ISO 14649 bindings in generated/.
 const meta::Registry& iso14649_registry();
 
-struct LoadOptions {
-  bool strict = true;
-  bool print_warnings = true;
-};
+// Reads `path` (`-`: standard input) and prints its diagnostics.
+exchange::ModelReadResult read_and_report(const std::filesystem::path& path,
+                                          const exchange::ModelReadOptions& options = {});
 
-// The file, or null after printing why it could not be read.
-std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path, const LoadOptions& options = {});
+// The file, strictly read, or null after printing why it could not be read.
+std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path);
 
 }  // namespace stepnc::cli

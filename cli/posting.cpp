@@ -2,9 +2,10 @@
 
 #include <fmt/format.h>
 
+#include "command.h"
 #include "load.h"
+#include "stepnc/io/input.h"
 #include "stepnc/p21/document.h"
-#include "stepnc/p21/writer.h"
 #include "stepnc/post/iso14649.h"
 
 namespace stepnc::cli {
@@ -17,8 +18,12 @@ bool report(const std::filesystem::path& path, const std::vector<post::Diagnosti
   bool ok = true;
   std::optional<p21::ReadResult> index;
   for (const post::Diagnostic& diagnostic : diagnostics) {
-    std::string where = path.string();
-    if (diagnostic.where.id > 0) {
+    const bool error = diagnostic.severity == post::Diagnostic::Severity::error;
+    if (!error && verbosity() == Verbosity::quiet) continue;
+    const bool from_stdin = io::is_standard_stream(path);
+    std::string where = from_stdin ? std::string(io::standard_input_name) : path.string();
+    // Standard input cannot be read twice: its diagnostics name the #id only.
+    if (diagnostic.where.id > 0 && !from_stdin) {
       if (!index) index = p21::read_file(path);
       const p21::RecordEntry* record =
           index->document ? index->document->find(static_cast<std::uint64_t>(diagnostic.where.id)) : nullptr;
@@ -28,7 +33,7 @@ bool report(const std::filesystem::path& path, const std::vector<post::Diagnosti
       }
     }
     fmt::print(stderr, "{}: {}\n", where, diagnostic.to_string());
-    ok = ok && diagnostic.severity != post::Diagnostic::Severity::error;
+    ok = ok && !error;
   }
   return ok;
 }
@@ -43,15 +48,6 @@ std::optional<PostedProject> post_file(const std::filesystem::path& path) {
   post::GenerateResult generated = post::generate(described.project);
   if (!report(path, generated.diagnostics)) return std::nullopt;
   return PostedProject{std::move(described.project), std::move(generated.program)};
-}
-
-bool write_output(const std::filesystem::path& path, std::string_view text) {
-  p21::AtomicFile out;
-  std::optional<std::string> error = out.open(path);
-  if (!error) error = out.write(text);
-  if (!error) error = out.commit();
-  if (error) fmt::print(stderr, "{}: {}\n", path.string(), *error);
-  return !error;
 }
 
 }  // namespace stepnc::cli

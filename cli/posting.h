@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <optional>
-#include <string_view>
 
 #include "stepnc/post/generate.h"
 #include "stepnc/post/machining.h"
@@ -18,9 +17,5 @@ struct PostedProject {
 
 // Null after printing why the file could not be posted.
 std::optional<PostedProject> post_file(const std::filesystem::path& path);
-
-// Writes `text` to `path` atomically (temporary file + rename), or prints
-// the reason and returns false.
-bool write_output(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace stepnc::cli

@@ -3,7 +3,11 @@
 //
 //   expressc [--dump-json FILE|-] [--summary] [--<generator>-out DIR]... SCHEMA.exp...
 //
-// Exit status: 0 success, 1 schema errors or output failure, 2 usage.
+// Exit status: 0 success, 1 schema errors (or a generator's), 2 usage,
+// 3 an output could not be written.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -14,14 +18,14 @@
 #include <fmt/format.h>
 
 #include "emit/json/json_generator.h"
-#include "emit/output.h"
 #include "emit/registry.h"
 #include "model/model.h"
 #include "stepnc/version.h"
+#include "stepnc/io/output.h"
 
 namespace {
 
-constexpr int exit_ok = 0, exit_errors = 1, exit_usage = 2;
+constexpr int exit_ok = 0, exit_errors = 1, exit_usage = 2, exit_failure = 3;
 
 void print_summary(const expressc::model::Model& model) {
   for (const auto& schema : model.schemas) {
@@ -35,15 +39,20 @@ void print_summary(const expressc::model::Model& model) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"expressc: compiles EXPRESS (ISO 10303-11) schemas"};
+  CLI::App app{"expressc: compiles EXPRESS (ISO 10303-11) schemas.\n"
+               "Exit status: 0 ok, 1 schema errors, 2 bad command line, 3 an output could not be written.",
+               "expressc"};
+  app.set_version_flag("--version", "expressc " STEPNC_VERSION);
   std::vector<std::filesystem::path> schemas;
   std::string dump_json;
   bool summary = false;
-  app.add_option("schemas", schemas, "EXPRESS schema files")->required()->check(CLI::ExistingFile);
+  const CLI::Validator existing_or_stdin(
+      [](const std::string& value) { return stepnc::io::is_standard_stream(value) ? std::string() : CLI::ExistingFile(value); },
+      "FILE|-");
+  app.add_option("schemas", schemas, "EXPRESS schema files ('-': standard input)")->required()->check(existing_or_stdin);
   app.add_option("--dump-json", dump_json, "write the resolved model as JSON to FILE ('-' for stdout)")
       ->option_text("FILE|-");
   app.add_flag("--summary", summary, "print per-schema counts");
-  app.set_version_flag("--version", "expressc " STEPNC_VERSION);
 
   const auto generators = expressc::emit::all_generators();
   std::map<std::string, std::filesystem::path> out_dirs;  // generator name -> directory
@@ -55,10 +64,8 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& help) {
-    return app.exit(help);
-  } catch (const CLI::CallForVersion& version) {
-    return app.exit(version);
+  } catch (const CLI::Success& done) {  // --help, --version
+    return app.exit(done);
   } catch (const CLI::ParseError& error) {
     app.exit(error);
     return exit_usage;
@@ -71,15 +78,12 @@ int main(int argc, char** argv) {
 
   if (summary) print_summary(model);
 
-  bool failed = false;
+  std::fflush(stdout);
+  bool failed = false, output_failed = false;
   if (!dump_json.empty()) {
-    const std::string text = expressc::emit::dump_json(model);
-    std::string error;
-    if (dump_json == "-") {
-      std::cout << text;
-    } else if (!expressc::emit::write_file_atomically(dump_json, text, error)) {
-      std::cerr << "expressc: " << error << '\n';
-      failed = true;
+    if (auto error = stepnc::io::write_file(dump_json, expressc::emit::dump_json(model))) {  // `-`: stdout
+      std::cerr << "expressc: " << *error << '\n';
+      output_failed = true;
     }
   }
 
@@ -92,5 +96,9 @@ int main(int argc, char** argv) {
     if (!generator->generate(model, dir, diagnostics)) failed = true;
     for (const auto& diagnostic : diagnostics) std::cerr << diagnostic.to_string() << '\n';
   }
-  return failed ? exit_errors : exit_ok;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {  // --summary to a full stdout
+    std::cerr << "expressc: cannot write standard output: " << std::strerror(errno) << '\n';
+    output_failed = true;
+  }
+  return failed ? exit_errors : output_failed ? exit_failure : exit_ok;
 }

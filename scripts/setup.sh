@@ -17,6 +17,7 @@ packages=(
   libxml2-utils librsvg2-bin          # xmllint and rsvg-convert check that every plot is valid SVG
   doxygen                             # the API reference of the public headers (doxygen target, tested)
   pkgconf                             # pkg-config, to test the installed stepnc.pc
+  help2man                            # man pages of stepnc and expressc, from their --help
 )
 
 missing=()

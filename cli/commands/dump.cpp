@@ -1,5 +1,5 @@
-// stepnc dump FILE #ID: show one instance with every attribute, through
-// reflection only.
+// stepnc dump FILE #ID [--json]: show one instance with every attribute,
+// through reflection only.
 #include <charconv>
 
 #include <fmt/format.h>
@@ -7,6 +7,7 @@
 #include "command.h"
 #include "load.h"
 #include "stepnc/meta/io.h"
+#include "summary.h"
 
 namespace stepnc::cli {
 namespace {
@@ -14,7 +15,19 @@ namespace {
 struct DumpOptions {
   std::string file;
   std::string id;
+  bool json = false;
 };
+
+// describe_json() plus the schema and every attribute in Part 21 spelling.
+nlohmann::ordered_json dump_json(const meta::Instance& instance) {
+  nlohmann::ordered_json object = describe_json(instance);
+  object["schema"] = instance.entity_info().schema->name;
+  nlohmann::ordered_json& attributes = object["attributes"] = nlohmann::ordered_json::array();
+  for (const meta::AttributeText& attribute : meta::attribute_texts(instance)) {
+    attributes.push_back({{"name", attribute.name}, {"value", attribute.value}, {"derived", attribute.derived}});
+  }
+  return object;
+}
 
 std::optional<std::uint32_t> parse_id(std::string_view text) {
   if (!text.empty() && text.front() == '#') text.remove_prefix(1);
@@ -34,7 +47,11 @@ int run_dump(const DumpOptions& options) {
   if (!file) return exit_invalid_input;
   for (const meta::Instance* instance : file->model.instances()) {
     if (instance->id() == *id) {
-      fmt::print("{}", meta::dump(*instance));
+      if (options.json) {
+        print_json(dump_json(*instance));
+      } else {
+        fmt::print("{}", meta::dump(*instance));
+      }
       return exit_ok;
     }
   }
@@ -47,8 +64,9 @@ int run_dump(const DumpOptions& options) {
 void add_dump_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<DumpOptions>();
   CLI::App* command = app.add_subcommand("dump", "Show one instance with all its attributes");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_option("ID", options->id, "Instance id, #N or N")->required();
+  command->add_flag("--json", options->json, "Print the instance and its attributes as JSON");
   command->callback([&action, options] { action = [options] { return run_dump(*options); }; });
 }
 

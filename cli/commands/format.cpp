@@ -1,4 +1,4 @@
-// stepnc format FILE -o OUT: read and write back, losslessly (the Part 21
+// stepnc format FILE [-o OUT]: read and write back, losslessly (the Part 21
 // layer's round trip: values keep their spelling, unknown entities and all
 // sections are kept; layout becomes canonical, comments are dropped).
 #include <fmt/format.h>
@@ -17,12 +17,13 @@ struct FormatOptions {
 
 int run_format(const FormatOptions& options) {
   const p21::ReadResult read = p21::read_file(options.file);
-  for (const p21::Diagnostic& diagnostic : read.diagnostics.items()) fmt::print(stderr, "{}\n", diagnostic.to_string());
+  print_diagnostics(read.diagnostics, options.file);
   if (!read.ok()) return exit_invalid_input;
   if (auto error = p21::write_file(*read.document, options.output)) {
-    fmt::print(stderr, "{}: {}\n", options.output, *error);
+    fmt::print(stderr, "stepnc: {}\n", *error);
     return exit_failure;
   }
+  note_written(options.output);
   return exit_ok;
 }
 
@@ -31,8 +32,8 @@ int run_format(const FormatOptions& options) {
 void add_format_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<FormatOptions>();
   CLI::App* command = app.add_subcommand("format", "Read a Part 21 file and write it back in canonical layout");
-  command->add_option("FILE", options->file, "Part 21 file")->required()->check(CLI::ExistingFile);
-  command->add_option("-o,--output", options->output, "Output file (written atomically)")->required();
+  add_input_option(*command, options->file, "Part 21 file");
+  add_output_option(*command, options->output, "Output file, replaced atomically");
   command->callback([&action, options] { action = [options] { return run_format(*options); }; });
 }
 

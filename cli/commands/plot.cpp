@@ -1,5 +1,6 @@
-// stepnc plot FILE -o OUT.svg [--envelope]: draw the workpiece, the features
-// and the toolpaths (milling: top and front view; turning: XZ profile).
+// stepnc plot FILE [-o OUT.svg] [--envelope]: draw the workpiece, the
+// features and the toolpaths (milling: top and front view; turning: the XZ
+// profile; rapids and feeds differ).
 #include "command.h"
 #include "posting.h"
 #include "stepnc/post/plot.h"
@@ -16,7 +17,7 @@ struct PlotOptions {
 int run_plot(const PlotOptions& options) {
   const std::optional<PostedProject> posted = post_file(options.file);
   if (!posted) return exit_invalid_input;
-  return write_output(options.output, post::plot_svg(posted->project, posted->program, {options.envelope})) ? exit_ok : exit_failure;
+  return write_outputs({{options.output, post::plot_svg(posted->project, posted->program, {options.envelope})}});
 }
 
 }  // namespace
@@ -24,8 +25,8 @@ int run_plot(const PlotOptions& options) {
 void add_plot_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<PlotOptions>();
   CLI::App* command = app.add_subcommand("plot", "Draw the workpiece, features and toolpaths as SVG");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
-  command->add_option("-o,--output", options->output, "Output SVG file")->required();
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
+  add_output_option(*command, options->output, "Output SVG file");
   command->add_flag("--envelope", options->envelope, "Also draw the cutter envelope: feed moves swept by the cutting width");
   command->callback([&action, options] { action = [options] { return run_plot(*options); }; });
 }

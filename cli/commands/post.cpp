@@ -1,8 +1,6 @@
 // stepnc post FILE --dialect D [-o OUT] [--trace MAP.json] [--write-tool-data]: write the NC
 // program for a file's project, and optionally the map from each NC block
 // back to its workingstep, operation and feature.
-#include <fmt/format.h>
-
 #include "command.h"
 #include "posting.h"
 #include "stepnc/post/dialect.h"
@@ -25,16 +23,10 @@ int run_post(const PostOptions& options) {
   post::PrintOptions print_options;
   print_options.write_tool_data = options.write_tool_data;
   const post::PrintedProgram printed = post::print(posted->program, dialect, print_options);
-  // The trace first: a program is only published with its map.
-  if (!options.trace.empty() && !write_output(options.trace, post::trace_json(posted->program, printed))) {
-    return exit_failure;
-  }
-  if (options.output.empty()) {
-    fmt::print("{}", printed.text);
-  } else if (!write_output(options.output, printed.text)) {
-    return exit_failure;
-  }
-  return exit_ok;
+  if (options.trace.empty()) return write_outputs({{options.output, printed.text}});
+  // A program is only published with its map, and a map only with its program.
+  const std::string trace = post::trace_json(posted->program, printed);
+  return write_outputs({{options.output, printed.text}, {options.trace, trace}});
 }
 
 }  // namespace
@@ -42,12 +34,15 @@ int run_post(const PostOptions& options) {
 void add_post_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<PostOptions>();
   CLI::App* command = app.add_subcommand("post", "Write the NC program for a file's project");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_option("-d,--dialect", options->dialect, "Output dialect")
       ->required()
       ->check(CLI::IsMember({"rs274ngc", "fanuc", "siemens840d", "canonical"}));
-  command->add_option("-o,--output", options->output, "Output file (default: standard output)");
-  command->add_option("--trace", options->trace, "Also write the NC block -> workingstep/operation/feature map (JSON)");
+  add_output_option(*command, options->output, "Output program, replaced atomically");
+  command->add_option("--trace", options->trace,
+                      "Also write the NC block -> workingstep/operation/feature map (JSON); it lands with the program "
+                      "or not at all")
+      ->option_text("FILE|-");
   command->add_flag("--write-tool-data", options->write_tool_data,
                     "siemens840d: write the model's tool data ($TC_DP); off by default, it overwrites measured values");
   command->callback([&action, options] { action = [options] { return run_post(*options); }; });

@@ -1,4 +1,5 @@
-// stepnc query FILE PATH: evaluate a path query (see stepnc/query/path_query.h).
+// stepnc query FILE PATH [--json]: evaluate a path query (see
+// stepnc/query/path_query.h).
 #include <fmt/format.h>
 
 #include "command.h"
@@ -12,7 +13,15 @@ namespace {
 struct QueryOptions {
   std::string file;
   std::string path;
+  bool json = false;
 };
+
+// An instance as describe_json(); a value in its Part 21 spelling; a count.
+nlohmann::ordered_json node_json(const query::Node& node) {
+  if (node.instance != nullptr) return describe_json(*node.instance);
+  if (node.count) return {{"count", *node.count}};
+  return {{"value", node.to_string()}};
+}
 
 int run_query(const QueryOptions& options) {
   const auto file = load(options.file);
@@ -22,6 +31,12 @@ int run_query(const QueryOptions& options) {
     fmt::print(stderr, "{}\n{:>{}}\nerror: {}\n", options.path, "^", result.error->column,
                result.error->to_string());
     return exit_failure;
+  }
+  if (options.json) {
+    nlohmann::ordered_json nodes = nlohmann::ordered_json::array();
+    for (const query::Node& node : result.nodes) nodes.push_back(node_json(node));
+    print_json({{"file", options.file}, {"path", options.path}, {"nodes", std::move(nodes)}});
+    return exit_ok;
   }
   for (const query::Node& node : result.nodes) {
     fmt::print("{}\n", node.instance != nullptr ? describe(*node.instance) : node.to_string());
@@ -35,8 +50,9 @@ void add_query_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<QueryOptions>();
   CLI::App* command = app.add_subcommand(
       "query", "Evaluate a path such as /project/its_workpieces[0]/its_material/standard_identifier");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_option("PATH", options->path, "The path query")->required();
+  command->add_flag("--json", options->json, "Print the selected nodes as JSON");
   command->callback([&action, options] { action = [options] { return run_query(*options); }; });
 }
 

@@ -1,9 +1,10 @@
-// stepnc validate FILE [--strict]: check a file against the ISO 14649
-// schemas and report every problem.
+// stepnc validate FILE [--strict] [--json]: check a file against the ISO
+// 14649 schemas and report every problem.
 #include <fmt/format.h>
 
 #include "command.h"
 #include "load.h"
+#include "summary.h"
 
 namespace stepnc::cli {
 namespace {
@@ -11,26 +12,49 @@ namespace {
 struct ValidateOptions {
   std::string file;
   bool strict = false;
+  bool json = false;
   std::size_t error_limit = 100;
 };
+
+nlohmann::ordered_json diagnostic_json(const p21::Diagnostic& diagnostic) {
+  nlohmann::ordered_json object{{"file", diagnostic.file},
+                        {"severity", diagnostic.severity == p21::Severity::error ? "error" : "warning"},
+                        {"message", diagnostic.message}};
+  // Unknown parts are null, as they are left out of the text form.
+  object["line"] = diagnostic.location.line != 0 ? nlohmann::ordered_json(diagnostic.location.line) : nlohmann::ordered_json();
+  object["column"] = diagnostic.location.column != 0 ? nlohmann::ordered_json(diagnostic.location.column) : nlohmann::ordered_json();
+  object["id"] = diagnostic.instance_id != 0 ? nlohmann::ordered_json(diagnostic.instance_id) : nlohmann::ordered_json();
+  return object;
+}
 
 int run_validate(const ValidateOptions& options) {
   exchange::ModelReadOptions read_options;
   read_options.strict = false;  // read everything, to report every problem
   read_options.error_limit = options.error_limit;
-  const exchange::ModelReadResult result = exchange::read_model_file(options.file, iso14649_registry(), read_options);
+  const exchange::ModelReadResult result =
+      options.json ? exchange::read_model_file(options.file, iso14649_registry(), read_options)
+                   : read_and_report(options.file, read_options);
   std::size_t warnings = 0;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
-    fmt::print(stderr, "{}\n", diagnostic.to_string());
     if (diagnostic.severity == p21::Severity::warning) ++warnings;
   }
   const std::size_t errors = result.diagnostics.error_count();
-  if (result.diagnostics.limit_reached()) {
-    fmt::print(stderr, "{}: stopped after {} errors\n", options.file, errors);
-  }
+  const std::size_t instances = result.file ? result.file->model.size() : 0;
   const bool failed = errors > 0 || (options.strict && warnings > 0);
-  fmt::print("{}: {} ({} errors, {} warnings, {} instances)\n", options.file, failed ? "invalid" : "valid", errors,
-             warnings, result.file ? result.file->model.size() : 0);
+  if (options.json) {
+    nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();
+    for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) diagnostics.push_back(diagnostic_json(diagnostic));
+    print_json({{"file", options.file},
+                {"valid", !failed},
+                {"errors", errors},
+                {"warnings", warnings},
+                {"instances", instances},
+                {"stopped_at_error_limit", result.diagnostics.limit_reached()},
+                {"diagnostics", std::move(diagnostics)}});
+  } else if (verbosity() != Verbosity::quiet) {
+    fmt::print("{}: {} ({} errors, {} warnings, {} instances)\n", options.file, failed ? "invalid" : "valid", errors,
+               warnings, instances);
+  }
   return failed ? exit_invalid_input : exit_ok;
 }
 
@@ -39,8 +63,10 @@ int run_validate(const ValidateOptions& options) {
 void add_validate_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<ValidateOptions>();
   CLI::App* command = app.add_subcommand("validate", "Check a file against the ISO 14649 schemas");
-  command->add_option("FILE", options->file, "ISO 14649 Part 21 file")->required()->check(CLI::ExistingFile);
+  add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_flag("--strict", options->strict, "Fail on warnings too (e.g. entities no schema defines)");
+  command->add_flag("--json", options->json,
+                    "Print the verdict and every diagnostic (file, line, column, id, severity, message) as JSON");
   command->add_option("--max-errors", options->error_limit, "Stop after this many errors")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include "model/model.h"
 #include "model/resolver.h"
 #include "parser/parser.h"
+#include "stepnc/io/input.h"
 
 namespace expressc::model {
 
@@ -67,6 +68,15 @@ CompileResult compile_files(std::span<const std::filesystem::path> files) {
   std::vector<SourceText> sources;
   std::vector<Diagnostic> unreadable;
   for (const std::filesystem::path& path : files) {
+    if (stepnc::io::is_standard_stream(path)) {  // `-`: standard input, as for every stepnc tool
+      std::string text;
+      if (auto error = stepnc::io::read_standard_input(text)) {
+        unreadable.push_back({Diagnostic::Severity::Error, stepnc::io::standard_input_name, 0, 0, *error});
+      } else {
+        sources.push_back({stepnc::io::standard_input_name, std::move(text)});
+      }
+      continue;
+    }
     std::ifstream in(path, std::ios::binary);
     std::ostringstream text;
     if (in) text << in.rdbuf();

@@ -1,49 +1,28 @@
 // The stepnc command-line tool, run as a user runs it: exit codes, output,
 // error messages, and no partial output files.
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
+
+#include "cli_run.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int exit_code = -1;
-  std::string out;  // stdout and stderr together
-};
+using stepnc_test::bad_file_text;
+using stepnc_test::Run;
 
-Run stepnc(const std::string& arguments) {
-  const std::string command = std::string(STEPNC_CLI) + " " + arguments + " 2>&1";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) run.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+Run stepnc(const std::string& arguments) { return stepnc_test::shell("{} " + arguments + " 2>&1"); }
 
-std::string sample(const std::string& relative) {
-  return (fs::path(STEPNC_SOURCE_DIR) / "samples" / relative).string();
-}
+std::string sample(const std::string& relative) { return stepnc_test::sample_path(relative); }
 
 fs::path write_temp(const std::string& name, const std::string& text) {
   const fs::path path = fs::temp_directory_path() / name;
   std::ofstream(path, std::ios::binary) << text;
   return path;
 }
-
-const std::string bad_file_text =
-    "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-    "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n"
-    "#1=CARTESIAN_POINT('',(1.,2.));\n#2=VENDOR_THING(#1);\n#3=DIRECTION('',(1.,'0'));\n"
-    "ENDSEC;\nEND-ISO-10303-21;\n";
 
 }  // namespace
 

@@ -30,13 +30,16 @@ std::string quote(const std::string& argument) {
   return out;
 }
 
-Run run_expressc(const std::vector<std::string>& arguments, bool with_stderr = true) {
+// `redirections` are shell text appended as they are (`< file`, `>/dev/full`).
+Run run_expressc(const std::vector<std::string>& arguments, bool with_stderr = true,
+                 const std::string& redirections = "") {
   std::string command = quote(EXPRESSC_BINARY);
   for (const std::string& argument : arguments) {
     command += ' ';
     command += quote(argument);
   }
   command += with_stderr ? " 2>&1" : " 2>/dev/null";
+  command += " " + redirections;
   Run run;
   FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe);
@@ -104,11 +107,11 @@ TEST_CASE("expressc --dump-json is deterministic and written atomically", "[cli]
   const auto failed = directory / "failed.json";
   CHECK(run_expressc({"--dump-json", failed.string(), expressc::test::corpus("bad/duplicates.exp").string()}).status == 1);
   CHECK_FALSE(std::filesystem::exists(failed));
-  // An unwritable destination is an error, exit 1.
-  CHECK(run_expressc({"--dump-json", (directory / "missing" / "x.json").string(), schema}).status == 1);
+  // An unwritable destination: the command could not finish, exit 3.
+  CHECK(run_expressc({"--dump-json", (directory / "missing" / "x.json").string(), schema}).status == 3);
   size_t leftovers = 0;
   for (const auto& entry : std::filesystem::directory_iterator(directory))
-    leftovers += entry.path().filename().string().find(".tmp.") != std::string::npos;
+    leftovers += entry.path().filename().string().ends_with(".tmp");  // stepnc/io/output.h names its temporaries .NAME.PID-N.tmp
   CHECK(leftovers == 0);
   std::filesystem::remove_all(directory);
 }
@@ -124,4 +127,29 @@ TEST_CASE("expressc --json-out writes one file per schema", "[cli][json]") {
     CHECK(nlohmann::json::parse(expressc::test::read_file(path))["name"] == name);
   }
   std::filesystem::remove_all(directory.parent_path());
+}
+
+TEST_CASE("expressc --version, - for standard input and standard output, a full stdout is exit 3", "[cli]") {
+  const Run version = run_expressc({"--version"});
+  CHECK(version.status == 0);
+  CHECK(version.output == "expressc " STEPNC_VERSION "\n");
+
+  const std::string schema = expressc::test::corpus("good/lexical.exp").string();
+  const Run from_stdin = run_expressc({"--summary", "-"}, true, "< " + quote(schema));
+  CHECK(from_stdin.status == 0);
+  CHECK_THAT(from_stdin.output, Catch::StartsWith("Lexical_Rules: 1 entities"));
+  const Run json_to_stdout = run_expressc({"--dump-json", "-", "-"}, false, "< " + quote(schema));
+  CHECK(json_to_stdout.status == 0);
+  CHECK(nlohmann::json::parse(json_to_stdout.output)["schemas"][0]["name"] == "Lexical_Rules");
+  const Run bad_stdin = run_expressc({"-"}, true, "< " + quote(expressc::test::corpus("bad/duplicates.exp").string()));
+  CHECK(bad_stdin.status == 1);
+  CHECK_THAT(bad_stdin.output, Catch::StartsWith("<stdin>:"));
+
+  for (const auto& arguments : {std::vector<std::string>{"--summary", schema},
+                                std::vector<std::string>{"--dump-json", "-", schema},
+                                std::vector<std::string>{"--dump-json", "/dev/stdout", schema}}) {
+    const Run full = run_expressc(arguments, true, ">/dev/full");
+    CHECK(full.status == 3);
+    CHECK_THAT(full.output, Catch::Contains("No space left on device"));
+  }
 }

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "stepnc/io/output.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/writer.h"
 #include "test_helpers.h"
@@ -37,7 +38,7 @@ TEST_CASE("malformed files: exact diagnostics, no crash", "[p21][malformed]") {
     const std::string actual = result.diagnostics.to_string();
     fs::path expected_path = file;
     expected_path.replace_extension(".expected");
-    if (update) std::ofstream(expected_path, std::ios::binary) << actual;
+    if (update) REQUIRE_FALSE(stepnc::io::write_file(expected_path, actual).has_value());
     CHECK(actual == p21_test::slurp(expected_path));
     CHECK(result.diagnostics.has_errors());
 

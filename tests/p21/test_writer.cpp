@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "stepnc/p21/writer.h"
+#include "test_files.h"
 #include "test_helpers.h"
 
 using namespace stepnc::p21;
@@ -15,13 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty directory for one test.
-fs::path scratch_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stepnc_p21_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch_dir(const std::string& name) { return stepnc_test::scratch_directory("p21-" + name); }
 
 std::size_t entries(const fs::path& dir) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
@@ -153,7 +148,7 @@ TEST_CASE("memory and file output are the same bytes", "[p21][writer]") {
   CHECK(in_memory.text().empty());  // taken
 
   const fs::path dir = scratch_dir("memory_file");
-  AtomicFile file;
+  stepnc::io::OutputFile file;
   REQUIRE_FALSE(file.open(dir / "out.stp").has_value());
   Writer streamed(file);
   write_many_records(streamed);
@@ -168,7 +163,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
   const fs::path target = dir / "out.stp";
 
   SECTION("a committed file holds everything written, and no temporary is left") {
-    AtomicFile file;
+    stepnc::io::OutputFile file;
     REQUIRE_FALSE(file.open(target).has_value());
     Writer w(file);
     w.begin_file();
@@ -194,7 +189,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
       std::ofstream(target) << "previous";
     }
     {
-      AtomicFile file;
+      stepnc::io::OutputFile file;
       REQUIRE_FALSE(file.open(target).has_value());
       Writer w(file);
       w.begin_instance(1, "P");
@@ -208,7 +203,7 @@ TEST_CASE("atomic file output: all or nothing", "[p21][writer]") {
   }
 
   SECTION("a directory that does not exist is reported") {
-    AtomicFile file;
+    stepnc::io::OutputFile file;
     const std::optional<std::string> error = file.open(dir / "missing" / "out.stp");
     REQUIRE(error.has_value());
     CHECK(error->find("cannot create temporary file") != std::string::npos);

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "projects.h"
+#include "stepnc/io/output.h"
 #include "stepnc/post/dialect.h"
 #include "stepnc/post/generate.h"
 
@@ -22,9 +23,7 @@ const fs::path golden_dir = fs::path(STEPNC_TEST_DATA_DIR) / "posters" / "golden
 void check_golden(const std::string& file, const std::string& text) {
   const fs::path path = golden_dir / file;
   if (const char* update = std::getenv("STEPNC_UPDATE_GOLDEN"); update && std::string(update) == "1") {
-    const fs::path temp = path.string() + ".tmp";
-    std::ofstream(temp, std::ios::binary) << text;
-    fs::rename(temp, path);
+    REQUIRE_FALSE(stepnc::io::write_file(path, text).has_value());
     WARN("rewrote " << path.string());
     return;
   }

@@ -15,6 +15,13 @@ namespace stepnc_test {
 // opened.
 std::string read_file(const std::filesystem::path& path);
 
+// A fresh, empty directory for one test: `stepnc-NAME-PID` under the
+// system's temporary directory.
+std::filesystem::path scratch_directory(const std::string& name);
+
+// Writes `text` to `path`, byte for byte.
+void write_text(const std::filesystem::path& path, std::string_view text);
+
 // Calls `body` with the bytes of every file of at most 1 MB below each of
 // `roots` (which must exist), and returns how many it replayed: the CI
 // stand-in for a fuzzing run, over saved corpora and sample files.

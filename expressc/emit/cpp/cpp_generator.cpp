@@ -14,7 +14,7 @@
 #include "emit/cpp/derived.h"
 #include "emit/cpp/names.h"
 #include "emit/cpp/printer.h"
-#include "emit/output.h"
+#include "stepnc/io/output.h"
 
 namespace expressc::emit::cpp {
 
@@ -1013,13 +1013,14 @@ bool CppGenerator::generate(const model::Model& model, const std::filesystem::pa
                            "cannot create the output directory: " + ec.message()});
     return false;
   }
+  // The changed files land together or not at all (stepnc/io/output.h).
+  std::vector<stepnc::io::Output> changed;
   for (const GeneratedFile& f : files) {
-    std::string error;
-    if (unchanged(out_dir / f.name, f.text)) continue;
-    if (!write_file_atomically(out_dir / f.name, f.text, error)) {
-      diagnostics.push_back({model::Diagnostic::Severity::Error, (out_dir / f.name).string(), 0, 0, error});
-      return false;
-    }
+    if (!unchanged(out_dir / f.name, f.text)) changed.push_back({out_dir / f.name, f.text});
+  }
+  if (auto error = stepnc::io::write_together(changed)) {
+    diagnostics.push_back({model::Diagnostic::Severity::Error, out_dir.string(), 0, 0, *error});
+    return false;
   }
   return true;
 }

@@ -28,8 +28,8 @@ class CppGenerator final : public Generator {
   std::string_view name() const override { return "cpp"; }
 
   // Writes every file, each only when its content changed (so a
-  // regeneration does not trigger needless rebuilds), through a temporary
-  // file renamed into place.
+  // regeneration does not trigger needless rebuilds); the changed files
+  // land together or not at all (stepnc/io/output.h).
   bool generate(const model::Model& model, const std::filesystem::path& out_dir,
                 std::vector<model::Diagnostic>& diagnostics) const override;
 

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "ast/ast.h"
-#include "emit/output.h"
+#include "stepnc/io/output.h"
 
 namespace expressc::emit {
 
@@ -297,9 +297,8 @@ bool JsonGenerator::generate(const model::Model& model, const std::filesystem::p
   bool ok = true;
   for (const auto& schema : model.schemas) {
     const std::filesystem::path path = out_dir / (schema->name + ".json");
-    std::string error;
-    if (!write_file_atomically(path, to_json(*schema).dump(2) + "\n", error)) {
-      diagnostics.push_back({model::Diagnostic::Severity::Error, path.string(), 0, 0, error});
+    if (auto error = stepnc::io::write_file(path, to_json(*schema).dump(2) + "\n")) {
+      diagnostics.push_back({model::Diagnostic::Severity::Error, path.string(), 0, 0, *error});
       ok = false;
     }
   }

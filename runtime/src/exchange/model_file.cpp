@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "stepnc/io/input.h"
+#include "stepnc/io/output.h"
 #include "stepnc/meta/io.h"
 #include "stepnc/p21/parameters.h"
 #include "stepnc/p21/stream.h"
@@ -343,6 +345,15 @@ p21::ReadOptions syntax_options(const ModelReadOptions& options) {
 
 ModelReadResult read_model_file(const std::filesystem::path& path, const meta::Registry& registry,
                                 const ModelReadOptions& options) {
+  if (io::is_standard_stream(path)) {
+    std::string text;
+    if (auto error = io::read_standard_input(text)) {
+      ModelReadResult result{nullptr, p21::Diagnostics(options.error_limit)};
+      result.diagnostics.add(p21::Diagnostic{p21::Severity::error, io::standard_input_name, {}, 0, *error});
+      return result;
+    }
+    return read_model_text(std::move(text), io::standard_input_name, registry, options);
+  }
   std::error_code size_error;
   const std::uintmax_t size = std::filesystem::file_size(path, size_error);
   if (std::FILE* input = size_error ? nullptr : std::fopen(path.c_str(), "rb")) {
@@ -411,7 +422,7 @@ std::string to_text(const ModelFile& file) {
 }
 
 std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path) {
-  p21::AtomicFile out;
+  io::OutputFile out;
   if (auto error = out.open(path)) return error;
   p21::Writer writer(out);
   write(file, writer);

@@ -204,7 +204,7 @@ std::string to_text(const Model& model, const FileHeader& header) {
 
 std::optional<std::string> write_file(const Model& model, const FileHeader& header,
                                       const std::filesystem::path& path) {
-  p21::AtomicFile file;
+  io::OutputFile file;
   if (auto error = file.open(path)) return error;
   p21::Writer writer(file);
   write_model(model, header, writer);
@@ -502,8 +502,34 @@ std::optional<std::string> bind_reference(const PendingReference& reference, Ins
 
 // ---------------------------------------------------------------- dump
 
-std::string dump(const Instance& const_instance) {
+std::vector<AttributeText> attribute_texts(const Instance& const_instance) {
   auto& instance = const_cast<Instance&>(const_instance);
+  const EntityInfo& entity = instance.entity_info();
+  std::vector<AttributeText> texts;
+  for (const AttributeInfo& a : entity.attributes) {
+    // The value alone: written into a one-element list, whose parentheses
+    // are then dropped (the Part 21 writer only writes values in lists).
+    p21::Writer writer;
+    writer.begin_list();
+    write_attribute(instance, a, writer);
+    writer.end_list();
+    const std::string_view text = writer.text();
+    texts.push_back({a.name, std::string(text.substr(1, text.size() - 2))});
+  }
+  // Derived attributes the class can compute, its own and inherited ones
+  // (the translated ones are all INTEGER).
+  for (const Upcast& u : entity.upcasts) {
+    for (const AttributeInfo& d : u.entity->derived) {
+      if (!d.derivable() || d.type->resolved().kind != TypeKind::Integer) continue;
+      std::int64_t value = 0;
+      d.derive(instance, &value);
+      texts.push_back({d.name, std::to_string(value), true});
+    }
+  }
+  return texts;
+}
+
+std::string dump(const Instance& instance) {
   const EntityInfo& entity = instance.entity_info();
   std::string out = fmt::format("#{}=", instance.id());
   if (entity.is_complex()) {
@@ -513,25 +539,8 @@ std::string dump(const Instance& const_instance) {
     out += entity.name;
   }
   out += fmt::format(" ({})\n", entity.schema->name);
-  for (const AttributeInfo& a : entity.attributes) {
-    // The value alone: written into a one-element list, whose parentheses
-    // are then dropped (the Part 21 writer only writes values in lists).
-    p21::Writer writer;
-    writer.begin_list();
-    write_attribute(instance, a, writer);
-    writer.end_list();
-    const std::string_view text = writer.text();
-    out += fmt::format("  {}: {}\n", a.name, text.substr(1, text.size() - 2));
-  }
-  // Derived attributes the class can compute, its own and inherited ones
-  // (the translated ones are all INTEGER).
-  for (const Upcast& u : entity.upcasts) {
-    for (const AttributeInfo& d : u.entity->derived) {
-      if (!d.derivable() || d.type->resolved().kind != TypeKind::Integer) continue;
-      std::int64_t value = 0;
-      d.derive(instance, &value);
-      out += fmt::format("  {} (derived): {}\n", d.name, value);
-    }
+  for (const AttributeText& a : attribute_texts(instance)) {
+    out += fmt::format("  {}{}: {}\n", a.name, a.derived ? " (derived)" : "", a.value);
   }
   return out;
 }

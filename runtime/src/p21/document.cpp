@@ -17,6 +17,7 @@
 
 #include "lexical.h"
 #include "scanner.h"
+#include "stepnc/io/input.h"
 #include "stepnc/p21/writer.h"
 
 namespace stepnc::p21 {
@@ -387,6 +388,11 @@ ReadResult read_file(const std::filesystem::path& path, const ReadOptions& optio
   // Files from this size on are mapped rather than copied (below it the
   // mapping's set-up costs more than the copy).
   constexpr std::size_t kMapThreshold = std::size_t{64} << 10;
+  if (io::is_standard_stream(path)) {
+    std::string text;
+    if (auto error = io::read_standard_input(text)) return io_error(*error);
+    return read_text(std::move(text), io::standard_input_name, options);
+  }
   const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (descriptor < 0) return io_error("cannot open file");
   struct stat status {};

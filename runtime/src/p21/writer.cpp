@@ -4,83 +4,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <cstring>
-#include <system_error>
-#include <unistd.h>
 
 #include "lexical.h"
 #include "stepnc/p21/text_codec.h"
 
 namespace stepnc::p21 {
-
-// ------------------------------------------------------------ AtomicFile
-
-AtomicFile::~AtomicFile() { discard(); }
-
-std::optional<std::string> AtomicFile::open(const std::filesystem::path& target) {
-  discard();
-  static std::atomic<unsigned> counter{0};
-  target_ = target;
-  error_.reset();
-  // A hidden sibling, unique per process and call; "x" refuses to reuse
-  // an existing file.
-  for (int attempt = 0; attempt < 100 && file_ == nullptr; ++attempt) {
-    temp_ = target.parent_path() /
-            fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), counter++);
-    file_ = std::fopen(temp_.c_str(), "wbx");
-    if (file_ == nullptr && errno != EEXIST) break;
-  }
-  if (file_ == nullptr) {
-    const std::string reason = std::error_code(errno, std::generic_category()).message();
-    temp_.clear();
-    return fmt::format("{}: cannot create temporary file: {}", target.string(), reason);
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> AtomicFile::write(std::string_view data) {
-  if (error_) return error_;
-  if (file_ == nullptr) return error_ = "write to a file that is not open";
-  if (std::fwrite(data.data(), 1, data.size(), file_) != data.size())
-    error_ = fmt::format("{}: write failed: {}", target_.string(),
-                         std::error_code(errno, std::generic_category()).message());
-  return error_;
-}
-
-std::optional<std::string> AtomicFile::commit() {
-  if (error_) {
-    discard();
-    return error_;
-  }
-  if (file_ == nullptr) return std::string("commit of a file that is not open");
-  const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (!flushed || !closed) {
-    discard();
-    return fmt::format("{}: write failed", target_.string());
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp_, target_, ec);
-  if (ec) {
-    discard();
-    return fmt::format("{}: cannot rename temporary file into place: {}", target_.string(), ec.message());
-  }
-  temp_.clear();
-  return std::nullopt;
-}
-
-void AtomicFile::discard() {
-  if (file_ != nullptr) std::fclose(file_);
-  file_ = nullptr;
-  if (!temp_.empty()) {
-    std::error_code ignored;
-    std::filesystem::remove(temp_, ignored);
-    temp_.clear();
-  }
-}
 
 // ---------------------------------------------------------------- Writer
 
@@ -420,7 +350,7 @@ std::string to_text(const Document& document) {
 }
 
 std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path) {
-  AtomicFile file;
+  io::OutputFile file;
   if (auto error = file.open(path)) return error;
   Writer writer(file);
   write_document(document, writer);

@@ -84,18 +84,18 @@ struct ModelReadResult {
 };
 
 /// Reads a Part 21 file into typed instances of the registry's schemas.
+///
+/// `-` reads standard input.
 ModelReadResult read_model_file(const std::filesystem::path& path, const meta::Registry& registry,
                                 const ModelReadOptions& options = {});
-/// Same, from text in memory; `file_name` is used in diagnostics.
 /// The same for text in memory; `file_name` is used in diagnostics.
 ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
                                 const ModelReadOptions& options = {});
 
-/// The file as Part 21 text (see the policy above).
-/// The file as Part 21 text: header, typed instances, then the kept records.
+/// The file as Part 21 text (see the policy above): header, typed instances, then the kept records.
 std::string to_text(const ModelFile& file);
-/// Writes atomically; returns an error message on failure.
-/// Writes to_text() atomically; returns an error message on failure.
+/// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
+/// returns an error message on failure.
 std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path);
 
 }  // namespace stepnc::exchange

@@ -60,7 +60,8 @@ struct FileHeader {
 void write_model(const Model& model, const FileHeader& header, p21::Writer& writer);
 /// The whole file as text (see write_model()).
 std::string to_text(const Model& model, const FileHeader& header);
-/// Writes atomically (temporary file + rename); returns an error message on failure.
+/// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
+/// returns an error message on failure.
 std::optional<std::string> write_file(const Model& model, const FileHeader& header,
                                       const std::filesystem::path& path);
 
@@ -114,5 +115,15 @@ std::optional<std::string> bind_reference(const PendingReference& reference, Ins
 /// Values use Part 21 spelling; unset optionals show as `$`. Derived
 /// attributes the class computes follow, marked `(derived)`.
 std::string dump(const Instance& instance);
+
+/// One attribute as dump() shows it.
+struct AttributeText {
+  std::string_view name;  ///< the attribute's EXPRESS name
+  std::string value;      ///< Part 21 spelling; `$` when unset
+  bool derived = false;   ///< a DERIVE attribute the class computes
+};
+/// The attributes dump() shows, for callers that lay them out themselves
+/// (the CLI's JSON): explicit ones in Part 21 spelling, then derived ones.
+std::vector<AttributeText> attribute_texts(const Instance& instance);
 
 }  // namespace stepnc::meta

@@ -174,7 +174,8 @@ struct ReadResult {
   bool ok() const { return document.has_value() && !diagnostics.has_errors(); }  ///< a document and no errors
 };
 
-/// Reads and indexes a file. Errors (I/O included) come back as diagnostics.
+/// Reads and indexes a file (`-`: standard input). Errors (I/O included)
+/// come back as diagnostics.
 /// Regular files of 64 KiB and more are mapped read-only rather than copied
 /// (see Document::release_text_before); the file must not be truncated
 /// while the Document lives.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 /// @file
-/// Writing Part 21: a token-level Writer, atomic file output, and the
+/// Writing Part 21: a token-level Writer, its file output, and the
 /// schema-independent round trip of a Document.
 ///
 /// Output format (the canonical form). One header entity or instance per
@@ -42,37 +42,16 @@
 #include <string>
 #include <string_view>
 
+#include "stepnc/io/output.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/parameters.h"
 
 namespace stepnc::p21 {
 
-/// A file written atomically: data goes to a temporary file in the target's
-/// directory, which commit() renames over the target. If commit() is never
-/// reached (error, exception), the destructor removes the temporary file
-/// and the target is untouched.
-class AtomicFile {
- public:
-  AtomicFile() = default;
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile();
-
-  /// Creates the temporary file. Returns an error message on failure.
-  std::optional<std::string> open(const std::filesystem::path& target);
-  std::optional<std::string> write(std::string_view data);  ///< appends; an error message on failure
-  /// Flushes, closes and renames into place.
-  std::optional<std::string> commit();
-  /// Closes and removes the temporary file (also done by the destructor).
-  void discard();
-  bool is_open() const { return file_ != nullptr; }  ///< open() succeeded and neither commit() nor discard() ran
-
- private:
-  std::filesystem::path target_;
-  std::filesystem::path temp_;
-  std::FILE* file_ = nullptr;
-  std::optional<std::string> error_;
-};
+/// The file a Writer streams into: replaced atomically when it is a regular
+/// file, written directly when it is standard output, a device or a FIFO
+/// (stepnc/io/output.h). AtomicFile is its former name, kept for callers.
+using AtomicFile = io::OutputFile;
 
 /// Writes Part 21 tokens with commas inserted automatically. Misuse or
 /// unrepresentable input (NaN, invalid UTF-8, bad names) never produces
@@ -81,7 +60,7 @@ class AtomicFile {
 class Writer {
  public:
   Writer() = default;                                 ///< builds text in memory
-  explicit Writer(AtomicFile& file) : file_(&file) {}  ///< streams to the file in blocks
+  explicit Writer(io::OutputFile& file) : file_(&file) {}  ///< streams to the file in blocks
 
   /// Structure.
   void begin_file();                                 ///< ISO-10303-21;  HEADER;
@@ -158,7 +137,7 @@ class Writer {
   void open_parenthesis();
   void close_parenthesis();
 
-  AtomicFile* file_ = nullptr;
+  io::OutputFile* file_ = nullptr;
   std::string buffer_;    ///< all of it writable room; the first size_ bytes are output
   std::size_t size_ = 0;
   std::string last_keyword_;  ///< the last name found valid (names repeat: check each once per run)
@@ -176,7 +155,7 @@ void append_normalised(std::string_view record_text, std::string& out);
 void write_document(const Document& document, Writer& writer);
 /// The round trip as text.
 std::string to_text(const Document& document);
-/// Writes atomically; returns an error message on failure.
+/// Writes safely (stepnc/io/output.h); returns an error message on failure.
 std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path);
 
 }  // namespace stepnc::p21

@@ -1,0 +1,51 @@
+// What every subcommand shares: verbosity, the input and output arguments,
+// diagnostics and output files.
+#include <fmt/format.h>
+
+#include "command.h"
+
+namespace stepnc::cli {
+namespace {
+
+Verbosity current_verbosity = Verbosity::normal;
+
+}  // namespace
+
+Verbosity verbosity() { return current_verbosity; }
+void set_verbosity(Verbosity level) { current_verbosity = level; }
+
+CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::string& description) {
+  const CLI::Validator existing_or_stdin(
+      [](const std::string& value) { return io::is_standard_stream(value) ? std::string() : CLI::ExistingFile(value); },
+      "FILE|-");
+  return command.add_option("FILE", file, description + " ('-': standard input)")->required()->check(existing_or_stdin);
+}
+
+CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description) {
+  output = "-";
+  return command.add_option("-o,--output", output, description + " ('-', the default: standard output)")
+      ->option_text("FILE|-");
+}
+
+void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file) {
+  for (const p21::Diagnostic& diagnostic : diagnostics.items()) {
+    if (diagnostic.severity == p21::Severity::warning && verbosity() == Verbosity::quiet) continue;
+    fmt::print(stderr, "{}\n", diagnostic.to_string());
+  }
+  if (diagnostics.limit_reached()) fmt::print(stderr, "{}: stopped after {} errors\n", file, diagnostics.error_count());
+}
+
+int write_outputs(std::initializer_list<io::Output> outputs) {
+  if (auto error = io::write_together(std::span(outputs.begin(), outputs.size()))) {
+    fmt::print(stderr, "stepnc: {}\n", *error);
+    return exit_failure;
+  }
+  for (const io::Output& output : outputs) note_written(output.path.string());
+  return exit_ok;
+}
+
+void note_written(std::string_view output) {
+  if (verbosity() == Verbosity::verbose && !io::is_standard_stream(output)) fmt::print(stderr, "wrote {}\n", output);
+}
+
+}  // namespace stepnc::cli
