@@ -25,5 +25,6 @@ void add_query_command(CLI::App& app, Action& action);
 void add_dump_command(CLI::App& app, Action& action);
 void add_post_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
+void add_gcode_command(CLI::App& app, Action& action);
 
 }  // namespace stepnc::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   stepnc::cli::add_dump_command(app, action);
   stepnc::cli::add_post_command(app, action);
   stepnc::cli::add_plot_command(app, action);
+  stepnc::cli::add_gcode_command(app, action);
 
   try {
     app.parse(argc, argv);

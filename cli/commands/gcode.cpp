@@ -1,0 +1,78 @@
+// stepnc gcode FILE --controller NAME [--tools TOOLS.csv] [--canonical]:
+// read an ISO 6983 program into motion and print it.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iterator>
+
+#include "command.h"
+#include "posting.h"
+#include "stepnc/gcode/interpreter.h"
+#include "stepnc/gcode/tool_list.h"
+
+namespace stepnc::cli {
+namespace {
+
+struct GcodeOptions {
+  std::string file;
+  std::string controller = "rs274ngc";
+  std::string tools;
+  bool canonical = false;
+  std::string output;
+};
+
+std::optional<std::string> read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    fmt::print(stderr, "{}: cannot open\n", path);
+    return std::nullopt;
+  }
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+int run_gcode(const GcodeOptions& options) {
+  const auto controller = gcode::controller(options.controller);
+  if (!controller) {
+    fmt::print(stderr, "unknown controller '{}'\n", options.controller);
+    return exit_usage;
+  }
+  gcode::Options run;
+  if (!options.tools.empty()) {
+    const auto csv = read_text(options.tools);
+    if (!csv) return exit_failure;
+    auto list = gcode::read_tool_list(*csv);
+    for (const auto& e : list.errors) fmt::print(stderr, "{}\n", e.to_string(options.tools));
+    if (!list.ok()) return exit_invalid_input;
+    run.tools = std::move(list.tools);
+  }
+  auto text = read_text(options.file);
+  if (!text) return exit_failure;
+  const gcode::Result result = gcode::interpret_text(std::move(*text), *controller, run);
+  for (const auto& e : result.errors) fmt::print(stderr, "{}\n", e.to_string(options.file));
+  if (!result.ok()) return result.unsupported() ? exit_failure : exit_invalid_input;
+  const std::string out = options.canonical
+                              ? gcode::canonical_text(result)
+                              : fmt::format("{}: {} blocks executed, {} calls, {} cycles\n", options.file,
+                                            result.blocks_executed, result.calls.size(), result.cycles.size());
+  if (options.output.empty()) {
+    fmt::print("{}", out);
+    return exit_ok;
+  }
+  return write_output(options.output, out) ? exit_ok : exit_failure;
+}
+
+}  // namespace
+
+void add_gcode_command(CLI::App& app, Action& action) {
+  auto options = std::make_shared<GcodeOptions>();
+  CLI::App* command = app.add_subcommand("gcode", "Read an ISO 6983 (G-code) program into motion");
+  command->add_option("FILE", options->file, "G-code program")->required()->check(CLI::ExistingFile);
+  command->add_option("-c,--controller", options->controller, "rs274ngc")
+      ->check(CLI::IsMember({"rs274ngc"}));
+  command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")->check(CLI::ExistingFile);
+  command->add_flag("--canonical", options->canonical, "Print LinuxCNC canonical machining calls, one a line");
+  command->add_option("-o,--output", options->output, "Output file (default: standard output)");
+  command->callback([&action, options] { action = [options] { return run_gcode(*options); }; });
+}
+
+}  // namespace stepnc::cli
