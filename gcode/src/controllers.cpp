@@ -24,7 +24,7 @@ constexpr MCodeEntry rs274ngc_m[] = {
     {64, 5}, {65, 5}, {66, 5}, {67, 5}, {68, 5}, {70, 10}, {71, 10}, {72, 10}, {73, 10}};
 
 constexpr Controller rs274ngc_controller{
-    "rs274ngc", rs274ngc_g, rs274ngc_m, "ABCDEFGHIJKLMNPQRSTUVWXYZ@^", true, false, false, 0.005};
+    "rs274ngc", rs274ngc_g, rs274ngc_m, "ABCDFGHIJKLMNPQRSTUVWXYZ@^", true, false, false, 0.005};
 
 }  // namespace
 

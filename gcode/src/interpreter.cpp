@@ -26,8 +26,9 @@ struct Stop {
   std::string message;
 };
 
-[[noreturn]] void stop(std::string message, std::uint32_t column = 1) { throw Stop{column, std::move(message)}; }
-[[noreturn]] void unsupported(std::string_view feature, std::uint32_t column = 1) {
+// Column 0: the block's motion word (or its first word) is blamed.
+[[noreturn]] void stop(std::string message, std::uint32_t column = 0) { throw Stop{column, std::move(message)}; }
+[[noreturn]] void unsupported(std::string_view feature, std::uint32_t column = 0) {
   throw Stop{column, fmt::format("unsupported: {}", feature)};
 }
 
@@ -115,7 +116,7 @@ class Interpreter {
         }
         if (ended_) break;
       } catch (const Stop& s) {
-        error_at(block.line, s.column, s.message);
+        error_at(block.line, s.column ? s.column : blamed_column(block), s.message);
         break;
       }
     }
@@ -160,6 +161,20 @@ class Interpreter {
   std::vector<Frame> frames_;
   std::unordered_map<std::string, std::vector<std::uint32_t>> labels_;  // label -> blocks with that O-word
   std::unordered_map<std::string, std::uint32_t> subs_;
+
+  // The group-1 G word of the block, else its first word, else column 1.
+  std::uint32_t blamed_column(const Block& block) const {
+    std::uint32_t first = 0;
+    for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
+      const Word& w = p_.words[i];
+      if (!first) first = w.column;
+      if (w.letter == 'G' && w.expr == Word::none) {
+        const auto group = g_group(c_, static_cast<int>(std::lround(w.literal * 10)));
+        if (group == 1) return w.column;
+      }
+    }
+    return first ? first : 1;
+  }
 
   void error_at(std::uint32_t line, std::uint32_t column, std::string message) {
     result_.errors.push_back({{line, column}, std::move(message), std::string(p_.line_text(line))});
@@ -749,13 +764,13 @@ class Interpreter {
       case 10: {
         const auto end = target(w, machine_coordinates);
         if (inverse_time_) inverse_time_feed(w, straight_length(program_position(), end));
-        if (state_.feed <= 0) stop("G1 with zero feed rate", 1);
+        if (state_.feed <= 0) stop("G1 with zero feed rate");
         move(CallKind::linear, end);
         return;
       }
       case 20: case 30:
         if (machine_coordinates) stop("G53 with an arc");
-        if (!inverse_time_ && state_.feed <= 0) stop("G2/G3 with zero feed rate", 1);
+        if (!inverse_time_ && state_.feed <= 0) stop("G2/G3 with zero feed rate");
         arc(w, motion_ == 20);
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;

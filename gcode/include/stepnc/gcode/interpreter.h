@@ -98,7 +98,8 @@ Result interpret(const Program& program, const Controller& controller, const Opt
 Result interpret_text(std::string text, const Controller& controller, const Options& options = {});
 
 // The calls as LinuxCNC's canonical machining functions print them
-// (`rs274 -g`): one call a line, lengths in the program's units.
-std::string canonical_text(const Result& result);
+// (`rs274 -g`): one call a line, lengths in the program's units, with
+// `decimals` digits (rs274 prints 4).
+std::string canonical_text(const Result& result, int decimals = 4);
 
 }  // namespace stepnc::gcode
