@@ -145,6 +145,7 @@ class Interpreter {
   int coord_system_ = 1;       // 1..9 = G54..G59.3
   MotionState state_;
   int prepped_tool_ = 0;
+  double css_limit_ = 0;  // rev/min, G96 D
   double tool_offset_ = 0;     // mm, Z
   std::array<double, axes> machine_{};  // machine position, mm (degrees for A-C)
   std::array<double, axes> g92_{};
@@ -649,7 +650,11 @@ class Interpreter {
     if (auto g = g_of(w, 4)) arc_absolute_ = g->first == 901;
     if (auto g = g_of(w, 15)) diameter_ = g->first == 70;
     if (auto g = g_of(w, 10)) retract_r_ = g->first == 990;
-    if (auto g = g_of(w, 14); g && g->first == 960) unsupported("G96 constant surface speed", g->second);
+    // G96: S is a surface speed (m/min, ft/min in G20), D the spindle clamp.
+    if (auto g = g_of(w, 14)) {
+      state_.css = g->first == 960;
+      if (state_.css && w.has('D')) css_limit_ = w.get('D');
+    }
 
     // 19 non-modal: G10, G28, G30, G92; G53 modifies the motion
     bool machine_coordinates = false;
@@ -707,7 +712,7 @@ class Interpreter {
       case 520: unsupported("G52 local offset", column);
       case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
       case 740: case 840: unsupported(fmt::format("G{} tapping", code / 10), column);
-      case 860: case 870: case 880: unsupported(fmt::format("G{} boring cycle", code / 10), column);
+      case 870: case 880: unsupported(fmt::format("G{} boring cycle", code / 10), column);
       case 611: unsupported("G61.1 exact stop", column);
       default: break;
     }
@@ -774,7 +779,7 @@ class Interpreter {
         arc(w, motion_ == 20);
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
-      case 730: case 810: case 820: case 830: case 850: case 890: cycle(w, block); return;
+      case 730: case 810: case 820: case 830: case 850: case 860: case 890: cycle(w, block); return;
       default: unsupported(fmt::format("G{:g} motion", motion_ / 10.0));
     }
   }
@@ -854,7 +859,7 @@ class Interpreter {
     last_move_ = end;
   }
 
-  // ---- canned cycles (G73, G81-G83, G85, G89), XY plane ----------------
+  // ---- canned cycles (G73, G81-G83, G85, G86, G89), XY plane ----------------
 
   void cycle(const Words& w, const Block& block) {
     const int code = motion_ / 10;
@@ -875,6 +880,7 @@ class Interpreter {
     if (w.has('P')) cycle_p_ = w.get('P');
     if ((code == 73 || code == 83) && cycle_q_ <= 0) stop(fmt::format("G{} needs a positive Q", code));
     if ((code == 82 || code == 89) && !w.has('P') && cycle_p_ < 0) stop(fmt::format("G{} needs P", code));
+    if (code == 86 && state_.spindle_direction == 0) stop("G86 with the spindle not turning");
     double r = to_mm(cycle_r_prog_), z = to_mm(cycle_z_prog_);
     if (incremental_) {  // R from the initial level, Z from R (LinuxCNC)
       r = cycle_initial_z_ + r;
@@ -932,6 +938,17 @@ class Interpreter {
           move(CallKind::rapid, at(clear));
           break;
         case 85: move(CallKind::linear, at(z)); move(CallKind::linear, at(r)); move(CallKind::rapid, at(clear)); break;
+        case 86: {  // bore, stop the spindle, rapid out, restart it as it turned
+          const auto direction = state_.spindle_direction;
+          move(CallKind::linear, at(z));
+          emit(CallKind::dwell).v[0] = cycle_p_;
+          state_.spindle_direction = 0;
+          emit(CallKind::spindle_stop);
+          move(CallKind::rapid, at(clear));
+          state_.spindle_direction = direction;
+          emit(direction > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          break;
+        }
         case 89:
           move(CallKind::linear, at(z));
           emit(CallKind::dwell).v[0] = cycle_p_;
