@@ -1,5 +1,5 @@
-// stepnc gcode FILE --controller NAME [--tools TOOLS.csv] [--canonical]:
-// read an ISO 6983 program into motion and print it.
+// stepnc gcode FILE --controller NAME [--tools TOOLS.csv] [--canonical |
+// --json] [--plot OUT.svg]: read an ISO 6983 program into motion and print it.
 #include <fmt/format.h>
 
 #include <fstream>
@@ -8,6 +8,7 @@
 #include "command.h"
 #include "posting.h"
 #include "stepnc/gcode/interpreter.h"
+#include "stepnc/gcode/output.h"
 #include "stepnc/gcode/tool_list.h"
 
 namespace stepnc::cli {
@@ -18,6 +19,8 @@ struct GcodeOptions {
   std::string controller = "rs274ngc";
   std::string tools;
   bool canonical = false;
+  bool json = false;
+  std::string plot;
   std::string output;
 };
 
@@ -50,9 +53,10 @@ int run_gcode(const GcodeOptions& options) {
   const gcode::Result result = gcode::interpret_text(std::move(*text), *controller, run);
   for (const auto& e : result.errors) fmt::print(stderr, "{}\n", e.to_string(options.file));
   if (!result.ok()) return result.unsupported() ? exit_failure : exit_invalid_input;
-  const std::string out = options.canonical
-                              ? gcode::canonical_text(result)
-                              : fmt::format("{}: {} blocks executed, {} calls, {} cycles\n", options.file,
+  if (!options.plot.empty() && !write_output(options.plot, gcode::plot_svg(result))) return exit_failure;
+  const std::string out = options.canonical ? gcode::canonical_text(result)
+                          : options.json    ? gcode::json_text(result)
+                                            : fmt::format("{}: {} blocks executed, {} calls, {} cycles\n", options.file,
                                             result.blocks_executed, result.calls.size(), result.cycles.size());
   if (options.output.empty()) {
     fmt::print("{}", out);
@@ -71,6 +75,8 @@ void add_gcode_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"rs274ngc"}));
   command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")->check(CLI::ExistingFile);
   command->add_flag("--canonical", options->canonical, "Print LinuxCNC canonical machining calls, one a line");
+  command->add_flag("--json", options->json, "Print calls, cycles and provenance as JSON");
+  command->add_option("--plot", options->plot, "Write the toolpath as SVG (XY; XZ for G18 work)");
   command->add_option("-o,--output", options->output, "Output file (default: standard output)");
   command->callback([&action, options] { action = [options] { return run_gcode(*options); }; });
 }

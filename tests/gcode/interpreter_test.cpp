@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "stepnc/gcode/interpreter.h"
+#include "stepnc/gcode/output.h"
 #include "stepnc/gcode/tool_list.h"
 
 using namespace stepnc::gcode;
@@ -136,4 +137,28 @@ TEST_CASE("the tool list CSV: columns by name, errors with line and column", "[g
   REQUIRE(bad.errors.size() == 1);
   CHECK(bad.errors[0].pos.line == 2);
   CHECK(bad.errors[0].pos.column == 3);
+}
+
+TEST_CASE("JSON carries calls with provenance and state, cycles with their words", "[gcode][output]") {
+  const Result r = run("G21 F100\nS900 M3\nG0 Z5\nG81 X1 Y2 Z-3 R1\nG80\nG2 X3 Y2 I1 J0\nM2\n");
+  REQUIRE(r.ok());
+  const std::string json = json_text(r);
+  CHECK(json.find("{\"kind\": \"linear\", \"line\": 4, \"block\": 3, \"values\": [1, 2, -3, 0, 0, 0], \"feed\": 100, "
+                  "\"feed_per_rev\": false, \"spindle\": 900, \"spindle_direction\": 1") != std::string::npos);
+  CHECK(json.find("{\"name\": \"G81\", \"line\": 4, \"first_call\": 5, \"end_call\": 9, \"words\": {\"X\": 1, "
+                  "\"Y\": 2, \"Z\": -3, \"R\": 1}}") != std::string::npos);
+  CHECK(json.find("\"kind\": \"arc\", \"line\": 6") != std::string::npos);
+}
+
+TEST_CASE("the SVG plot draws rapids dashed and feeds solid", "[gcode][output]") {
+  const Result r = run("G21 F100\nG0 X10 Y0\nG1 X20\nG3 X10 Y0 I-5 J0\nG0 X0\nM2\n");
+  REQUIRE(r.ok());
+  const std::string svg = plot_svg(r);
+  CHECK(svg.starts_with("<svg "));
+  std::size_t rapids = 0, feeds = 0;
+  for (std::size_t at = 0; (at = svg.find("<polyline stroke=\"", at)) != std::string::npos; ++at)
+    (svg.compare(at + 18, 3, "red") == 0 ? rapids : feeds) += 1;
+  CHECK(rapids == 2);
+  CHECK(feeds == 1);  // the line and the arc join into one path
+  CHECK(svg.find("20.0000,0.0000") != std::string::npos);
 }
