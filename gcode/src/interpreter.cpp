@@ -41,6 +41,7 @@ struct Words {
   std::array<std::uint32_t, 28> column{};
   std::vector<std::pair<int, std::uint32_t>> g;  // code times 10, column
   std::vector<std::pair<int, std::uint32_t>> m;
+  std::optional<double> repeats;  // the repeat word as written (Fanuc K is also an arc length)
   bool has(char c) const { return value[slot(c)].has_value(); }
   double get(char c) const { return *value[slot(c)]; }
   std::uint32_t col(char c) const { return column[slot(c)]; }
@@ -48,7 +49,7 @@ struct Words {
   bool any_axis() const {
     for (char c : axis_letters)
       if (has(c)) return true;
-    return polar();
+    return polar() || has('U') || has('W');
   }
 };
 
@@ -64,6 +65,9 @@ class Interpreter {
   Interpreter(const Program& program, const Controller& controller, const Options& options)
       : p_(program), c_(controller), o_(options) {
     params_.assign(5602, 0.0);
+    diameter_ = controller.diameter_x;
+    if (controller.diameter_x) plane_ = 18;  // a lathe works in XZ
+    feed_per_rev_ = state_.feed_per_rev = controller.feed_per_rev_default;
     params_[5220] = 1;  // G54
     frames_.emplace_back();
     index_labels();
@@ -170,8 +174,8 @@ class Interpreter {
       const Word& w = p_.words[i];
       if (!first) first = w.column;
       if (w.letter == 'G' && w.expr == Word::none) {
-        const auto group = g_group(c_, static_cast<int>(std::lround(w.literal * 10)));
-        if (group == 1) return w.column;
+        const auto entry = g_entry(c_, static_cast<int>(std::lround(w.literal * 10)));
+        if (entry && meaning_group(entry->meaning) == 1) return w.column;
       }
     }
     return first ? first : 1;
@@ -490,16 +494,21 @@ class Interpreter {
     std::array<int, 16> m_groups{};
     for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
       const Word& word = p_.words[i];
-      const double value = word.expr == Word::none ? word.literal : eval(word.expr, word.column);
+      double value = word.expr == Word::none ? word.literal : eval(word.expr, word.column);
       const char c = word.letter;
+      if (c == c_.repeat_letter) w.repeats = value;
+      // Fanuc: a length without a decimal point counts least input increments.
+      if (c_.integer_is_least_increment && word.expr == Word::none && !word.decimal_point &&
+          std::string_view("XYZUWIJKRQ").find(c) != std::string_view::npos)
+        value *= inch_ ? 0.0001 : 0.001;
       if (c == 'G') {
         const int code = static_cast<int>(std::lround(value * 10));
         if (std::abs(value * 10 - code) > 1e-6) stop(fmt::format("G{} is not a G code", value), word.column);
-        const auto group = g_group(c_, code);
-        if (!group) stop(fmt::format("unknown G code G{}", value), word.column);
-        if (*group != 0 && g_groups[*group]++)
-          stop(fmt::format("two G codes of modal group {} in one block", *group), word.column);
-        w.g.emplace_back(code, word.column);
+        const auto entry = g_entry(c_, code);
+        if (!entry) stop(fmt::format("unknown G code G{} for {}", value, c_.name), word.column);
+        if (entry->group != 0 && g_groups[entry->group]++)
+          stop(fmt::format("two G codes of modal group {} in one block", entry->group), word.column);
+        w.g.emplace_back(entry->meaning, word.column);
       } else if (c == 'M') {
         const int code = static_cast<int>(std::lround(value));
         const auto group = m_group(c_, code);
@@ -526,7 +535,7 @@ class Interpreter {
   }
   std::optional<std::pair<int, std::uint32_t>> g_of(const Words& w, int group) const {
     for (const auto& g : w.g)
-      if (g_group(c_, g.first) == group) return g;
+      if (meaning_group(g.first) == group) return g;
     return std::nullopt;
   }
 
@@ -556,7 +565,10 @@ class Interpreter {
       state_.feed = to_mm(w.get('F'));
       emit(CallKind::feed_rate).v[0] = state_.feed;
     }
-    if (w.has('S')) {
+    const bool clamp_block = has_g(w, meaning_spindle_clamp_or_set);
+    if (w.has('S') && clamp_block) {
+      css_limit_ = w.get('S');  // Fanuc lathe G50 S: the spindle speed clamp
+    } else if (w.has('S')) {
       if (w.get('S') < 0) stop("negative spindle speed", w.col('S'));
       state_.spindle = w.get('S');
       emit(CallKind::spindle_speed).v[0] = state_.spindle;
@@ -564,10 +576,19 @@ class Interpreter {
     if (w.has('T')) {
       const int tool = static_cast<int>(std::lround(w.get('T')));
       if (tool < 0) stop("negative tool number", w.col('T'));
-      if (!o_.tools.empty() && tool != 0 && !o_.tools.contains(tool))
+      if (!o_.tools.empty() && tool != 0 && !o_.tools.contains(c_.tool_word_changes_tool && tool >= 100 ? tool / 100 : tool))
         stop(fmt::format("tool {} is not in the tool table", tool), w.col('T'));
-      prepped_tool_ = tool;
-      emit(CallKind::select_tool).v[0] = tool;
+      if (c_.tool_word_changes_tool) {
+        // T0101: tool 01 with offset 01, turned to at once (no M6).
+        const int number = tool >= 100 ? tool / 100 : tool;
+        prepped_tool_ = number;
+        emit(CallKind::select_tool).v[0] = number;
+        state_.tool = number;
+        emit(CallKind::change_tool).v[0] = number;
+      } else {
+        prepped_tool_ = tool;
+        emit(CallKind::select_tool).v[0] = tool;
+      }
     }
     // 6 tool change
     for (const auto& [code, column] : w.m) {
@@ -590,6 +611,7 @@ class Interpreter {
         case 4: state_.spindle_direction = -1; emit(CallKind::spindle_counterclockwise); break;
         case 5: state_.spindle_direction = 0; emit(CallKind::spindle_stop); break;
         case 19: unsupported("M19 spindle orientation", column);
+        case 98: case 99: unsupported("M98/M99 subprograms", column);
         default: break;
       }
     }
@@ -606,9 +628,17 @@ class Interpreter {
     }
     // 10 dwell
     if (has_g(w, 40)) {
-      if (!w.has('P')) stop("G4 needs P (seconds)", g_of(w, 0)->second);
-      if (w.get('P') < 0) stop("negative dwell time", w.col('P'));
-      emit(CallKind::dwell).v[0] = w.get('P');
+      double seconds = 0;
+      if (c_.dwell_p_milliseconds && w.has('X') && !w.has('P')) {
+        seconds = w.get('X');  // Fanuc G04 X: seconds; the X is no move
+        w.value[slot('X')].reset();
+      } else if (!w.has('P')) {
+        stop("G4 needs P", g_of(w, 0)->second);
+      } else {
+        seconds = c_.dwell_p_milliseconds ? w.get('P') / 1000 : w.get('P');
+      }
+      if (seconds < 0) stop("negative dwell time", w.col(w.has('P') ? 'P' : 'X'));
+      emit(CallKind::dwell).v[0] = seconds;
     }
     // 11 plane, 12 units
     if (auto g = g_of(w, 2)) {
@@ -665,6 +695,10 @@ class Interpreter {
         case 280: case 300: go_home(w, code == 280 ? 5161 : 5181); axes_used = true; break;
         case 281: case 301: store_home(code == 281 ? 5161 : 5181); break;
         case 920: g92(w, column); axes_used = true; break;
+        case meaning_spindle_clamp_or_set:
+          if (w.any_axis()) g92(w, column);
+          axes_used = true;
+          break;
         case 921: case 922: g92_reset(code == 921); break;
         case 923: g92_restore(); break;
         case 530: machine_coordinates = true; break;
@@ -714,6 +748,11 @@ class Interpreter {
       case 740: case 840: unsupported(fmt::format("G{} tapping", code / 10), column);
       case 870: case 880: unsupported(fmt::format("G{} boring cycle", code / 10), column);
       case 611: unsupported("G61.1 exact stop", column);
+      case 4400: unsupported("G44 negative tool length offset", column);
+      case 680: unsupported("G68 coordinate rotation", column);
+      case 7000: case 7100: case 7200: case 7300: case 7400: case 7500: case 7600:
+        unsupported(fmt::format("G{} {} cycle", code / 100, c_.diameter_x ? "multiple repetitive" : "fine boring"), column);
+      case 9000: case 9200: case 9400: unsupported(fmt::format("G{} single cycle", code / 100), column);
       default: break;
     }
   }
@@ -739,6 +778,10 @@ class Interpreter {
       if (a == 0 && diameter_) v /= 2;
       pos[a] = incremental_ ? pos[a] + v : v;
     }
+    if (c_.uw_incremental) {
+      if (w.has('U')) pos[0] += to_mm(w.get('U')) / (diameter_ ? 2 : 1);
+      if (w.has('W')) pos[2] += to_mm(w.get('W'));
+    }
     if (w.polar()) polar(w, pos[0], pos[1]);
     return pos;
   }
@@ -763,7 +806,7 @@ class Interpreter {
 
   void motion(const Words& w, const Block& block, bool machine_coordinates) {
     for (char c : std::string_view("UVW"))
-      if (w.has(c)) unsupported("U, V, W axes", w.col(c));
+      if (w.has(c) && !c_.uw_incremental) unsupported("U, V, W axes", w.col(c));
     switch (motion_) {
       case 0: move(CallKind::rapid, target(w, machine_coordinates)); return;
       case 10: {
@@ -864,8 +907,10 @@ class Interpreter {
   void cycle(const Words& w, const Block& block) {
     const int code = motion_ / 10;
     if (plane_ != 17) unsupported("canned cycles outside the XY plane (G18, G19)");
-    if (w.has('L') && (w.get('L') < 1 || std::floor(w.get('L')) != w.get('L'))) stop("L must be a positive integer", w.col('L'));
-    const int repeats = w.has('L') ? static_cast<int>(w.get('L')) : 1;
+    const char r_letter = c_.repeat_letter;
+    if (w.repeats && (*w.repeats < 1 || std::floor(*w.repeats) != *w.repeats || *w.repeats > 1e6))
+      stop(fmt::format("{} must be a positive integer", r_letter), w.col(r_letter));
+    const int repeats = w.repeats ? static_cast<int>(*w.repeats) : 1;
     auto pos = program_position();
     if (!cycle_initial_set_) {
       cycle_initial_z_ = pos[2];
@@ -1032,7 +1077,8 @@ class Interpreter {
     if (w.any_axis()) move(CallKind::rapid, target(w, false));
     auto pos = program_position();
     for (int a = 0; a < axes; ++a) {
-      if (w.any_axis() && !w.has(axis_letters[a])) continue;
+      const bool named = w.has(axis_letters[a]) || (c_.uw_incremental && ((a == 0 && w.has('U')) || (a == 2 && w.has('W'))));
+      if (w.any_axis() && !named) continue;
       const double stored = params_[static_cast<std::size_t>(base + a)];
       const double m = a < 3 ? to_mm(stored) : stored;
       pos[a] = m - g5x_[coord_system_][a] - g92_[a] - (a == 2 ? tool_offset_ : 0);

@@ -61,14 +61,19 @@ class LineReader {
         skip();
         if (peek() != '=') fail("expected '=' after a parameter at the start of an assignment");
         ++i_;
-        const std::uint32_t value = real_value();
+        const std::uint32_t value = c_.bare_assignment_expressions ? bare_expression() : real_value();
         p_.assignments.push_back({target, value, column});
         block.assignments_end = static_cast<std::uint32_t>(p_.assignments.size());
         continue;
       }
-      if (c == 'O' && c_.bracket_expressions) {
+      if (c == 'O' && c_.o_word_statements) {
         ++i_;
         o_word(block.o);
+        continue;
+      }
+      if (c == 'O' && c_.o_program_number) {  // a program number, no action
+        ++i_;
+        number();
         continue;
       }
       if (!std::isalpha(static_cast<unsigned char>(c)) && c_.letters.find(c) == std::string_view::npos)
@@ -172,6 +177,14 @@ class LineReader {
     return static_cast<std::uint32_t>(p_.exprs.size() - 1);
   }
 
+  // Fanuc macro B: the right-hand side of `#1=#2+3` runs to the end of the block.
+  std::uint32_t bare_expression() {
+    const std::uint32_t e = expression(0);
+    skip();
+    if (!at_end()) fail("expected an operator or the end of the block");
+    return e;
+  }
+
   void read_value(Word& word) {
     skip();
     const char c = peek();
@@ -179,7 +192,9 @@ class LineReader {
                                    ((c == '-' || c == '+') && !next_is_numeric()))) {
       word.expr = real_value();
     } else {
+      const std::size_t start = i_;
       word.literal = number();
+      word.decimal_point = text_.substr(start, i_ - start).find('.') != std::string_view::npos;
     }
   }
 
@@ -307,7 +322,7 @@ class LineReader {
     for (;;) {
       const std::size_t save = i_;
       skip();
-      if (peek() == ']') return lhs;
+      if (peek() == ']' || at_end()) return lhs;
       const auto op = binary_op();
       if (!op) fail("expected an operator or ']'");
       if (op->second < min_precedence) {

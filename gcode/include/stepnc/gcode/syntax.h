@@ -54,6 +54,7 @@ struct Word {
   std::uint32_t column = 0; // of the letter
   double literal = 0;
   std::uint32_t expr = none;
+  bool decimal_point = false;  // the literal was written with a point (`20.` rather than `20`)
 };
 
 struct Assignment {

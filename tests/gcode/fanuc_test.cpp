@@ -1,0 +1,71 @@
+// The Fanuc tables drive the same interpreter: diameter X and U/W, T0101,
+// G04 in milliseconds, lengths without a decimal point, K repeats, macro
+// variables with bare expressions, program numbers.
+#include <catch2/catch.hpp>
+
+#include "stepnc/gcode/interpreter.h"
+
+using namespace stepnc::gcode;
+
+namespace {
+Result run(const char* controller_name, const std::string& text) {
+  return interpret_text(text, *controller(controller_name));
+}
+std::vector<const Call*> of(const Result& r, CallKind kind) {
+  std::vector<const Call*> out;
+  for (const auto& c : r.calls)
+    if (c.kind == kind) out.push_back(&c);
+  return out;
+}
+}  // namespace
+
+TEST_CASE("Fanuc lathe: X and U are diameters, W is incremental Z, T0202 changes tool", "[gcode][fanuc]") {
+  const Result r = run("fanuc-lathe", "O1234\nG50 S3000\nG96 S200 M03\nT0202\nG00 X50. Z5.\nG01 U-10. W-20. F0.25\nG04 P500\nM30\n");
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 1);
+  CHECK(feeds[0]->v[0] == Approx(20));   // (50 - 10) / 2
+  CHECK(feeds[0]->v[2] == Approx(-15));
+  CHECK(feeds[0]->state.feed_per_rev);
+  CHECK(feeds[0]->state.css);
+  CHECK(feeds[0]->state.spindle == 200);
+  CHECK(feeds[0]->state.tool == 2);
+  const auto dwell = of(r, CallKind::dwell);
+  REQUIRE(dwell.size() == 1);
+  CHECK(dwell[0]->v[0] == Approx(0.5));
+}
+
+TEST_CASE("Fanuc: a length without a decimal point counts micrometres", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill", "G21 G94 F100\nG01 X20 Y20. Z-3\nM30\n");
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 1);
+  CHECK(feeds[0]->v[0] == Approx(0.02));
+  CHECK(feeds[0]->v[1] == Approx(20));
+  CHECK(feeds[0]->v[2] == Approx(-0.003));
+}
+
+TEST_CASE("Fanuc mill: K repeats a canned cycle, macro variables take bare expressions", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill", "G21 G90 F100\n#1=5.\n#2=#1*2+1\nG0 Z10.\nG91 G99 G81 X#2 Y0. Z-5. R-8. K3\nG80 G90\nM30\n");
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 3);
+  CHECK(feeds[0]->v[0] == Approx(11));
+  CHECK(feeds[1]->v[0] == Approx(22));
+  CHECK(feeds[2]->v[0] == Approx(33));
+  CHECK(feeds[2]->v[2] == Approx(-3));  // R = 10 - 8, Z = R - 5
+}
+
+TEST_CASE("Fanuc: what the table does not run yet is refused by name", "[gcode][fanuc]") {
+  const Result lathe = run("fanuc-lathe", "G00 X80. Z2.\nG71 U2. R1.\nM30\n");
+  REQUIRE(lathe.unsupported());
+  CHECK(lathe.errors[0].message == "unsupported: G71 multiple repetitive cycle");
+  CHECK(lathe.errors[0].pos.line == 2);
+  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");
+  REQUIRE(sub.unsupported());
+  CHECK(sub.errors[0].message == "unsupported: M98/M99 subprograms");
+  const Result word = run("fanuc-mill", "G01 E5.\nM30\n");
+  REQUIRE(word.errors.size() == 1);
+  CHECK(word.errors[0].message == "unknown word 'E' for fanuc-mill");
+}
