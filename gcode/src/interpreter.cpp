@@ -188,6 +188,8 @@ class Interpreter {
   // ---- output ----------------------------------------------------------
 
   Call& emit(CallKind kind) {
+    if (result_.calls.size() >= o_.max_calls)
+      stop(fmt::format("more than {} machine calls: the program is too long to expand", o_.max_calls));
     Call call;
     call.kind = kind;
     call.inch = inch_;

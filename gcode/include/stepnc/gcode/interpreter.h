@@ -81,6 +81,7 @@ struct Options {
   std::map<int, Tool> tools;      // tool number -> tool; an unknown T is an error when non-empty
   bool block_delete = false;      // honour `/`
   std::size_t max_blocks = 50'000'000;  // executed-block budget: loops end with an error, never hang
+  std::size_t max_calls = 100'000'000;  // call budget: a cycle of a billion pecks ends with an error
 };
 
 struct Result {
