@@ -71,8 +71,8 @@ void add_gcode_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<GcodeOptions>();
   CLI::App* command = app.add_subcommand("gcode", "Read an ISO 6983 (G-code) program into motion");
   command->add_option("FILE", options->file, "G-code program")->required()->check(CLI::ExistingFile);
-  command->add_option("-c,--controller", options->controller, "rs274ngc (default), fanuc-mill, fanuc-lathe")
-      ->check(CLI::IsMember({"rs274ngc", "fanuc-mill", "fanuc-lathe"}));
+  command->add_option("-c,--controller", options->controller, "rs274ngc (default), fanuc-mill, fanuc-lathe, siemens840d")
+      ->check(CLI::IsMember({"rs274ngc", "fanuc-mill", "fanuc-lathe", "siemens840d"}));
   command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")->check(CLI::ExistingFile);
   command->add_flag("--canonical", options->canonical, "Print LinuxCNC canonical machining calls, one a line");
   command->add_flag("--json", options->json, "Print calls, cycles and provenance as JSON");

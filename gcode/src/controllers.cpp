@@ -56,6 +56,17 @@ constexpr GCodeEntry fanuc_lathe_g[] = {
 constexpr MCodeEntry fanuc_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 7}, {6, 6},
                                   {7, 8}, {8, 8}, {9, 8}, {30, 4}, {98, 11}, {99, 11}};
 
+// Siemens 840D (ISO dialect core): G70/G71 are inch/metric, G4 takes F
+// (seconds); the rest by name (DIAMON, LIMS=, $TC_DP, cycles).
+constexpr GCodeEntry siemens_g[] = {
+    {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {170, 2, same},
+    {180, 2, same},  {190, 2, same},  {400, 7, same},  {410, 7, same},  {420, 7, same},  {530, 0, same},
+    {540, 12, same}, {550, 12, same}, {560, 12, same}, {570, 12, same}, {600, 13, 610}, {640, 13, same},
+    {700, 6, 200},   {710, 6, 210},   {900, 3, same},  {910, 3, same},  {940, 5, same},  {950, 5, same},
+    {960, 14, same}, {970, 14, same}};
+constexpr MCodeEntry siemens_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 7}, {6, 6},
+                                    {7, 8}, {8, 8}, {9, 8}, {17, 4}, {30, 4}};
+
 constexpr Controller controllers[] = {
     {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ@^",
      .bracket_expressions = true, .o_word_statements = true},
@@ -66,6 +77,8 @@ constexpr Controller controllers[] = {
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true, .diameter_x = true,
      .uw_incremental = true, .integer_is_least_increment = true, .dwell_p_milliseconds = true,
      .tool_word_changes_tool = true, .feed_per_rev_default = true},
+    {.name = "siemens840d", .g_codes = siemens_g, .m_codes = siemens_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ",
+     .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true},
 };
 
 }  // namespace

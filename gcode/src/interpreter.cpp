@@ -150,6 +150,7 @@ class Interpreter {
   MotionState state_;
   int prepped_tool_ = 0;
   double css_limit_ = 0;  // rev/min, G96 D
+  std::map<int, Tool> siemens_tools_;  // $TC_DP assignments of the program
   double tool_offset_ = 0;     // mm, Z
   std::array<double, axes> machine_{};  // machine position, mm (degrees for A-C)
   std::array<double, axes> g92_{};
@@ -552,6 +553,7 @@ class Interpreter {
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
+    named_words(block);
 
     // 2 feed mode, 3 F, 4 S, 5 T
     if (auto g = g_of(w, 5)) {
@@ -561,7 +563,10 @@ class Interpreter {
       state_.feed = 0;  // a feed-mode word clears the feed (LinuxCNC prints it for G94 and G95)
       if (!inverse_time_) emit(CallKind::feed_rate).v[0] = 0;
     }
-    if (w.has('F') && inverse_time_) {
+    const bool f_is_dwell = c_.dwell_f_seconds && has_g(w, 40);
+    if (f_is_dwell) {
+      // Siemens G4 F: the dwell in seconds, not a feed
+    } else if (w.has('F') && inverse_time_) {
       inverse_f_ = w.get('F');
     } else if (w.has('F')) {
       state_.feed = to_mm(w.get('F'));
@@ -631,7 +636,9 @@ class Interpreter {
     // 10 dwell
     if (has_g(w, 40)) {
       double seconds = 0;
-      if (c_.dwell_p_milliseconds && w.has('X') && !w.has('P')) {
+      if (f_is_dwell && w.has('F')) {
+        seconds = w.get('F');
+      } else if (c_.dwell_p_milliseconds && w.has('X') && !w.has('P')) {
         seconds = w.get('X');  // Fanuc G04 X: seconds; the X is no move
         w.value[slot('X')].reset();
       } else if (!w.has('P')) {
@@ -722,6 +729,43 @@ class Interpreter {
     for (const auto& [code, column] : w.m) {
       if (code == 0 || code == 1 || code == 60) emit(CallKind::program_stop).v[0] = code;
       if (code == 2 || code == 30) program_end();
+    }
+  }
+
+  // Siemens names (840D): diameter mode, the CSS clamp, tool data,
+  // cycles. CYCLE832 sets a tolerance and moves nothing.
+  void named_words(const Block& block) {
+    for (const NamedWord& n : block.named) {
+      auto value = [&] {
+        if (n.value == Word::none) stop(fmt::format("{} needs '=' and a value", n.name), n.column);
+        return eval(n.value, n.column);
+      };
+      if (n.name == "DIAMON" && !n.call) {
+        diameter_ = true;
+      } else if (n.name == "DIAMOF" && !n.call) {
+        diameter_ = false;
+      } else if (n.name == "LIMS" && !n.call) {
+        css_limit_ = value();
+      } else if (n.name.starts_with("$TC_DP") && !n.call) {
+        if (n.indices.size() != 2) stop(fmt::format("{} needs [tool, edge]", n.name), n.column);
+        const int tool = static_cast<int>(std::lround(eval(n.indices[0], n.column)));
+        const double v = value();
+        if (n.name == "$TC_DP3") siemens_tools_[tool].length = v;   // length 1
+        if (n.name == "$TC_DP6") siemens_tools_[tool].diameter = 2 * v;  // the radius
+        siemens_tools_[tool].number = tool;
+      } else if (n.call && n.name == "CYCLE832") {
+        CycleEvent event;
+        event.name = n.name;
+        event.line = block.line;
+        event.first_call = event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+        for (std::size_t i = 0; i < n.args.size(); ++i)
+          if (n.args[i] != Word::none) event.parameters.emplace_back(static_cast<char>('1' + i), eval(n.args[i], n.column));
+        result_.cycles.push_back(std::move(event));
+      } else if (n.call) {
+        unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
+      } else {
+        stop(fmt::format("unknown address {} for {}", n.name, c_.name), n.column);
+      }
     }
   }
 

@@ -76,6 +76,10 @@ class LineReader {
         number();
         continue;
       }
+      if (c_.named_addresses && (c == '$' || (std::isalpha(static_cast<unsigned char>(c)) && is_identifier_start()))) {
+        block.named.push_back(named_word(column));
+        continue;
+      }
       if (!std::isalpha(static_cast<unsigned char>(c)) && c_.letters.find(c) == std::string_view::npos)
         fail(fmt::format("unexpected character '{}'", peek()));
       if (c_.letters.find(c) == std::string_view::npos)
@@ -89,6 +93,10 @@ class LineReader {
         word.literal = number();
         block.n = word.literal;
         continue;  // N is kept on the block, not as a word
+      }
+      if (c_.named_addresses) {  // `X=10` as well as `X10`
+        skip();
+        if (peek() == '=') ++i_;
       }
       read_value(word);
       p_.words.push_back(word);
@@ -122,7 +130,7 @@ class LineReader {
       const char c = text_[i_];
       if (c == ' ' || c == '\t' || c == '\r') {
         ++i_;
-      } else if (c == '(') {
+      } else if (c == '(' && !c_.named_addresses) {  // Siemens comments start with ';' only
         const std::size_t close = text_.find(')', i_);
         if (close == std::string_view::npos) fail("comment not closed by ')'");
         comment_ = std::string(text_.substr(i_ + 1, close - i_ - 1));
@@ -175,6 +183,56 @@ class LineReader {
   std::uint32_t add(Expr e) {
     p_.exprs.push_back(e);
     return static_cast<std::uint32_t>(p_.exprs.size() - 1);
+  }
+
+  // Two letters or more before anything but a digit, sign, point or `=`
+  // digit: a Siemens name (`DIAMON`, `LIMS=`, `CYCLE81(`), not a word.
+  bool is_identifier_start() const {
+    std::size_t k = i_;
+    while (k < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[k])) || text_[k] == '_')) ++k;
+    if (k - i_ < 2) return false;
+    if (!std::isalpha(static_cast<unsigned char>(text_[i_ + 1])) && text_[i_ + 1] != '_') return false;
+    return true;
+  }
+
+  NamedWord named_word(std::uint32_t column) {
+    NamedWord w;
+    w.column = column;
+    if (peek() == '$') w.name += text_[i_++];
+    while (!at_end() && (std::isalnum(static_cast<unsigned char>(peek())) || peek() == '_')) w.name += upper(text_[i_++]);
+    if (w.name.empty() || w.name == "$") fail("expected a name after '$'");
+    skip();
+    if (peek() == '[') {
+      ++i_;
+      for (;;) {
+        w.indices.push_back(expression(0));
+        skip();
+        if (peek() == ',') { ++i_; continue; }
+        if (peek() == ']') { ++i_; break; }
+        fail("expected ',' or ']' in the index of a system variable");
+      }
+      skip();
+    }
+    if (peek() == '(') {
+      ++i_;
+      w.call = true;
+      for (;;) {
+        skip();
+        if (peek() == ',' || peek() == ')') {
+          w.args.push_back(Word::none);
+        } else {
+          w.args.push_back(expression(0));
+          skip();
+        }
+        if (peek() == ',') { ++i_; continue; }
+        if (peek() == ')') { ++i_; break; }
+        fail(fmt::format("expected ',' or ')' in the arguments of {}", w.name));
+      }
+    } else if (peek() == '=') {
+      ++i_;
+      w.value = real_value();
+    }
+    return w;
   }
 
   // Fanuc macro B: the right-hand side of `#1=#2+3` runs to the end of the block.
@@ -322,7 +380,7 @@ class LineReader {
     for (;;) {
       const std::size_t save = i_;
       skip();
-      if (peek() == ']' || at_end()) return lhs;
+      if (peek() == ']' || at_end() || peek() == ',' || peek() == ')') return lhs;
       const auto op = binary_op();
       if (!op) fail("expected an operator or ']'");
       if (op->second < min_precedence) {

@@ -1,8 +1,9 @@
-// Read-back of our own posters: every sample posted in RS274NGC and Fanuc
-// and read by the gcode front end (with the matching controller table)
-// gives the motion of the poster's own canonical listing, move by move
-// within 1 micrometre, feeds included. The Fanuc read-back is the first
-// check those programs get from something other than the poster.
+// Read-back of our own posters: every sample posted in RS274NGC, Fanuc and
+// Siemens 840D and read by the gcode front end (with the matching
+// controller table) gives the motion of the poster's own canonical
+// listing, move by move within 1 micrometre, feeds included. The Fanuc and
+// 840D read-backs are the first check those programs get from something
+// other than the poster.
 #include <catch2/catch.hpp>
 
 #include <fmt/format.h>
@@ -37,7 +38,10 @@ std::string read_back(const std::string& sample, post::Dialect dialect) {
   const std::string posted = post::print(generated.program, dialect).text;
   const std::string poster_canonical = post::print(generated.program, post::Dialect::canonical).text;
   const bool lathe = described.project.machine == post::MachineKind::turning;
-  const std::string name = dialect == post::Dialect::rs274ngc ? "rs274ngc" : lathe ? "fanuc-lathe" : "fanuc-mill";
+  const std::string name = dialect == post::Dialect::rs274ngc      ? "rs274ngc"
+                           : dialect == post::Dialect::siemens840d ? "siemens840d"
+                           : lathe                                 ? "fanuc-lathe"
+                                                                   : "fanuc-mill";
 
   // Zero tool lengths: the poster's canonical form is in program coordinates.
   const gcode::Result read = gcode::interpret_text(posted, *gcode::controller(name));
@@ -55,5 +59,13 @@ TEST_CASE("posted programs of every sample read back to the poster's canonical m
   // samples/milling/facing_toolpath.stp is left out: the posters refuse it
   // (rapid_movement, a retract plane above the security plane).
   for (const char* sample : {"milling/example1.stp", "milling/open_pocket_step.stp", "turning/shaft.stp"})
-    for (const auto dialect : {post::Dialect::rs274ngc, post::Dialect::fanuc}) CHECK(read_back(sample, dialect) == "");
+    for (const auto dialect : {post::Dialect::rs274ngc, post::Dialect::fanuc, post::Dialect::siemens840d}) {
+      const std::string outcome = read_back(sample, dialect);
+      // Not expanded yet: the 840D feature cycles (CYCLE71 face milling,
+      // POCKET1, CYCLE81-86) that Example 1 posts; refused by name.
+      if (std::string_view(sample) == "milling/example1.stp" && dialect == post::Dialect::siemens840d)
+        CHECK(outcome.find("error: unsupported: CYCLE71 (siemens840d cycle)") != std::string::npos);
+      else
+        CHECK(outcome == "");
+    }
 }

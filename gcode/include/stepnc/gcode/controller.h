@@ -42,12 +42,15 @@ struct Controller {
   bool integer_is_least_increment = false;  // `X20` without a point means 20 um (Fanuc)
   bool dwell_p_milliseconds = false;     // G04 P500 is 0.5 s (Fanuc); X is seconds
   bool tool_word_changes_tool = false;   // T0101: tool 01 with offset 01, changed at once (Fanuc lathe)
+  bool named_addresses = false;          // Siemens: LIMS=, DIAMON, $TC_DP..., CYCLE81(...)
+  bool dwell_f_seconds = false;          // Siemens G4 F: seconds
+  bool tool_offsets_on_machine = false;  // Siemens T/D offsets move the machine, not the program's coordinates
   bool feed_per_rev_default = false;     // power-on G99 (Fanuc lathe) rather than feed per minute
   char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
   double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
 };
 
-// The controllers we know: rs274ngc, fanuc-lathe, fanuc-mill.
+// The controllers we know: rs274ngc, fanuc-lathe, fanuc-mill, siemens840d.
 std::optional<Controller> controller(std::string_view name);
 
 // The controller's entry for a G code (times 10), if it has one.

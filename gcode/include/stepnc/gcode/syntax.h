@@ -74,6 +74,18 @@ struct OStatement {
   std::vector<std::uint32_t> args;   // call arguments, or the one condition / count / return value
 };
 
+// Siemens: a multi-letter address with a value (`LIMS=3000`, `CR=5`), a
+// bare keyword (`DIAMON`), a system variable (`$TC_DP3[1,1]=150`), or a
+// cycle call (`CYCLE81(10,0,2,-20)`, empty arguments allowed).
+struct NamedWord {
+  std::string name;                     // upper case
+  std::uint32_t column = 0;
+  std::vector<std::uint32_t> indices;   // `[1,1]` of a system variable
+  std::uint32_t value = Word::none;     // the expression after `=`, if any
+  std::vector<std::uint32_t> args;      // a call's arguments; Word::none where empty
+  bool call = false;
+};
+
 struct Block {
   std::uint32_t line = 0;
   bool block_delete = false;
@@ -82,6 +94,7 @@ struct Block {
   std::uint32_t words_begin = 0, words_end = 0;
   std::uint32_t assignments_begin = 0, assignments_end = 0;
   OStatement o;
+  std::vector<NamedWord> named;          // Siemens addresses, keywords, system variables, cycle calls
   std::string comment;                   // the last comment (RS274NGC: the one that counts for MSG)
   std::int32_t error = -1;               // index in Program::errors when the line did not read
 };
