@@ -7,11 +7,13 @@
 namespace stepnc::gcode::fuzz {
 
 void run_one(const std::uint8_t* data, std::size_t size) {
-  static const Controller rs274ngc = *controller("rs274ngc");
+  static const Controller tables[] = {*controller("rs274ngc"), *controller("fanuc-mill"), *controller("fanuc-lathe"),
+                                      *controller("siemens840d")};
+  const Controller& table = tables[size == 0 ? 0 : data[0] % 4];
   Options options;
   options.max_blocks = 20'000;
   options.max_calls = 200'000;
-  const Result result = interpret_text(std::string(reinterpret_cast<const char*>(data), size), rs274ngc, options);
+  const Result result = interpret_text(std::string(reinterpret_cast<const char*>(data), size), table, options);
   // Whatever ran must print; an error must carry a position.
   (void)canonical_text(result);
   for (const auto& e : result.errors)

@@ -1,5 +1,7 @@
-// One fuzz input through the reader and the interpreter (RS274NGC), with
-// a small block budget so loops end quickly. Shared by the libFuzzer
+// One fuzz input through the reader and the interpreter, with a small
+// block and call budget so loops end quickly. The first byte picks the
+// controller table (rs274ngc, fanuc-mill, fanuc-lathe, siemens840d); the
+// whole input is the program. Shared by the libFuzzer
 // target and the ctest replay of the saved corpus.
 #pragma once
 
