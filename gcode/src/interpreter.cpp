@@ -167,6 +167,7 @@ class Interpreter {
   std::vector<Frame> frames_;
   std::unordered_map<std::string, std::vector<std::uint32_t>> labels_;  // label -> blocks with that O-word
   std::unordered_map<std::string, std::uint32_t> subs_;
+  std::unordered_map<std::string, std::vector<std::uint32_t>> numbered_;  // N number -> blocks (GOTO)
 
   // The group-1 G word of the block, else its first word, else column 1.
   std::uint32_t blamed_column(const Block& block) const {
@@ -377,6 +378,8 @@ class Interpreter {
   // ---- O-words -----------------------------------------------------------
 
   void index_labels() {
+    for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
+      if (p_.blocks[i].n >= 0) numbered_[fmt::format("{}", p_.blocks[i].n)].push_back(i);
     for (std::uint32_t i = 0; i < p_.blocks.size(); ++i) {
       const OStatement& o = p_.blocks[i].o;
       if (o.kind == OKind::none) continue;
@@ -484,9 +487,31 @@ class Interpreter {
         const std::uint32_t end = next(block, pc, {OKind::endwhile, OKind::endrepeat, OKind::while_});
         return end;
       }
+      case OKind::goto_: return go_to(block, pc);
+      case OKind::if_goto: return condition(block) != 0 ? go_to(block, pc) : pc + 1;
+      case OKind::if_then:
+        if (condition(block) != 0) {
+          std::vector<double> values;
+          for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+            values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
+          for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+            assign(p_.assignments[i], values[i - block.assignments_begin]);
+        }
+        return pc + 1;
+      case OKind::while_do: return condition(block) != 0 ? pc + 1 : next(block, pc, {OKind::end_do}) + 1;
+      case OKind::end_do: return previous(block, pc, {OKind::while_do});
       case OKind::none: break;
     }
     return pc + 1;
+  }
+
+  // Fanuc GOTO n: the block numbered N n, searched forward first, then from the start.
+  std::uint32_t go_to(const Block& block, std::uint32_t pc) {
+    const auto it = numbered_.find(block.o.label);
+    if (it == numbered_.end() || it->second.empty()) stop(fmt::format("GOTO {}: no block N{}", block.o.label, block.o.label));
+    for (std::uint32_t i : it->second)
+      if (i > pc) return i;
+    return it->second.front();
   }
 
   // ---- blocks ------------------------------------------------------------

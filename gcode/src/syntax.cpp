@@ -66,6 +66,7 @@ class LineReader {
         block.assignments_end = static_cast<std::uint32_t>(p_.assignments.size());
         continue;
       }
+      if (c_.bare_assignment_expressions && fanuc_statement(block.o)) continue;
       if (c == 'O' && c_.o_word_statements) {
         ++i_;
         o_word(block.o);
@@ -102,6 +103,8 @@ class LineReader {
       p_.words.push_back(word);
       block.words_end = static_cast<std::uint32_t>(p_.words.size());
     }
+    if (block.o.kind == OKind::if_then && block.assignments_end == block.assignments_begin)
+      fail("IF [condition] THEN needs an assignment");
     if (block.o.kind != OKind::none && block.words_end != block.words_begin)
       fail("an O-word statement cannot share its block with other words", p_.words[block.words_begin].column);
     block.comment = std::move(comment_);
@@ -233,6 +236,58 @@ class LineReader {
       w.value = real_value();
     }
     return w;
+  }
+
+  bool keyword_at(std::string_view word) const {
+    if (text_.size() - i_ < word.size()) return false;
+    for (std::size_t k = 0; k < word.size(); ++k)
+      if (upper(text_[i_ + k]) != word[k]) return false;
+    return true;
+  }
+
+  // Fanuc macro B control: GOTO n, IF [c] GOTO n, IF [c] THEN #i=e,
+  // WHILE [c] DO m, END m. None of them starts like a word.
+  bool fanuc_statement(OStatement& o) {
+    auto target = [&] {
+      skip();
+      const double n = number();
+      return fmt::format("{}", n);
+    };
+    if (keyword_at("GOTO")) {
+      i_ += 4;
+      o.kind = OKind::goto_;
+      o.label = target();
+      return true;
+    }
+    if (keyword_at("END") && !keyword_at("ENDW")) {
+      i_ += 3;
+      o.kind = OKind::end_do;
+      o.label = "DO" + target();
+      return true;
+    }
+    const bool is_if = keyword_at("IF"), is_while = keyword_at("WHILE");
+    if (!is_if && !is_while) return false;
+    i_ += is_if ? 2 : 5;
+    skip();
+    if (peek() != '[') fail(fmt::format("{} needs a [condition]", is_if ? "IF" : "WHILE"));
+    o.args.push_back(real_value());
+    skip();
+    if (is_while) {
+      if (!keyword_at("DO")) fail("WHILE [condition] needs DO m");
+      i_ += 2;
+      o.kind = OKind::while_do;
+      o.label = "DO" + target();
+    } else if (keyword_at("GOTO")) {
+      i_ += 4;
+      o.kind = OKind::if_goto;
+      o.label = target();
+    } else if (keyword_at("THEN")) {
+      i_ += 4;
+      o.kind = OKind::if_then;  // the assignment follows and is read as the block's
+    } else {
+      fail("IF [condition] needs GOTO n or THEN");
+    }
+    return true;
   }
 
   // Fanuc macro B: the right-hand side of `#1=#2+3` runs to the end of the block.

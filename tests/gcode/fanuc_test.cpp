@@ -62,10 +62,30 @@ TEST_CASE("Fanuc: what the table does not run yet is refused by name", "[gcode][
   REQUIRE(lathe.unsupported());
   CHECK(lathe.errors[0].message == "unsupported: G71 multiple repetitive cycle");
   CHECK(lathe.errors[0].pos.line == 2);
-  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");
+  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");  // subprograms live in other files
   REQUIRE(sub.unsupported());
   CHECK(sub.errors[0].message == "unsupported: M98/M99 subprograms");
   const Result word = run("fanuc-mill", "G01 E5.\nM30\n");
   REQUIRE(word.errors.size() == 1);
   CHECK(word.errors[0].message == "unknown word 'E' for fanuc-mill");
+}
+
+TEST_CASE("Fanuc macro B: WHILE DO / END, IF GOTO, IF THEN, GOTO", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill",
+                       "O2000\nG21 G90 G94 F100.\n#1=0\n"
+                       "WHILE [#1 LT 3] DO1\nG01 X[#1*10]\n#1=#1+1\nEND1\n"
+                       "IF [#1 EQ 3] THEN #2=7.\n"
+                       "IF [#2 GT 5] GOTO 50\nG01 Y99.\n"
+                       "N50 G01 Y#2\nGOTO 70\nG01 Z99.\nN70 M30\n");
+  for (const auto& e : r.errors) INFO(e.to_string("macro.nc"));
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 4);
+  CHECK(feeds[0]->v[0] == 0);
+  CHECK(feeds[2]->v[0] == Approx(20));
+  CHECK(feeds[3]->v[1] == Approx(7));  // the Y99. and Z99. blocks were jumped over
+  CHECK(feeds[3]->line == 11);
+  const Result missing = run("fanuc-mill", "GOTO 10\nM30\n");
+  REQUIRE(missing.errors.size() == 1);
+  CHECK(missing.errors[0].message == "GOTO 10: no block N10");
 }

@@ -36,7 +36,7 @@ struct Controller {
   bool bracket_expressions = false;      // `[...]` expressions and `#` variables
   bool o_word_statements = false;        // RS274NGC `o100 while ...`
   bool o_program_number = false;         // `O1234` names a program (Fanuc)
-  bool bare_assignment_expressions = false;  // Fanuc macro B: `#1=#2+3` without brackets
+  bool bare_assignment_expressions = false;  // Fanuc macro B: `#1=#2+3` without brackets, IF/WHILE/GOTO
   bool diameter_x = false;               // X (and U) are diameters (Fanuc lathe)
   bool uw_incremental = false;           // U, W: incremental X, Z (Fanuc lathe, G-code system A)
   bool integer_is_least_increment = false;  // `X20` without a point means 20 um (Fanuc)

@@ -66,11 +66,13 @@ struct Assignment {
 enum class OKind : std::uint8_t {
   none, sub, endsub, call, return_, do_, while_, endwhile, if_, elseif, else_, endif, repeat, endrepeat, break_,
   continue_,
+  // Fanuc macro B: GOTO n, IF [c] GOTO n, IF [c] THEN #i=..., WHILE [c] DO m, END m
+  goto_, if_goto, if_then, while_do, end_do,
 };
 
 struct OStatement {
   OKind kind = OKind::none;
-  std::string label;                 // "<name>" lower case without spaces, or the number
+  std::string label;                 // "<name>" lower case without spaces, or the number (Fanuc: GOTO's N, "DOm")
   std::vector<std::uint32_t> args;   // call arguments, or the one condition / count / return value
 };
 
