@@ -53,7 +53,15 @@ struct Words {
   }
 };
 
+// What M70/M73 save and M72 restores (LinuxCNC 2.9 "modal state").
+struct SavedModes {
+  bool inch, incremental, arc_absolute, feed_per_rev, retract_r;
+  int plane;
+  MotionState state;
+};
+
 struct Frame {
+  std::optional<SavedModes> autorestore;  // M73 in this call: restored at its return
   std::uint32_t return_block = 0;
   std::array<double, 31> saved{};  // #1..#30 of the caller
   std::unordered_map<std::string, double> locals;
@@ -167,6 +175,7 @@ class Interpreter {
   std::vector<Frame> frames_;
   std::unordered_map<std::string, std::vector<std::uint32_t>> labels_;  // label -> blocks with that O-word
   std::unordered_map<std::string, std::uint32_t> subs_;
+  std::optional<SavedModes> saved_;  // M70
   std::unordered_map<std::string, std::vector<std::uint32_t>> numbered_;  // N number -> blocks (GOTO)
 
   // The group-1 G word of the block, else its first word, else column 1.
@@ -447,7 +456,9 @@ class Interpreter {
         const Frame& frame = frames_.back();
         for (int k = 1; k <= 30; ++k) params_[static_cast<std::size_t>(k)] = frame.saved[static_cast<std::size_t>(k)];
         const std::uint32_t back = frame.return_block;
+        const std::optional<SavedModes> restore = frame.autorestore;
         frames_.pop_back();
+        if (restore) restore_modes(*restore);
         return back;
       }
       case OKind::do_: return pc + 1;
@@ -656,7 +667,13 @@ class Interpreter {
         emit(CallKind::flood_off);
       }
       if (code >= 62 && code <= 68) unsupported(fmt::format("M{} digital and analog I/O", code), column);
-      if (code >= 70 && code <= 73) unsupported(fmt::format("M{} modal state save and restore", code), column);
+      if (code == 70) saved_ = save_modes();
+      if (code == 73) frames_.back().autorestore = save_modes();
+      if (code == 71 || code == 72) {
+        if (!saved_) stop(fmt::format("M{} with no state saved by M70", code), column);
+        if (code == 72) restore_modes(*saved_);
+        else saved_.reset();
+      }
     }
     // 10 dwell
     if (has_g(w, 40)) {
@@ -792,6 +809,42 @@ class Interpreter {
         stop(fmt::format("unknown address {} for {}", n.name, c_.name), n.column);
       }
     }
+  }
+
+  SavedModes save_modes() const {
+    return {inch_, incremental_, arc_absolute_, feed_per_rev_, retract_r_, plane_, state_};
+  }
+
+  // M72 and the return of an M73 call: the calls LinuxCNC prints for it
+  // are the units and plane when they differ, then the feed and the speed.
+  void restore_modes(const SavedModes& s) {
+    if (s.inch != inch_) {
+      inch_ = s.inch;
+      emit(CallKind::units);
+    }
+    if (s.plane != plane_) {
+      plane_ = s.plane;
+      emit(CallKind::plane).v[0] = plane_;
+    }
+    incremental_ = s.incremental;
+    arc_absolute_ = s.arc_absolute;
+    retract_r_ = s.retract_r;
+    feed_per_rev_ = s.feed_per_rev;
+    state_.feed_per_rev = s.state.feed_per_rev;
+    state_.feed = s.state.feed;
+    emit(CallKind::feed_rate).v[0] = state_.feed;
+    state_.spindle = s.state.spindle;
+    emit(CallKind::spindle_speed).v[0] = state_.spindle;
+    if (s.state.spindle_direction != state_.spindle_direction) {
+      state_.spindle_direction = s.state.spindle_direction;
+      emit(state_.spindle_direction > 0   ? CallKind::spindle_clockwise
+           : state_.spindle_direction < 0 ? CallKind::spindle_counterclockwise
+                                          : CallKind::spindle_stop);
+    }
+    if (s.state.mist != state_.mist) emit(s.state.mist ? CallKind::mist_on : CallKind::mist_off);
+    if (s.state.flood != state_.flood) emit(s.state.flood ? CallKind::flood_on : CallKind::flood_off);
+    state_.mist = s.state.mist;
+    state_.flood = s.state.flood;
   }
 
   void comment(const Block& block) {
