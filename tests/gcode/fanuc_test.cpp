@@ -3,6 +3,7 @@
 // variables with bare expressions, program numbers.
 #include <catch2/catch.hpp>
 
+#include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 
 using namespace stepnc::gcode;
@@ -10,12 +11,6 @@ using namespace stepnc::gcode;
 namespace {
 Result run(const char* controller_name, const std::string& text) {
   return interpret_text(text, *controller(controller_name));
-}
-std::vector<const Call*> of(const Result& r, CallKind kind) {
-  std::vector<const Call*> out;
-  for (const auto& c : r.calls)
-    if (c.kind == kind) out.push_back(&c);
-  return out;
 }
 }  // namespace
 

@@ -3,6 +3,7 @@
 // same blocks.
 #include <catch2/catch.hpp>
 
+#include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
 #include "stepnc/gcode/tool_list.h"
@@ -13,13 +14,6 @@ namespace {
 
 Result run(const std::string& text, Options options = {}) {
   return interpret_text(text, *controller("rs274ngc"), options);
-}
-
-std::vector<const Call*> of(const Result& r, CallKind kind) {
-  std::vector<const Call*> out;
-  for (const auto& c : r.calls)
-    if (c.kind == kind) out.push_back(&c);
-  return out;
 }
 
 }  // namespace

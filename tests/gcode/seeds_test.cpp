@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/tool_list.h"
 #include "test_files.h"
@@ -15,13 +16,6 @@ using namespace stepnc::gcode;
 namespace {
 
 std::string sample(const char* name) { return stepnc_test::read_file(fs::path(STEPNC_SOURCE_DIR) / "samples/gcode" / name); }
-
-std::vector<const Call*> of(const Result& r, CallKind kind) {
-  std::vector<const Call*> out;
-  for (const auto& c : r.calls)
-    if (c.kind == kind) out.push_back(&c);
-  return out;
-}
 
 }  // namespace
 
