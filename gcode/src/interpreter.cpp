@@ -876,7 +876,7 @@ class Interpreter {
       case 680: unsupported("G68 coordinate rotation", column);
       case 7000: case 7100: case 7200: case 7300: case 7400: case 7500: case 7600:
         unsupported(fmt::format("G{} {} cycle", code / 100, c_.diameter_x ? "multiple repetitive" : "fine boring"), column);
-      case 9000: case 9200: case 9400: unsupported(fmt::format("G{} single cycle", code / 100), column);
+      case 9200: unsupported("G92 threading cycle", column);
       default: break;
     }
   }
@@ -947,6 +947,7 @@ class Interpreter {
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
       case 730: case 810: case 820: case 830: case 850: case 860: case 890: cycle(w, block); return;
+      case 9000: case 9400: single_cycle(w, block); return;
       default: unsupported(fmt::format("G{:g} motion", motion_ / 10.0));
     }
   }
@@ -1130,6 +1131,51 @@ class Interpreter {
     result_.cycles.push_back(std::move(event));
   }
   bool cycle_r_set_ = false, cycle_z_set_ = false;
+  bool single_cycle_set_ = false;
+  std::array<double, 2> single_cycle_end_{};  // X (radius) and Z of the last G90/G94
+
+  // ---- Fanuc lathe single cycles (0i-TF, G-code system A) ----------------
+  // G90 (outer/inner diameter): rapid in X, feed along Z, feed out in X,
+  // rapid back in Z. G94 (end face): rapid in Z, feed along X, feed back in
+  // Z, rapid back in X. Both return to where they started; modal, so a
+  // block with only a new X (or Z) repeats the cycle.
+  void single_cycle(const Words& w, const Block& block) {
+    const bool face = motion_ == 9400;
+    if (w.has('R')) unsupported(fmt::format("G{} with a taper R", face ? 94 : 90), w.col('R'));
+    if (state_.feed <= 0) stop(fmt::format("G{} with zero feed rate", face ? 94 : 90));
+    const auto start = program_position();
+    auto end = target(w, false);
+    // The cycle's X and Z are modal: a block giving only one keeps the other.
+    if (single_cycle_set_ && g_of(w, 1) == std::nullopt) {
+      if (!w.has('X') && !w.has('U')) end[0] = single_cycle_end_[0];
+      if (!w.has('Z') && !w.has('W')) end[2] = single_cycle_end_[1];
+    }
+    single_cycle_end_ = {end[0], end[2]};
+    single_cycle_set_ = true;
+    CycleEvent event;
+    event.name = face ? "G94" : "G90";
+    event.line = block.line;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    event.parameters = {{'X', end[0] * 2}, {'Z', end[2]}, {'F', state_.feed}};
+    auto at = [&](double x, double z) {
+      auto p = start;
+      p[0] = x, p[2] = z;
+      return p;
+    };
+    if (face) {
+      move(CallKind::rapid, at(start[0], end[2]));
+      move(CallKind::linear, at(end[0], end[2]));
+      move(CallKind::linear, at(end[0], start[2]));
+      move(CallKind::rapid, at(start[0], start[2]));
+    } else {
+      move(CallKind::rapid, at(end[0], start[2]));
+      move(CallKind::linear, at(end[0], end[2]));
+      move(CallKind::linear, at(start[0], end[2]));
+      move(CallKind::rapid, at(start[0], start[2]));
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
 
   // ---- coordinate systems --------------------------------------------------
 

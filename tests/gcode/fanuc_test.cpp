@@ -3,6 +3,8 @@
 // variables with bare expressions, program numbers.
 #include <catch2/catch.hpp>
 
+#include <array>
+
 #include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 
@@ -83,4 +85,25 @@ TEST_CASE("Fanuc macro B: WHILE DO / END, IF GOTO, IF THEN, GOTO", "[gcode][fanu
   const Result missing = run("fanuc-mill", "GOTO 10\nM30\n");
   REQUIRE(missing.errors.size() == 1);
   CHECK(missing.errors[0].message == "GOTO 10: no block N10");
+}
+
+TEST_CASE("Fanuc lathe G90 and G94 single cycles expand to four moves and stay modal", "[gcode][fanuc]") {
+  const Result r = run("fanuc-lathe", "G99 F0.2\nG00 X62. Z2.\nG90 X56. Z-30.\nX52.\nG00 X62. Z2.\nG94 X20. Z-2.\nM30\n");
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 3);
+  CHECK(r.cycles[0].name == "G90");
+  CHECK(r.cycles[1].name == "G90");
+  CHECK(r.cycles[2].name == "G94");
+  // the second G90 pass: rapid to radius 26, feed to Z-30, feed out to radius 31, rapid back to Z2
+  std::vector<std::array<double, 2>> xz;
+  for (std::uint32_t i = r.cycles[1].first_call; i < r.cycles[1].end_call; ++i)
+    xz.push_back({r.calls[i].v[0], r.calls[i].v[2]});
+  const std::vector<std::array<double, 2>> expected = {{26, 2}, {26, -30}, {31, -30}, {31, 2}};
+  CHECK(xz == expected);
+  CHECK(r.calls[r.cycles[1].first_call].kind == CallKind::rapid);
+  CHECK(r.calls[r.cycles[1].first_call + 1].kind == CallKind::linear);
+  // G94: rapid to Z-2, feed to radius 10, feed back to Z2, rapid out
+  CHECK(r.calls[r.cycles[2].first_call].v[2] == -2);
+  CHECK(r.calls[r.cycles[2].first_call + 1].v[0] == 10);
+  CHECK(r.calls[r.cycles[2].end_call - 1].v[0] == 31);
 }
