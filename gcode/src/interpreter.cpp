@@ -803,12 +803,77 @@ class Interpreter {
         for (std::size_t i = 0; i < n.args.size(); ++i)
           if (n.args[i] != Word::none) event.parameters.emplace_back(static_cast<char>('1' + i), eval(n.args[i], n.column));
         result_.cycles.push_back(std::move(event));
+      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE85" || n.name == "CYCLE86")) {
+        siemens_drilling(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
       } else {
         stop(fmt::format("unknown address {} for {}", n.name, c_.name), n.column);
       }
     }
+  }
+
+  // 840D drilling cycles at the current XY (Siemens "Cycles" manual):
+  // RTP retract plane, RFP reference plane, SDIS safety distance, DP depth
+  // (or DPR below RFP). G0 to RFP + SDIS, the body, G0 to RTP.
+  void siemens_drilling(const NamedWord& n, const Block& block) {
+    std::vector<std::optional<double>> a;
+    for (std::uint32_t arg : n.args) a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
+    a.resize(std::max<std::size_t>(a.size(), 11));
+    auto need = [&](std::size_t i, const char* name) {
+      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
+      return *a[i];
+    };
+    if (plane_ != 17) unsupported(fmt::format("{} outside G17", n.name), n.column);
+    const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
+    const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
+    if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
+    if (n.name != "CYCLE85" && state_.feed <= 0) stop(fmt::format("{} with zero feed rate", n.name), n.column);
+    CycleEvent event;
+    event.name = n.name;
+    event.line = block.line;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    for (std::size_t i = 0; i < n.args.size(); ++i)
+      if (a[i]) event.parameters.emplace_back(static_cast<char>('1' + i), *a[i]);
+    auto at = [&](double z) {
+      auto p = program_position();
+      p[2] = z;
+      return p;
+    };
+    const double dwell = a[5].value_or(0);
+    move(CallKind::rapid, at(rfp + sdis));
+    if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
+      const double feed = state_.feed;
+      state_.feed = to_mm(need(6, "FFR"));
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+      move(CallKind::linear, at(dp));
+      if (dwell > 0) emit(CallKind::dwell).v[0] = dwell;
+      state_.feed = to_mm(a[7].value_or(*a[6]));
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+      move(CallKind::linear, at(rfp + sdis));
+      state_.feed = feed;
+      emit(CallKind::feed_rate).v[0] = feed;
+    } else {
+      move(CallKind::linear, at(dp));
+      if (n.name != "CYCLE81" && dwell > 0) emit(CallKind::dwell).v[0] = dwell;
+    }
+    std::int8_t restart = 0;
+    if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
+      if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
+        unsupported("CYCLE86 with a lift-off (RPA, RPO)", n.column);
+      const int sdir = static_cast<int>(need(6, "SDIR"));
+      if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
+      restart = sdir == 3 ? 1 : -1;
+      state_.spindle_direction = 0;
+      emit(CallKind::spindle_stop);
+    }
+    move(CallKind::rapid, at(rtp));
+    if (restart) {
+      state_.spindle_direction = restart;
+      emit(restart > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
   }
 
   SavedModes save_modes() const {

@@ -47,3 +47,28 @@ TEST_CASE("Siemens 840D: feature cycles and unknown names are refused with their
   CHECK(unknown.errors[0].message == "unknown address FOO for siemens840d");
   CHECK(unknown.errors[0].pos.column == 5);
 }
+
+TEST_CASE("Siemens 840D drilling cycles CYCLE81/82/86 expand at the current position", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G17 G71 G90 G94 F150\nN20 S800 M3\nN30 G0 X20 Y60 Z30\nN40 Z10\nN50 CYCLE81(10,0,2,-47.643)\n"
+      "N60 G0 X40\nN70 CYCLE82(10,0,2,,5,0.5)\nN80 G0 X60\nN90 CYCLE86(10,0,2,-20,,0,3,0,0,0)\nN100 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("d.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 3);
+  CHECK(r.cycles[0].name == "CYCLE81");
+  std::vector<double> z;
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i) z.push_back(r.calls[i].v[2]);
+  CHECK(z == std::vector<double>{2, -47.643, 10});
+  // CYCLE82 with DPR 5: depth -5, dwell 0.5 s
+  const auto& c82 = r.cycles[1];
+  CHECK(r.calls[c82.first_call + 1].v[2] == -5);
+  CHECK(r.calls[c82.first_call + 2].kind == CallKind::dwell);
+  CHECK(r.calls[c82.first_call + 2].v[0] == 0.5);
+  // CYCLE86: bore, stop the spindle, rapid out, restart clockwise (SDIR 3)
+  const auto& c86 = r.cycles[2];
+  CHECK(r.calls[c86.first_call + 2].kind == CallKind::spindle_stop);
+  CHECK(r.calls[c86.end_call - 1].kind == CallKind::spindle_clockwise);
+  CHECK(r.calls[c86.end_call - 2].v[2] == 10);
+  CHECK(r.calls[c86.end_call - 2].v[0] == 60);
+}
