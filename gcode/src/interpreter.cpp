@@ -32,6 +32,13 @@ struct Stop {
   throw Stop{column, fmt::format("unsupported: {}", feature)};
 }
 
+// A number used as a code, tool, count or index: refused when it is too
+// large for one (a fuzzed `T1e300` must not reach an integer conversion).
+int to_int(double value, std::uint32_t column = 0) {
+  if (!(std::abs(value) < 1e9)) stop(fmt::format("{} is out of range here", value), column);
+  return static_cast<int>(std::lround(value));
+}
+
 // The words of one block, evaluated.
 // Slot of an address: A-Z, then LinuxCNC's polar `@` (distance) and `^` (angle).
 constexpr int slot(char c) { return c == '@' ? 26 : c == '^' ? 27 : c - 'A'; }
@@ -185,7 +192,7 @@ class Interpreter {
       const Word& w = p_.words[i];
       if (!first) first = w.column;
       if (w.letter == 'G' && w.expr == Word::none) {
-        const auto entry = g_entry(c_, static_cast<int>(std::lround(w.literal * 10)));
+        const auto entry = g_entry(c_, (std::abs(w.literal) < 1e5 ? static_cast<int>(std::lround(w.literal * 10)) : -1));
         if (entry && meaning_group(entry->meaning) == 1) return w.column;
       }
     }
@@ -529,8 +536,8 @@ class Interpreter {
 
   Words evaluate(const Block& block) {
     Words w;
-    std::array<int, 16> g_groups{};
-    std::array<int, 16> m_groups{};
+    std::array<int, 256> g_groups{};  // by the controller's group numbers (std::uint8_t)
+    std::array<int, 256> m_groups{};
     for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
       const Word& word = p_.words[i];
       double value = word.expr == Word::none ? word.literal : eval(word.expr, word.column);
@@ -541,7 +548,7 @@ class Interpreter {
           std::string_view("XYZUWIJKRQ").find(c) != std::string_view::npos)
         value *= inch_ ? 0.0001 : 0.001;
       if (c == 'G') {
-        const int code = static_cast<int>(std::lround(value * 10));
+        const int code = to_int(value * 10, word.column);
         if (std::abs(value * 10 - code) > 1e-6) stop(fmt::format("G{} is not a G code", value), word.column);
         const auto entry = g_entry(c_, code);
         if (!entry) stop(fmt::format("unknown G code G{} for {}", value, c_.name), word.column);
@@ -549,7 +556,7 @@ class Interpreter {
           stop(fmt::format("two G codes of modal group {} in one block", entry->group), word.column);
         w.g.emplace_back(entry->meaning, word.column);
       } else if (c == 'M') {
-        const int code = static_cast<int>(std::lround(value));
+        const int code = to_int(value, word.column);
         const auto group = m_group(c_, code);
         if (!group) {
           if (code >= 100 && code <= 199) unsupported(fmt::format("user M code M{}", code), word.column);
@@ -617,7 +624,7 @@ class Interpreter {
       emit(CallKind::spindle_speed).v[0] = state_.spindle;
     }
     if (w.has('T')) {
-      const int tool = static_cast<int>(std::lround(w.get('T')));
+      const int tool = to_int(w.get('T'), w.col('T'));
       if (tool < 0) stop("negative tool number", w.col('T'));
       if (!o_.tools.empty() && tool != 0 && !o_.tools.contains(c_.tool_word_changes_tool && tool >= 100 ? tool / 100 : tool))
         stop(fmt::format("tool {} is not in the tool table", tool), w.col('T'));
@@ -642,7 +649,7 @@ class Interpreter {
         emit(CallKind::change_tool).v[0] = prepped_tool_;
       } else if (code == 61) {
         if (!w.has('Q')) stop("M61 needs Q", column);
-        state_.tool = prepped_tool_ = static_cast<int>(std::lround(w.get('Q')));
+        state_.tool = prepped_tool_ = to_int(w.get('Q'), w.col('Q'));
         emit(CallKind::change_tool).v[0] = state_.tool;
         result_.calls.back().text = "number";
       }
@@ -706,7 +713,7 @@ class Interpreter {
       double length = 0;
       if (g->first == 430) {
         int tool = state_.tool;
-        if (w.has('H')) tool = static_cast<int>(std::lround(w.get('H')));
+        if (w.has('H')) tool = to_int(w.get('H'), w.col('H'));
         if (tool != 0) {
           const auto it = o_.tools.find(tool);
           if (it == o_.tools.end()) {
@@ -790,7 +797,7 @@ class Interpreter {
         css_limit_ = value();
       } else if (n.name.starts_with("$TC_DP") && !n.call) {
         if (n.indices.size() != 2) stop(fmt::format("{} needs [tool, edge]", n.name), n.column);
-        const int tool = static_cast<int>(std::lround(eval(n.indices[0], n.column)));
+        const int tool = to_int(eval(n.indices[0], n.column), n.column);
         const double v = value();
         if (n.name == "$TC_DP3") siemens_tools_[tool].length = v;   // length 1
         if (n.name == "$TC_DP6") siemens_tools_[tool].diameter = 2 * v;  // the radius
@@ -861,7 +868,7 @@ class Interpreter {
     if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
       if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
         unsupported("CYCLE86 with a lift-off (RPA, RPO)", n.column);
-      const int sdir = static_cast<int>(need(6, "SDIR"));
+      const int sdir = to_int(need(6, "SDIR"), n.column);
       if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
       restart = sdir == 3 ? 1 : -1;
       state_.spindle_direction = 0;
@@ -1075,7 +1082,7 @@ class Interpreter {
     }
     int turns = 1;
     if (w.has('P')) {
-      turns = static_cast<int>(std::lround(w.get('P')));
+      turns = to_int(w.get('P'), w.col('P'));
       if (turns < 1 || std::abs(w.get('P') - turns) > 1e-9) stop("P of an arc must be a positive integer", w.col('P'));
     }
     if (inverse_time_) {
@@ -1246,10 +1253,10 @@ class Interpreter {
 
   void g10(const Words& w, std::uint32_t column) {
     if (!w.has('L')) stop("G10 needs L", column);
-    const int l = static_cast<int>(std::lround(w.get('L')));
+    const int l = to_int(w.get('L'), w.col('L'));
     if (l != 2 && l != 20) unsupported(fmt::format("G10 L{} (tool table)", l), column);
     if (!w.has('P')) stop("G10 needs P", column);
-    int system = static_cast<int>(std::lround(w.get('P')));
+    int system = to_int(w.get('P'), w.col('P'));
     if (system == 0) system = coord_system_;
     if (system < 1 || system > 9) stop(fmt::format("G10 P{}: coordinate system out of 1..9", w.get('P')), w.col('P'));
     if (w.has('R') && w.get('R') != 0) unsupported("G10 R coordinate system rotation", w.col('R'));
