@@ -76,8 +76,9 @@ int main() {
   double theirs = -1;
   if (std::system("command -v rs274 > /dev/null 2>&1") == 0) {
     const double before = children_cpu_seconds();
-    const std::string command =
-        fmt::format("rs274 -g -t '{}' '{}' /dev/null < /dev/null > /dev/null 2>&1", table.string(), program.string());
+    // its own HOME: rs274 truncates $HOME/.tool.mmap, which concurrent runs share
+    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' /dev/null < /dev/null > /dev/null 2>&1",
+                                            dir.string(), table.string(), program.string());
     if (std::system(command.c_str()) == 0) theirs = children_cpu_seconds() - before;
   }
   const auto size = fs::file_size(program);

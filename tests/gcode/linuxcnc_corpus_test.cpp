@@ -83,8 +83,10 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   std::vector<std::string> disagreements;
   for (const fs::path& program : programs) {
     fs::remove(listing);
-    const std::string command = fmt::format("rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1", table.string(),
-                                            program.string(), listing.string());
+    // rs274 keeps its tool data in $HOME/.tool.mmap, truncated at start: a
+    // HOME of our own keeps concurrent runs (other tests) apart.
+    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1",
+                                            dir.string(), table.string(), program.string(), listing.string());
     if (std::system(command.c_str()) != 0) {
       ++refused_by_rs274;
       continue;
