@@ -394,8 +394,6 @@ class Interpreter {
   // ---- O-words -----------------------------------------------------------
 
   void index_labels() {
-    for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
-      if (p_.blocks[i].n >= 0) numbered_[fmt::format("{}", p_.blocks[i].n)].push_back(i);
     for (std::uint32_t i = 0; i < p_.blocks.size(); ++i) {
       const OStatement& o = p_.blocks[i].o;
       if (o.kind == OKind::none) continue;
@@ -525,6 +523,9 @@ class Interpreter {
 
   // Fanuc GOTO n: the block numbered N n, searched forward first, then from the start.
   std::uint32_t go_to(const Block& block, std::uint32_t pc) {
+    if (numbered_.empty())  // built at the first GOTO: most programs have none
+      for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
+        if (p_.blocks[i].n >= 0) numbered_[fmt::format("{}", p_.blocks[i].n)].push_back(i);
     const auto it = numbered_.find(block.o.label);
     if (it == numbered_.end() || it->second.empty()) stop(fmt::format("GOTO {}: no block N{}", block.o.label, block.o.label));
     for (std::uint32_t i : it->second)
