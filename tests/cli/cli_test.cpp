@@ -174,3 +174,32 @@ TEST_CASE("stepnc plot draws an SVG", "[cli]") {
   CHECK_THAT(text, Catch::Contains("<polyline"));
   fs::remove(svg);
 }
+
+TEST_CASE("stepnc gcode: canonical, JSON and plot output; exit codes 1, 2, 3; no partial file", "[cli]") {
+  const fs::path program = write_temp("stepnc_cli_gcode.ngc", "G21 F100\nG0 X1 Y2 Z3\nG1 X4\nM2\n");
+  const Run canonical = stepnc("gcode " + program.string() + " --canonical");
+  CHECK(canonical.exit_code == 0);
+  CHECK_THAT(canonical.out, Catch::Contains("N..... STRAIGHT_FEED(4.0000, 2.0000, 3.0000, 0.0000, 0.0000, 0.0000)"));
+  const Run json = stepnc("gcode " + program.string() + " --json");
+  CHECK(json.exit_code == 0);
+  CHECK_THAT(json.out, Catch::Contains("\"kind\": \"linear\", \"line\": 3"));
+  const fs::path svg = fs::temp_directory_path() / "stepnc_cli_gcode.svg";
+  fs::remove(svg);
+  CHECK(stepnc("gcode " + program.string() + " --plot " + svg.string()).exit_code == 0);
+  CHECK(fs::file_size(svg) > 100);
+  const Run lathe = stepnc("gcode " + sample("gcode/seed002_fig15f.nc") + " -c fanuc-lathe --canonical");
+  CHECK(lathe.exit_code == 0);
+
+  const fs::path bad = write_temp("stepnc_cli_gcode_bad.ngc", "G21 F100\nG1 X1 Q\nM2\n");
+  const fs::path out = fs::temp_directory_path() / "stepnc_cli_gcode_bad.txt";
+  fs::remove(out);
+  const Run invalid = stepnc("gcode " + bad.string() + " --canonical -o " + out.string());
+  CHECK(invalid.exit_code == 1);
+  CHECK_THAT(invalid.out, Catch::Contains("stepnc_cli_gcode_bad.ngc:2:8: error: expected a number"));
+  CHECK_FALSE(fs::exists(out));
+  const fs::path comp = write_temp("stepnc_cli_gcode_comp.ngc", "G21 F100\nG41 D1\nM2\n");
+  const Run refused = stepnc("gcode " + comp.string());
+  CHECK(refused.exit_code == 3);
+  CHECK_THAT(refused.out, Catch::Contains("2:1: error: unsupported: G41/G42 cutter radius compensation"));
+  CHECK(stepnc("gcode " + program.string() + " -c heidenhain").exit_code == 2);
+}

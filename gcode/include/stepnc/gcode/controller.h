@@ -1,0 +1,62 @@
+// Controllers as data: what one interpreter needs to know about a dialect.
+// A dialect is a row of tables, never a copy of the interpreter.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace stepnc::gcode {
+
+// Meanings that RS274NGC has no G code for.
+inline constexpr std::uint16_t meaning_spindle_clamp_or_set = 5000;  // Fanuc lathe G50: S clamps, X/Z set coordinates
+
+// A G code of the controller (times 10: G92.1 is 921), its modal group
+// (the controller's own numbering, for "two codes of one group"; 0 =
+// non-modal), and what it means: the RS274NGC code (times 10) the
+// interpreter runs for it, or one of the meanings above.
+struct GCodeEntry {
+  std::uint16_t code;
+  std::uint8_t group;
+  std::uint16_t meaning;
+};
+
+// An M code and its modal group (4 stop, 6 tool change, 7 spindle, 8 coolant).
+struct MCodeEntry {
+  std::uint16_t code;
+  std::uint8_t group;
+};
+
+struct Controller {
+  std::string_view name;
+  std::span<const GCodeEntry> g_codes;
+  std::span<const MCodeEntry> m_codes;
+  std::string_view letters;              // address letters a block may hold
+  bool bracket_expressions = false;      // `[...]` expressions and `#` variables
+  bool o_word_statements = false;        // RS274NGC `o100 while ...`
+  bool o_program_number = false;         // `O1234` names a program (Fanuc)
+  bool bare_assignment_expressions = false;  // Fanuc macro B: `#1=#2+3` without brackets, IF/WHILE/GOTO
+  bool diameter_x = false;               // X (and U) are diameters (Fanuc lathe)
+  bool uw_incremental = false;           // U, W: incremental X, Z (Fanuc lathe, G-code system A)
+  bool integer_is_least_increment = false;  // `X20` without a point means 20 um (Fanuc)
+  bool dwell_p_milliseconds = false;     // G04 P500 is 0.5 s (Fanuc); X is seconds
+  bool tool_word_changes_tool = false;   // T0101: tool 01 with offset 01, changed at once (Fanuc lathe)
+  bool named_addresses = false;          // Siemens: LIMS=, DIAMON, $TC_DP..., CYCLE81(...)
+  bool dwell_f_seconds = false;          // Siemens G4 F: seconds
+  bool tool_offsets_on_machine = false;  // Siemens T/D offsets move the machine, not the program's coordinates
+  bool feed_per_rev_default = false;     // power-on G99 (Fanuc lathe) rather than feed per minute
+  char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
+  double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
+};
+
+// The controllers we know: rs274ngc, fanuc-lathe, fanuc-mill, siemens840d.
+std::optional<Controller> controller(std::string_view name);
+
+// The controller's entry for a G code (times 10), if it has one.
+std::optional<GCodeEntry> g_entry(const Controller& controller, int code10);
+std::optional<std::uint8_t> m_group(const Controller& controller, int code);
+// The RS274NGC modal group of a meaning (what the interpreter sequences by).
+std::optional<std::uint8_t> meaning_group(int meaning10);
+
+}  // namespace stepnc::gcode

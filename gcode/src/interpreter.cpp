@@ -1,0 +1,1399 @@
+// The modal interpreter. Execution order within a block follows RS274NGC 3
+// table 8 (LinuxCNC 2.9's "G-code order of execution"); canned cycles are
+// expanded as LinuxCNC's interpreter expands them.
+#include "stepnc/gcode/interpreter.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+namespace stepnc::gcode {
+
+bool Result::unsupported() const { return !errors.empty() && errors.front().message.starts_with("unsupported: "); }
+
+namespace {
+
+constexpr double inch_mm = 25.4;
+constexpr double deg = std::numbers::pi / 180.0;
+constexpr int axes = 6;  // X Y Z A B C
+constexpr std::string_view axis_letters = "XYZABC";
+
+struct Stop {
+  std::uint32_t column;
+  std::string message;
+};
+
+// Column 0: the block's motion word (or its first word) is blamed.
+[[noreturn]] void stop(std::string message, std::uint32_t column = 0) { throw Stop{column, std::move(message)}; }
+[[noreturn]] void unsupported(std::string_view feature, std::uint32_t column = 0) {
+  throw Stop{column, fmt::format("unsupported: {}", feature)};
+}
+
+// A number used as a code, tool, count or index: refused when it is too
+// large for one (a fuzzed `T1e300` must not reach an integer conversion).
+int to_int(double value, std::uint32_t column = 0) {
+  if (!(std::abs(value) < 1e9)) stop(fmt::format("{} is out of range here", value), column);
+  return static_cast<int>(std::lround(value));
+}
+
+// The words of one block, evaluated.
+// Slot of an address: A-Z, then LinuxCNC's polar `@` (distance) and `^` (angle).
+constexpr int slot(char c) { return c == '@' ? 26 : c == '^' ? 27 : c - 'A'; }
+
+struct Words {
+  std::array<std::optional<double>, 28> value{};
+  std::array<std::uint32_t, 28> column{};
+  std::vector<std::pair<int, std::uint32_t>> g;  // code times 10, column
+  std::vector<std::pair<int, std::uint32_t>> m;
+  std::optional<double> repeats;  // the repeat word as written (Fanuc K is also an arc length)
+  bool has(char c) const { return value[slot(c)].has_value(); }
+  double get(char c) const { return *value[slot(c)]; }
+  std::uint32_t col(char c) const { return column[slot(c)]; }
+  bool polar() const { return has('@') || has('^'); }
+  bool any_axis() const {
+    for (char c : axis_letters)
+      if (has(c)) return true;
+    return polar() || has('U') || has('W');
+  }
+};
+
+// What M70/M73 save and M72 restores (LinuxCNC 2.9 "modal state").
+struct SavedModes {
+  bool inch, incremental, arc_absolute, feed_per_rev, retract_r;
+  int plane;
+  MotionState state;
+};
+
+struct Frame {
+  std::optional<SavedModes> autorestore;  // M73 in this call: restored at its return
+  std::uint32_t return_block = 0;
+  std::array<double, 31> saved{};  // #1..#30 of the caller
+  std::unordered_map<std::string, double> locals;
+  std::unordered_map<std::string, double> repeat_left;  // label -> iterations left
+};
+
+class Interpreter {
+ public:
+  Interpreter(const Program& program, const Controller& controller, const Options& options)
+      : p_(program), c_(controller), o_(options) {
+    params_.assign(5602, 0.0);
+    diameter_ = controller.diameter_x;
+    if (controller.diameter_x) plane_ = 18;  // a lathe works in XZ
+    feed_per_rev_ = state_.feed_per_rev = controller.feed_per_rev_default;
+    params_[5220] = 1;  // G54
+    frames_.emplace_back();
+    index_labels();
+  }
+
+  Result run() {
+    std::uint32_t pc = 0;
+    bool percent_start = false;
+    bool first = true;
+    while (true) {
+      if (pc >= p_.blocks.size()) {
+        if (ended_) break;
+        error_at(p_.blocks.empty() ? 1 : p_.blocks.back().line, 1, "file ended with no percent sign or program end (M2, M30)");
+        break;
+      }
+      const Block& block = p_.blocks[pc];
+      block_ = pc;
+      line_ = block.line;
+      if (++result_.blocks_executed > o_.max_blocks) {
+        error_at(block.line, 1, fmt::format("more than {} blocks executed: endless loop?", o_.max_blocks));
+        break;
+      }
+      try {
+        if (block.percent) {
+          if (first) {
+            percent_start = true;
+            first = false;
+            ++pc;
+            continue;
+          }
+          if (percent_start || frames_.size() == 1) {
+            ended_ = true;
+            break;
+          }
+        }
+        first = false;
+        if (block.error >= 0) {
+          result_.errors.push_back(p_.errors[static_cast<std::size_t>(block.error)]);
+          break;
+        }
+        if (block.block_delete && o_.block_delete) {
+          ++pc;
+          continue;
+        }
+        if (block.o.kind != OKind::none) {
+          pc = o_statement(block, pc);
+        } else {
+          execute(block);
+          ++pc;
+        }
+        if (ended_) break;
+      } catch (const Stop& s) {
+        error_at(block.line, s.column ? s.column : blamed_column(block), s.message);
+        break;
+      }
+    }
+    return std::move(result_);
+  }
+
+ private:
+  const Program& p_;
+  const Controller& c_;
+  const Options& o_;
+  Result result_;
+  std::uint32_t block_ = 0, line_ = 0;
+  bool ended_ = false;
+
+  // Modal state.
+  bool inch_ = false;
+  bool incremental_ = false;
+  bool arc_absolute_ = false;  // G90.1
+  bool feed_per_rev_ = false;
+  bool inverse_time_ = false;  // G93: F is 1/minutes for each move
+  double inverse_f_ = 0;
+  bool diameter_ = false;      // G7
+  bool retract_r_ = true;      // G99 (LinuxCNC's initial retract mode is R plane)
+  int plane_ = 17;
+  int motion_ = 0;             // G code times 10
+  int coord_system_ = 1;       // 1..9 = G54..G59.3
+  // 840D, this block only: SUPA (machine coordinates, frames suppressed)
+  // and the machine axes a G74 reference-point approach names (X1=0 Z1=0).
+  bool suppress_frames_ = false;
+  std::array<bool, 3> reference_axes_{};
+  // 840D TURN=n: full turns a helix makes before its end point; consumed by
+  // the block's circular move.
+  std::optional<int> turn_{};
+  std::uint32_t turn_column_ = 0;
+  MotionState state_;
+  int prepped_tool_ = 0;
+  double css_limit_ = 0;  // rev/min, G96 D
+  std::map<int, Tool> siemens_tools_;  // $TC_DP assignments of the program
+  double tool_offset_ = 0;     // mm, Z
+  std::array<double, axes> machine_{};  // machine position, mm (degrees for A-C)
+  std::array<double, axes> g92_{};
+  std::array<double, axes> last_move_{};  // the end of the last move called, program coordinates
+  std::array<std::array<double, axes>, 10> g5x_{};  // [1..9]
+  bool cycle_initial_set_ = false;
+  double cycle_initial_z_ = 0;  // the level G98 returns to
+  double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;  // sticky canned-cycle words (mm, program units)
+  double cycle_r_prog_ = 0, cycle_z_prog_ = 0;
+
+  // Parameters.
+  std::vector<double> params_;
+  std::unordered_map<std::string, double> globals_;
+  std::vector<Frame> frames_;
+  std::unordered_map<std::string, std::vector<std::uint32_t>> labels_;  // label -> blocks with that O-word
+  std::unordered_map<std::string, std::uint32_t> subs_;
+  std::optional<SavedModes> saved_;  // M70
+  std::unordered_map<std::string, std::vector<std::uint32_t>> numbered_;  // N number -> blocks (GOTO)
+
+  // The group-1 G word of the block, else its first word, else column 1.
+  std::uint32_t blamed_column(const Block& block) const {
+    std::uint32_t first = 0;
+    for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
+      const Word& w = p_.words[i];
+      if (!first) first = w.column;
+      if (w.letter == 'G' && w.expr == Word::none) {
+        const auto entry = g_entry(c_, (std::abs(w.literal) < 1e5 ? static_cast<int>(std::lround(w.literal * 10)) : -1));
+        if (entry && meaning_group(entry->meaning) == 1) return w.column;
+      }
+    }
+    return first ? first : 1;
+  }
+
+  void error_at(std::uint32_t line, std::uint32_t column, std::string message) {
+    result_.errors.push_back({{line, column}, std::move(message), std::string(p_.line_text(line))});
+  }
+
+  // ---- output ----------------------------------------------------------
+
+  Call& emit(CallKind kind) {
+    if (result_.calls.size() >= o_.max_calls)
+      stop(fmt::format("more than {} machine calls: the program is too long to expand", o_.max_calls));
+    Call call;
+    call.kind = kind;
+    call.inch = inch_;
+    call.line = line_;
+    call.block = block_;
+    call.plane = plane_;
+    call.state = state_;
+    result_.calls.push_back(std::move(call));
+    return result_.calls.back();
+  }
+
+  std::array<double, axes> program_position() const {
+    std::array<double, axes> out{};
+    for (int a = 0; a < axes; ++a) out[a] = machine_[a] - g5x_[coord_system_][a] - g92_[a];
+    out[2] -= tool_offset_;
+    return out;
+  }
+  void set_program_position(const std::array<double, axes>& p) {
+    for (int a = 0; a < axes; ++a) machine_[a] = p[a] + g5x_[coord_system_][a] + g92_[a];
+    machine_[2] += tool_offset_;
+  }
+
+  void move(CallKind kind, const std::array<double, axes>& target) {
+    Call& call = emit(kind);
+    std::copy(target.begin(), target.end(), call.v.begin());
+    set_program_position(target);
+    last_move_ = target;
+  }
+
+  // ---- parameters ------------------------------------------------------
+
+  double to_units(double mm) const { return inch_ ? mm / inch_mm : mm; }
+  double to_mm(double value) const { return inch_ ? value * inch_mm : value; }
+
+  double read_parameter(double index_value, std::uint32_t column) {
+    const long index = std::lround(index_value);
+    if (std::abs(index_value - static_cast<double>(index)) > 1e-6 || index < 1 || index >= 5602)
+      stop(fmt::format("parameter number #{} out of range", index_value), column);
+    if (index >= 5420 && index <= 5425) {
+      const auto pos = program_position();
+      const int a = static_cast<int>(index - 5420);
+      return a < 3 ? to_units(pos[a]) : pos[a];
+    }
+    if (index == 5400) return state_.tool;
+    return params_[static_cast<std::size_t>(index)];
+  }
+
+  std::optional<double> predefined(const std::string& name) const {
+    const auto pos = program_position();
+    if (name.size() == 2 && name[0] == '_') {
+      const auto a = axis_letters.find(static_cast<char>(std::toupper(static_cast<unsigned char>(name[1]))));
+      if (a != std::string_view::npos) return a < 3 ? to_units(pos[a]) : pos[a];
+    }
+    if (name == "_metric") return inch_ ? 0 : 1;
+    if (name == "_imperial") return inch_ ? 1 : 0;
+    if (name == "_absolute") return incremental_ ? 0 : 1;
+    if (name == "_incremental") return incremental_ ? 1 : 0;
+    if (name == "_feed") return to_units(state_.feed);
+    if (name == "_rpm") return state_.spindle;
+    if (name == "_current_tool") return state_.tool;
+    if (name == "_selected_tool") return prepped_tool_;
+    if (name == "_coord_system") return coord_system_ <= 6 ? 530 + coord_system_ * 10 : 590 + (coord_system_ - 6);
+    if (name == "_plane") return plane_ * 10;
+    if (name == "_motion_mode") return motion_;
+    if (name == "_flood") return state_.flood ? 1 : 0;
+    if (name == "_mist") return state_.mist ? 1 : 0;
+    if (name == "_spindle_on") return state_.spindle_direction != 0 ? 1 : 0;
+    if (name == "_call_level") return static_cast<double>(frames_.size() - 1);
+    if (name == "_task") return 0;  // not running under LinuxCNC's task (as `rs274`)
+    if (name == "_line") return line_;
+    return std::nullopt;
+  }
+
+  double read_named(const std::string& name, std::uint32_t column) {
+    if (const auto v = predefined(name)) return *v;
+    if (!name.empty() && name[0] == '_') {
+      if (const auto it = globals_.find(name); it != globals_.end()) return it->second;
+    } else if (const auto it = frames_.back().locals.find(name); it != frames_.back().locals.end()) {
+      return it->second;
+    }
+    stop(fmt::format("named parameter #<{}> not defined", name), column);
+  }
+
+  bool named_exists(const std::string& name) {
+    if (predefined(name)) return true;
+    if (!name.empty() && name[0] == '_') return globals_.contains(name);
+    return frames_.back().locals.contains(name);
+  }
+
+  double eval(std::uint32_t index, std::uint32_t column, int depth = 0) {
+    if (depth > 200) stop("expression nested too deeply", column);
+    const Expr& e = p_.exprs[index];
+    auto arg = [&](std::uint32_t i) { return eval(i, column, depth + 1); };
+    switch (e.op) {
+      case Op::number: return e.value;
+      case Op::parameter: return read_parameter(arg(e.lhs), column);
+      case Op::named: return read_named(p_.names[static_cast<std::size_t>(e.value)], column);
+      case Op::negate: return -arg(e.lhs);
+      case Op::exists: {
+        const Expr& target = p_.exprs[e.lhs];
+        if (target.op != Op::named) stop("EXISTS needs a named parameter", column);
+        return named_exists(p_.names[static_cast<std::size_t>(target.value)]) ? 1 : 0;
+      }
+      case Op::atan2: {
+        const double y = arg(e.lhs), x = arg(e.rhs);
+        return std::atan2(y, x) / deg;
+      }
+      case Op::function: {
+        const double x = arg(e.lhs);
+        switch (e.function) {
+          case Function::abs: return std::abs(x);
+          case Function::acos:
+            if (x < -1 || x > 1) stop("ACOS argument out of [-1, 1]", column);
+            return std::acos(x) / deg;
+          case Function::asin:
+            if (x < -1 || x > 1) stop("ASIN argument out of [-1, 1]", column);
+            return std::asin(x) / deg;
+          case Function::cos: return std::cos(x * deg);
+          case Function::exp: return std::exp(x);
+          case Function::fix: return std::floor(x);
+          case Function::fup: return std::ceil(x);
+          case Function::ln:
+            if (x <= 0) stop("LN of a value not above zero", column);
+            return std::log(x);
+          case Function::round: return std::round(x);
+          case Function::sin: return std::sin(x * deg);
+          case Function::sqrt:
+            if (x < 0) stop("SQRT of a negative value", column);
+            return std::sqrt(x);
+          case Function::tan: return std::tan(x * deg);
+        }
+        return 0;
+      }
+      default: break;
+    }
+    const double a = arg(e.lhs), b = arg(e.rhs);
+    switch (e.op) {
+      case Op::power:
+        if (a < 0 && std::floor(b) != b) stop("negative base to a non-integer power", column);
+        return std::pow(a, b);
+      case Op::times: return a * b;
+      case Op::divide:
+        if (b == 0) stop("division by zero", column);
+        return a / b;
+      case Op::modulo: {
+        if (b == 0) stop("MOD by zero", column);
+        double r = std::fmod(a, b);
+        if (r < 0) r += std::abs(b);
+        return r;
+      }
+      case Op::plus: return a + b;
+      case Op::minus: return a - b;
+      case Op::eq: return a == b ? 1 : 0;
+      case Op::ne: return a != b ? 1 : 0;
+      case Op::gt: return a > b ? 1 : 0;
+      case Op::ge: return a >= b ? 1 : 0;
+      case Op::lt: return a < b ? 1 : 0;
+      case Op::le: return a <= b ? 1 : 0;
+      case Op::logical_and: return (a != 0 && b != 0) ? 1 : 0;
+      case Op::logical_or: return (a != 0 || b != 0) ? 1 : 0;
+      case Op::logical_xor: return ((a != 0) != (b != 0)) ? 1 : 0;
+      default: return 0;
+    }
+  }
+
+  void assign(const Assignment& a, double value) {
+    const Expr& target = p_.exprs[a.target];
+    if (target.op == Op::named) {
+      const std::string& name = p_.names[static_cast<std::size_t>(target.value)];
+      if (predefined(name)) stop(fmt::format("#<{}> is read-only", name), a.column);
+      if (!name.empty() && name[0] == '_') globals_[name] = value;
+      else frames_.back().locals[name] = value;
+      return;
+    }
+    const double index_value = eval(target.lhs, a.column);
+    const long index = std::lround(index_value);
+    if (index < 1 || index >= 5602 || std::abs(index_value - static_cast<double>(index)) > 1e-6)
+      stop(fmt::format("parameter number #{} out of range", index_value), a.column);
+    if ((index >= 5400 && index <= 5413) || (index >= 5420 && index <= 5428))
+      stop(fmt::format("parameter #{} is read-only", index), a.column);
+    params_[static_cast<std::size_t>(index)] = value;
+  }
+
+  // ---- O-words -----------------------------------------------------------
+
+  void index_labels() {
+    for (std::uint32_t i = 0; i < p_.blocks.size(); ++i) {
+      const OStatement& o = p_.blocks[i].o;
+      if (o.kind == OKind::none) continue;
+      labels_[o.label].push_back(i);
+      if (o.kind == OKind::sub && !subs_.contains(o.label)) subs_[o.label] = i;
+    }
+  }
+
+  const std::vector<std::uint32_t>& same_label(const Block& block) { return labels_[block.o.label]; }
+
+  // The next block after `pc` with this label and one of `kinds`.
+  std::uint32_t next(const Block& block, std::uint32_t pc, std::initializer_list<OKind> kinds) {
+    for (std::uint32_t i : same_label(block))
+      if (i > pc && std::find(kinds.begin(), kinds.end(), p_.blocks[i].o.kind) != kinds.end()) return i;
+    stop(fmt::format("O{} {}: no matching end", block.o.label, "statement"));
+  }
+  std::uint32_t previous(const Block& block, std::uint32_t pc, std::initializer_list<OKind> kinds) {
+    const auto& list = same_label(block);
+    for (auto it = list.rbegin(); it != list.rend(); ++it)
+      if (*it < pc && std::find(kinds.begin(), kinds.end(), p_.blocks[*it].o.kind) != kinds.end()) return *it;
+    stop(fmt::format("O{}: no matching start", block.o.label));
+  }
+  // A `while` ends a do-while loop when the nearest loop statement before it is `do`.
+  bool closes_do(const Block& block, std::uint32_t pc) {
+    const auto& list = same_label(block);
+    for (auto it = list.rbegin(); it != list.rend(); ++it) {
+      if (*it >= pc) continue;
+      const OKind k = p_.blocks[*it].o.kind;
+      if (k == OKind::do_) return true;
+      if (k == OKind::while_ || k == OKind::endwhile) return false;
+    }
+    return false;
+  }
+
+  double condition(const Block& block) { return eval(block.o.args.at(0), 1); }
+
+  std::uint32_t o_statement(const Block& block, std::uint32_t pc) {
+    const OStatement& o = block.o;
+    switch (o.kind) {
+      case OKind::sub: return next(block, pc, {OKind::endsub}) + 1;  // a definition: skip its body
+      case OKind::call: {
+        const auto it = subs_.find(o.label);
+        if (it == subs_.end()) unsupported(fmt::format("subroutine o{} defined outside this file", o.label));
+        if (frames_.size() > 100) stop("subroutine calls nested deeper than 100");
+        std::vector<double> args;
+        for (std::uint32_t a : o.args) args.push_back(eval(a, 1));
+        Frame frame;
+        frame.return_block = pc + 1;
+        for (int k = 1; k <= 30; ++k) frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
+        for (int k = 1; k <= 30; ++k)
+          params_[static_cast<std::size_t>(k)] = static_cast<std::size_t>(k) <= args.size() ? args[static_cast<std::size_t>(k - 1)] : 0;
+        frames_.push_back(std::move(frame));
+        return it->second + 1;
+      }
+      case OKind::endsub:
+      case OKind::return_: {
+        if (frames_.size() == 1) stop(fmt::format("O{} {} outside a subroutine call", o.label, o.kind == OKind::endsub ? "endsub" : "return"));
+        if (!o.args.empty()) {
+          globals_["_value"] = eval(o.args[0], 1);
+          globals_["_value_returned"] = 1;
+        } else {
+          globals_["_value"] = 0;
+          globals_["_value_returned"] = 0;
+        }
+        const Frame& frame = frames_.back();
+        for (int k = 1; k <= 30; ++k) params_[static_cast<std::size_t>(k)] = frame.saved[static_cast<std::size_t>(k)];
+        const std::uint32_t back = frame.return_block;
+        const std::optional<SavedModes> restore = frame.autorestore;
+        frames_.pop_back();
+        if (restore) restore_modes(*restore);
+        return back;
+      }
+      case OKind::do_: return pc + 1;
+      case OKind::while_:
+        if (closes_do(block, pc)) return condition(block) != 0 ? previous(block, pc, {OKind::do_}) + 1 : pc + 1;
+        return condition(block) != 0 ? pc + 1 : next(block, pc, {OKind::endwhile}) + 1;
+      case OKind::endwhile: return previous(block, pc, {OKind::while_});
+      case OKind::if_: {
+        if (condition(block) != 0) return pc + 1;
+        std::uint32_t at = pc;
+        for (;;) {
+          at = next(block, at, {OKind::elseif, OKind::else_, OKind::endif});
+          const OKind k = p_.blocks[at].o.kind;
+          if (k != OKind::elseif) return at + 1;
+          if (condition(p_.blocks[at]) != 0) return at + 1;
+        }
+      }
+      case OKind::elseif:
+      case OKind::else_: return next(block, pc, {OKind::endif}) + 1;  // the branch before ran
+      case OKind::endif: return pc + 1;
+      case OKind::repeat: {
+        const double count = std::floor(condition(block));
+        if (count <= 0) return next(block, pc, {OKind::endrepeat}) + 1;
+        frames_.back().repeat_left[o.label] = count;
+        return pc + 1;
+      }
+      case OKind::endrepeat: {
+        double& left = frames_.back().repeat_left[o.label];
+        if (--left > 0) return previous(block, pc, {OKind::repeat}) + 1;
+        return pc + 1;
+      }
+      case OKind::break_: {
+        const std::uint32_t end = next(block, pc, {OKind::endwhile, OKind::endrepeat, OKind::while_});
+        return end + 1;
+      }
+      case OKind::continue_: {
+        const std::uint32_t end = next(block, pc, {OKind::endwhile, OKind::endrepeat, OKind::while_});
+        return end;
+      }
+      case OKind::goto_: return go_to(block, pc);
+      case OKind::if_goto: return condition(block) != 0 ? go_to(block, pc) : pc + 1;
+      case OKind::if_then:
+        if (condition(block) != 0) {
+          std::vector<double> values;
+          for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+            values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
+          for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+            assign(p_.assignments[i], values[i - block.assignments_begin]);
+        }
+        return pc + 1;
+      case OKind::while_do: return condition(block) != 0 ? pc + 1 : next(block, pc, {OKind::end_do}) + 1;
+      case OKind::end_do: return previous(block, pc, {OKind::while_do});
+      case OKind::none: break;
+    }
+    return pc + 1;
+  }
+
+  // Fanuc GOTO n: the block numbered N n, searched forward first, then from the start.
+  std::uint32_t go_to(const Block& block, std::uint32_t pc) {
+    if (numbered_.empty())  // built at the first GOTO: most programs have none
+      for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
+        if (p_.blocks[i].n >= 0) numbered_[fmt::format("{}", p_.blocks[i].n)].push_back(i);
+    const auto it = numbered_.find(block.o.label);
+    if (it == numbered_.end() || it->second.empty()) stop(fmt::format("GOTO {}: no block N{}", block.o.label, block.o.label));
+    for (std::uint32_t i : it->second)
+      if (i > pc) return i;
+    return it->second.front();
+  }
+
+  // ---- blocks ------------------------------------------------------------
+
+  Words evaluate(const Block& block) {
+    Words w;
+    std::array<int, 256> g_groups{};  // by the controller's group numbers (std::uint8_t)
+    std::array<int, 256> m_groups{};
+    for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
+      const Word& word = p_.words[i];
+      double value = word.expr == Word::none ? word.literal : eval(word.expr, word.column);
+      const char c = word.letter;
+      if (c == c_.repeat_letter) w.repeats = value;
+      // Fanuc: a length without a decimal point counts least input increments.
+      if (c_.integer_is_least_increment && word.expr == Word::none && !word.decimal_point &&
+          std::string_view("XYZUWIJKRQ").find(c) != std::string_view::npos)
+        value *= inch_ ? 0.0001 : 0.001;
+      if (c == 'G') {
+        const int code = to_int(value * 10, word.column);
+        if (std::abs(value * 10 - code) > 1e-6) stop(fmt::format("G{} is not a G code", value), word.column);
+        const auto entry = g_entry(c_, code);
+        if (!entry) stop(fmt::format("unknown G code G{} for {}", value, c_.name), word.column);
+        if (entry->group != 0 && g_groups[entry->group]++)
+          stop(fmt::format("two G codes of modal group {} in one block", entry->group), word.column);
+        w.g.emplace_back(entry->meaning, word.column);
+      } else if (c == 'M') {
+        const int code = to_int(value, word.column);
+        const auto group = m_group(c_, code);
+        if (!group) {
+          if (code >= 100 && code <= 199) unsupported(fmt::format("user M code M{}", code), word.column);
+          stop(fmt::format("unknown M code M{}", value), word.column);
+        }
+        if (m_groups[*group]++) stop(fmt::format("two M codes of modal group {} in one block", *group), word.column);
+        w.m.emplace_back(code, word.column);
+      } else {
+        if (w.value[slot(c)]) stop(fmt::format("word {} twice in one block", c), word.column);
+        w.value[slot(c)] = value;
+        w.column[slot(c)] = word.column;
+      }
+    }
+    return w;
+  }
+
+  bool has_g(const Words& w, int code) const {
+    return std::any_of(w.g.begin(), w.g.end(), [&](const auto& g) { return g.first == code; });
+  }
+  bool has_m(const Words& w, int code) const {
+    return std::any_of(w.m.begin(), w.m.end(), [&](const auto& m) { return m.first == code; });
+  }
+  std::optional<std::pair<int, std::uint32_t>> g_of(const Words& w, int group) const {
+    for (const auto& g : w.g)
+      if (meaning_group(g.first) == group) return g;
+    return std::nullopt;
+  }
+
+  void execute(const Block& block) {
+    Words w = evaluate(block);
+    // Parameters are set after every value of the block is read (RS274NGC 3.3.2).
+    std::vector<double> values;
+    for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+      values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
+    for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
+      assign(p_.assignments[i], values[i - block.assignments_begin]);
+
+    comment(block);
+    for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
+    named_words(block, w);
+
+    // 2 feed mode, 3 F, 4 S, 5 T
+    if (auto g = g_of(w, 5)) {
+      inverse_time_ = g->first == 930;
+      feed_per_rev_ = g->first == 950;
+      state_.feed_per_rev = feed_per_rev_;
+      state_.feed = 0;  // a feed-mode word clears the feed (LinuxCNC prints it for G94 and G95)
+      if (!inverse_time_) emit(CallKind::feed_rate).v[0] = 0;
+    }
+    const bool f_is_dwell = c_.dwell_f_seconds && has_g(w, 40);
+    if (f_is_dwell) {
+      // Siemens G4 F: the dwell in seconds, not a feed
+    } else if (w.has('F') && inverse_time_) {
+      inverse_f_ = w.get('F');
+    } else if (w.has('F')) {
+      state_.feed = to_mm(w.get('F'));
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+    }
+    const bool clamp_block = has_g(w, meaning_spindle_clamp_or_set);
+    if (w.has('S') && clamp_block) {
+      css_limit_ = w.get('S');  // Fanuc lathe G50 S: the spindle speed clamp
+    } else if (w.has('S')) {
+      if (w.get('S') < 0) stop("negative spindle speed", w.col('S'));
+      state_.spindle = w.get('S');
+      emit(CallKind::spindle_speed).v[0] = state_.spindle;
+    }
+    if (w.has('T')) {
+      const int tool = to_int(w.get('T'), w.col('T'));
+      if (tool < 0) stop("negative tool number", w.col('T'));
+      if (!o_.tools.empty() && tool != 0 && !o_.tools.contains(c_.tool_word_changes_tool && tool >= 100 ? tool / 100 : tool))
+        stop(fmt::format("tool {} is not in the tool table", tool), w.col('T'));
+      if (c_.tool_word_changes_tool) {
+        // T0101: tool 01 with offset 01, turned to at once (no M6).
+        const int number = tool >= 100 ? tool / 100 : tool;
+        prepped_tool_ = number;
+        emit(CallKind::select_tool).v[0] = number;
+        state_.tool = number;
+        emit(CallKind::change_tool).v[0] = number;
+      } else {
+        prepped_tool_ = tool;
+        emit(CallKind::select_tool).v[0] = tool;
+      }
+    }
+    // 6 tool change
+    for (const auto& [code, column] : w.m) {
+      if (code == 6) {
+        emit(CallKind::spindle_stop);
+        state_.spindle_direction = 0;
+        state_.tool = prepped_tool_;
+        emit(CallKind::change_tool).v[0] = prepped_tool_;
+      } else if (code == 61) {
+        if (!w.has('Q')) stop("M61 needs Q", column);
+        state_.tool = prepped_tool_ = to_int(w.get('Q'), w.col('Q'));
+        emit(CallKind::change_tool).v[0] = state_.tool;
+        result_.calls.back().text = "number";
+      }
+    }
+    // 7 spindle, 8 coolant
+    for (const auto& [code, column] : w.m) {
+      switch (code) {
+        case 3: state_.spindle_direction = 1; emit(CallKind::spindle_clockwise); break;
+        case 4: state_.spindle_direction = -1; emit(CallKind::spindle_counterclockwise); break;
+        case 5: state_.spindle_direction = 0; emit(CallKind::spindle_stop); break;
+        case 19: unsupported("M19 spindle orientation", column);
+        case 98: case 99: unsupported("M98/M99 subprograms", column);
+        default: break;
+      }
+    }
+    for (const auto& [code, column] : w.m) {
+      if (code == 7) { state_.mist = true; emit(CallKind::mist_on); }
+      if (code == 8) { state_.flood = true; emit(CallKind::flood_on); }
+      if (code == 9) {
+        state_.mist = state_.flood = false;
+        emit(CallKind::mist_off);
+        emit(CallKind::flood_off);
+      }
+      if (code >= 62 && code <= 68) unsupported(fmt::format("M{} digital and analog I/O", code), column);
+      if (code == 70) saved_ = save_modes();
+      if (code == 73) frames_.back().autorestore = save_modes();
+      if (code == 71 || code == 72) {
+        if (!saved_) stop(fmt::format("M{} with no state saved by M70", code), column);
+        if (code == 72) restore_modes(*saved_);
+        else saved_.reset();
+      }
+    }
+    // 10 dwell
+    if (has_g(w, 40)) {
+      double seconds = 0;
+      if (f_is_dwell && w.has('F')) {
+        seconds = w.get('F');
+      } else if (c_.dwell_p_milliseconds && w.has('X') && !w.has('P')) {
+        seconds = w.get('X');  // Fanuc G04 X: seconds; the X is no move
+        w.value[slot('X')].reset();
+      } else if (!w.has('P')) {
+        stop("G4 needs P", g_of(w, 0)->second);
+      } else {
+        seconds = c_.dwell_p_milliseconds ? w.get('P') / 1000 : w.get('P');
+      }
+      if (seconds < 0) stop("negative dwell time", w.col(w.has('P') ? 'P' : 'X'));
+      emit(CallKind::dwell).v[0] = seconds;
+    }
+    // 11 plane, 12 units
+    if (auto g = g_of(w, 2)) {
+      if (g->first % 10 != 0) unsupported(fmt::format("G{:.1f} plane", g->first / 10.0), g->second);
+      plane_ = g->first / 10;
+      emit(CallKind::plane).v[0] = plane_;
+    }
+    if (auto g = g_of(w, 6)) {
+      inch_ = g->first == 200;
+      emit(CallKind::units);
+    }
+    // 13 cutter compensation (G40 only), 14 tool length
+    if (auto g = g_of(w, 8)) {
+      double length = 0;
+      if (g->first == 430) {
+        int tool = state_.tool;
+        if (w.has('H')) tool = to_int(w.get('H'), w.col('H'));
+        if (tool != 0) {
+          const auto it = o_.tools.find(tool);
+          if (it == o_.tools.end()) {
+            if (!o_.tools.empty()) stop(fmt::format("G43: tool {} is not in the tool table", tool), g->second);
+          } else {
+            length = it->second.length;
+          }
+        }
+      }
+      tool_offset_ = length;  // the machine stays; the program's Z shifts (RS274NGC 3.6.2)
+      emit(CallKind::tool_length_offset).v[0] = length;
+    }
+    // 15 coordinate system, 16 path control, 17 distance, 18 retract
+    if (auto g = g_of(w, 12)) {
+      coord_system_ = g->first < 590 ? (g->first - 530) / 10 : 6 + (g->first - 590);
+      params_[5220] = coord_system_;
+      Call& call = emit(CallKind::g5x_offset);
+      call.v[0] = coord_system_;
+      std::copy(g5x_[coord_system_].begin(), g5x_[coord_system_].end(), call.v.begin() + 1);
+    }
+    if (auto g = g_of(w, 3)) incremental_ = g->first == 910;
+    if (auto g = g_of(w, 4)) arc_absolute_ = g->first == 901;
+    if (auto g = g_of(w, 15)) diameter_ = g->first == 70;
+    if (auto g = g_of(w, 10)) retract_r_ = g->first == 990;
+    // G96: S is a surface speed (m/min, ft/min in G20), D the spindle clamp.
+    if (auto g = g_of(w, 14)) {
+      state_.css = g->first == 960;
+      if (state_.css && w.has('D')) css_limit_ = w.get('D');
+    }
+
+    // 19 non-modal: G10, G28, G30, G92; G53 (840D: SUPA) modifies the motion
+    bool machine_coordinates = suppress_frames_;
+    bool axes_used = false;
+    for (const auto& [code, column] : w.g) {
+      switch (code) {
+        case 100: g10(w, column); axes_used = true; break;
+        case 280: case 300: go_home(w, code == 280 ? 5161 : 5181); axes_used = true; break;
+        case 281: case 301: store_home(code == 281 ? 5161 : 5181); break;
+        case 920: g92(w, column); axes_used = true; break;
+        case meaning_spindle_clamp_or_set:
+          if (w.any_axis()) g92(w, column);
+          axes_used = true;
+          break;
+        case 921: case 922: g92_reset(code == 921); break;
+        case 923: g92_restore(); break;
+        case 530: machine_coordinates = true; break;
+        default: break;
+      }
+    }
+    // 20 motion
+    if (auto g = g_of(w, 1)) {
+      motion_ = g->first;
+      if (motion_ < 730) cycle_initial_set_ = false;
+    }
+    // A motion word moves even without axis words (`G0` alone, a full circle `G2 I5`).
+    if (!axes_used && (w.any_axis() || (g_of(w, 1) && motion_ != 800))) motion(w, block, machine_coordinates);
+    // After a tool change LinuxCNC re-reads the position from the machine
+    // (a queue buster): the end of the last move called, so an offset change
+    // in the same block does not shift it.
+    if (has_m(w, 6) || has_m(w, 61)) set_program_position(last_move_);
+    if (turn_) stop("TURN= without a circular move (G2/G3) in its block", turn_column_);
+    // 21 stop
+    for (const auto& [code, column] : w.m) {
+      if (code == 0 || code == 1 || code == 60) emit(CallKind::program_stop).v[0] = code;
+      if (code == 2 || code == 30) program_end();
+    }
+  }
+
+  // Siemens names (840D): diameter mode, the CSS clamp, tool data,
+  // cycles. CYCLE832 sets a tolerance and moves nothing.
+  void named_words(const Block& block, const Words& w) {
+    suppress_frames_ = false;
+    reference_axes_ = {};
+    turn_.reset();
+    for (const NamedWord& n : block.named) {
+      auto value = [&] {
+        if (n.value == Word::none) stop(fmt::format("{} needs '=' and a value", n.name), n.column);
+        return eval(n.value, n.column);
+      };
+      if (n.name == "DIAMON" && !n.call) {
+        diameter_ = true;
+      } else if (n.name == "DIAMOF" && !n.call) {
+        diameter_ = false;
+      } else if (n.name == "TURN" && !n.call) {
+        const double turns = value();
+        if (turns < 0 || turns != std::floor(turns) || turns > 1e6)
+          stop("TURN= must be a whole number of turns, 0 or more", n.column);
+        turn_ = static_cast<int>(turns);
+        turn_column_ = n.column;
+      } else if (n.name == "SUPA" && !n.call) {
+        suppress_frames_ = true;  // like G53: this block in machine coordinates
+      } else if ((n.name == "X1" || n.name == "Y1" || n.name == "Z1") && !n.call) {
+        // A machine axis: only G74 (reference-point approach) names it here.
+        if (!has_g(w, 280)) stop(fmt::format("{}= outside G74", n.name), n.column);
+        reference_axes_[static_cast<std::size_t>(n.name[0] - 'X')] = true;
+      } else if (n.name == "LIMS" && !n.call) {
+        css_limit_ = value();
+      } else if (n.name.starts_with("$TC_DP") && !n.call) {
+        if (n.indices.size() != 2) stop(fmt::format("{} needs [tool, edge]", n.name), n.column);
+        const int tool = to_int(eval(n.indices[0], n.column), n.column);
+        const double v = value();
+        if (n.name == "$TC_DP3") siemens_tools_[tool].length = v;   // length 1
+        if (n.name == "$TC_DP6") siemens_tools_[tool].diameter = 2 * v;  // the radius
+        siemens_tools_[tool].number = tool;
+      } else if (n.call && n.name == "MSG") {
+        emit(CallKind::message).text = n.text.value_or("");
+      } else if (n.call && n.name == "CYCLE832") {
+        CycleEvent event;
+        event.name = n.name;
+        event.line = block.line;
+        event.first_call = event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+        for (std::size_t i = 0; i < n.args.size(); ++i)
+          if (n.args[i] != Word::none) event.parameters.emplace_back(static_cast<char>('1' + i), eval(n.args[i], n.column));
+        result_.cycles.push_back(std::move(event));
+      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE85" || n.name == "CYCLE86")) {
+        siemens_drilling(n, block);
+      } else if (n.call) {
+        unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
+      } else {
+        stop(fmt::format("unknown address {} for {}", n.name, c_.name), n.column);
+      }
+    }
+  }
+
+  // 840D drilling cycles at the current XY (Siemens "Cycles" manual):
+  // RTP retract plane, RFP reference plane, SDIS safety distance, DP depth
+  // (or DPR below RFP). G0 to RFP + SDIS, the body, G0 to RTP.
+  void siemens_drilling(const NamedWord& n, const Block& block) {
+    std::vector<std::optional<double>> a;
+    for (std::uint32_t arg : n.args) a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
+    a.resize(std::max<std::size_t>(a.size(), 11));
+    auto need = [&](std::size_t i, const char* name) {
+      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
+      return *a[i];
+    };
+    if (plane_ != 17) unsupported(fmt::format("{} outside G17", n.name), n.column);
+    const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
+    const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
+    if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
+    if (n.name != "CYCLE85" && state_.feed <= 0) stop(fmt::format("{} with zero feed rate", n.name), n.column);
+    CycleEvent event;
+    event.name = n.name;
+    event.line = block.line;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    for (std::size_t i = 0; i < n.args.size(); ++i)
+      if (a[i]) event.parameters.emplace_back(static_cast<char>('1' + i), *a[i]);
+    auto at = [&](double z) {
+      auto p = program_position();
+      p[2] = z;
+      return p;
+    };
+    const double dwell = a[5].value_or(0);
+    move(CallKind::rapid, at(rfp + sdis));
+    if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
+      const double feed = state_.feed;
+      state_.feed = to_mm(need(6, "FFR"));
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+      move(CallKind::linear, at(dp));
+      if (dwell > 0) emit(CallKind::dwell).v[0] = dwell;
+      state_.feed = to_mm(a[7].value_or(*a[6]));
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+      move(CallKind::linear, at(rfp + sdis));
+      state_.feed = feed;
+      emit(CallKind::feed_rate).v[0] = feed;
+    } else {
+      move(CallKind::linear, at(dp));
+      if (n.name != "CYCLE81" && dwell > 0) emit(CallKind::dwell).v[0] = dwell;
+    }
+    std::int8_t restart = 0;
+    if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
+      if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
+        unsupported("CYCLE86 with a lift-off (RPA, RPO)", n.column);
+      const int sdir = to_int(need(6, "SDIR"), n.column);
+      if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
+      restart = sdir == 3 ? 1 : -1;
+      state_.spindle_direction = 0;
+      emit(CallKind::spindle_stop);
+    }
+    move(CallKind::rapid, at(rtp));
+    if (restart) {
+      state_.spindle_direction = restart;
+      emit(restart > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
+
+  SavedModes save_modes() const {
+    return {inch_, incremental_, arc_absolute_, feed_per_rev_, retract_r_, plane_, state_};
+  }
+
+  // M72 and the return of an M73 call: the calls LinuxCNC prints for it
+  // are the units and plane when they differ, then the feed and the speed.
+  void restore_modes(const SavedModes& s) {
+    if (s.inch != inch_) {
+      inch_ = s.inch;
+      emit(CallKind::units);
+    }
+    if (s.plane != plane_) {
+      plane_ = s.plane;
+      emit(CallKind::plane).v[0] = plane_;
+    }
+    incremental_ = s.incremental;
+    arc_absolute_ = s.arc_absolute;
+    retract_r_ = s.retract_r;
+    feed_per_rev_ = s.feed_per_rev;
+    state_.feed_per_rev = s.state.feed_per_rev;
+    state_.feed = s.state.feed;
+    emit(CallKind::feed_rate).v[0] = state_.feed;
+    state_.spindle = s.state.spindle;
+    emit(CallKind::spindle_speed).v[0] = state_.spindle;
+    if (s.state.spindle_direction != state_.spindle_direction) {
+      state_.spindle_direction = s.state.spindle_direction;
+      emit(state_.spindle_direction > 0   ? CallKind::spindle_clockwise
+           : state_.spindle_direction < 0 ? CallKind::spindle_counterclockwise
+                                          : CallKind::spindle_stop);
+    }
+    if (s.state.mist != state_.mist) emit(s.state.mist ? CallKind::mist_on : CallKind::mist_off);
+    if (s.state.flood != state_.flood) emit(s.state.flood ? CallKind::flood_on : CallKind::flood_off);
+    state_.mist = s.state.mist;
+    state_.flood = s.state.flood;
+  }
+
+  void comment(const Block& block) {
+    if (block.comment.empty()) return;
+    std::string_view text = block.comment;
+    auto head = [&](std::string_view key) {
+      if (text.size() < key.size()) return false;
+      for (std::size_t i = 0; i < key.size(); ++i)
+        if (std::toupper(static_cast<unsigned char>(text[i])) != key[i]) return false;
+      return true;
+    };
+    if (head("MSG,")) emit(CallKind::message).text = std::string(text.substr(4));
+    else emit(CallKind::comment).text = std::string(text);
+  }
+
+  void refuse_unsupported_g(int code, std::uint32_t column, const Words&) {
+    switch (code) {
+      case 51: case 52: case 53: unsupported("G5.x splines", column);
+      case 330: case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
+      case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
+      case 410: case 411: case 420: case 421: unsupported("G41/G42 cutter radius compensation", column);
+      case 431: case 432: unsupported(fmt::format("G{:.1f} dynamic tool length offset", code / 10.0), column);
+      case 520: unsupported("G52 local offset", column);
+      case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
+      case 740: case 840: unsupported(fmt::format("G{} tapping", code / 10), column);
+      case 870: case 880: unsupported(fmt::format("G{} boring cycle", code / 10), column);
+      case 611: unsupported("G61.1 exact stop", column);
+      case 4400: unsupported("G44 negative tool length offset", column);
+      case 680: unsupported("G68 coordinate rotation", column);
+      case 7000: case 7100: case 7200: case 7300: case 7400: case 7500: case 7600:
+        unsupported(fmt::format("G{} {} cycle", code / 100, c_.diameter_x ? "multiple repetitive" : "fine boring"), column);
+      case 9200: unsupported("G92 threading cycle", column);
+      default: break;
+    }
+  }
+
+  // ---- motion ------------------------------------------------------------
+
+  // The target of a move: program coordinates, mm.
+  std::array<double, axes> target(const Words& w, bool machine_coordinates) {
+    auto pos = program_position();
+    if (machine_coordinates) {
+      if (incremental_) stop("G53 in incremental distance mode (G91)");
+      std::array<double, axes> out = pos;
+      for (int a = 0; a < axes; ++a) {
+        if (!w.has(axis_letters[a])) continue;
+        const double v = a < 3 ? to_mm(w.get(axis_letters[a])) : w.get(axis_letters[a]);
+        out[a] = v - g5x_[coord_system_][a] - g92_[a] - (a == 2 ? tool_offset_ : 0);
+      }
+      return out;
+    }
+    for (int a = 0; a < axes; ++a) {
+      if (!w.has(axis_letters[a])) continue;
+      double v = a < 3 ? to_mm(w.get(axis_letters[a])) : w.get(axis_letters[a]);
+      if (a == 0 && diameter_) v /= 2;
+      pos[a] = incremental_ ? pos[a] + v : v;
+    }
+    if (c_.uw_incremental) {
+      if (w.has('U')) pos[0] += to_mm(w.get('U')) / (diameter_ ? 2 : 1);
+      if (w.has('W')) pos[2] += to_mm(w.get('W'));
+    }
+    if (w.polar()) polar(w, pos[0], pos[1]);
+    return pos;
+  }
+
+  // LinuxCNC polar coordinates: `@` distance from the origin, `^` angle;
+  // an omitted one keeps its current value, G91 adds to both.
+  void polar(const Words& w, double& x, double& y) {
+    if (w.has('X') || w.has('Y')) stop("polar coordinates (@, ^) together with X or Y", w.col(w.has('@') ? '@' : '^'));
+    if (plane_ != 17) stop("polar coordinates outside the XY plane (G17)", w.col(w.has('@') ? '@' : '^'));
+    double radius = std::hypot(x, y), angle = std::atan2(y, x) / deg;
+    const double d = w.has('@') ? to_mm(w.get('@')) : 0, a = w.has('^') ? w.get('^') : 0;
+    if (incremental_) {
+      radius += d;
+      angle += a;
+    } else {
+      if (w.has('@')) radius = d;
+      if (w.has('^')) angle = a;
+    }
+    x = radius * std::cos(angle * deg);
+    y = radius * std::sin(angle * deg);
+  }
+
+  void motion(const Words& w, const Block& block, bool machine_coordinates) {
+    for (char c : std::string_view("UVW"))
+      if (w.has(c) && !c_.uw_incremental) unsupported("U, V, W axes", w.col(c));
+    switch (motion_) {
+      case 0: move(CallKind::rapid, target(w, machine_coordinates)); return;
+      case 10: {
+        const auto end = target(w, machine_coordinates);
+        if (inverse_time_) inverse_time_feed(w, straight_length(program_position(), end));
+        if (state_.feed <= 0) stop("G1 with zero feed rate");
+        move(CallKind::linear, end);
+        return;
+      }
+      case 20: case 30:
+        if (machine_coordinates) stop("G53 with an arc");
+        if (!inverse_time_ && state_.feed <= 0) stop("G2/G3 with zero feed rate");
+        arc(w, motion_ == 20);
+        return;
+      case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
+      case 730: case 810: case 820: case 830: case 850: case 860: case 890: cycle(w, block); return;
+      case 9000: case 9400: single_cycle(w, block); return;
+      default: unsupported(fmt::format("G{:g} motion", motion_ / 10.0));
+    }
+  }
+
+  // G93 (RS274NGC 3.5.19): the block's F is 1/minutes; the feed printed is
+  // the length over that time. A move of the rotary axes only is measured in degrees.
+  void inverse_time_feed(const Words& w, double length) {
+    if (!w.has('F')) stop("G93 inverse-time feed needs F in every feed move");
+    if (inverse_f_ <= 0) stop("G93 with F not above zero", w.col('F'));
+    state_.feed = length * inverse_f_;
+    emit(CallKind::feed_rate).v[0] = state_.feed;
+  }
+  static double straight_length(const std::array<double, axes>& a, const std::array<double, axes>& b) {
+    const double linear = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    if (linear > 0) return linear;
+    return std::hypot(b[3] - a[3], b[4] - a[4], b[5] - a[5]);
+  }
+
+  // Plane axes: first, second, and the axis the plane is normal to.
+  std::array<int, 3> plane_axes() const {
+    if (plane_ == 18) return {2, 0, 1};
+    if (plane_ == 19) return {1, 2, 0};
+    return {0, 1, 2};
+  }
+
+  void arc(const Words& w, bool clockwise) {
+    const auto [first, second, normal] = plane_axes();
+    const auto start = program_position();
+    const auto end = target(w, false);
+    const char offset_letter[3] = {'I', 'J', 'K'};
+    const double s1 = start[first], s2 = start[second], e1 = end[first], e2 = end[second];
+    double c1 = 0, c2 = 0;
+    const double tolerance = inch_ ? 0.0005 * inch_mm : c_.arc_tolerance_mm;
+    if (w.has('R')) {
+      const double radius = to_mm(w.get('R'));
+      const double mid1 = (s1 + e1) / 2, mid2 = (s2 + e2) / 2;
+      double half = std::hypot(e1 - mid1, e2 - mid2);
+      const double r = std::abs(radius);
+      if (half == 0) stop("arc with R and the same start and end point", w.col('R'));
+      if (half - r > tolerance) stop(fmt::format("arc radius {} too small to reach the end point", w.get('R')), w.col('R'));
+      if (half / r > 1 - 1e-12) half = r;
+      // The centre lies on the chord's right (G2, R > 0) or left.
+      const bool right = clockwise == (radius > 0);
+      const double theta = std::atan2(e2 - s2, e1 - s1) + (right ? -std::numbers::pi / 2 : std::numbers::pi / 2);
+      const double offset = r * std::cos(std::asin(half / r));
+      c1 = mid1 + offset * std::cos(theta);
+      c2 = mid2 + offset * std::sin(theta);
+    } else {
+      const char l1 = offset_letter[first], l2 = offset_letter[second];
+      if (!w.has(l1) && !w.has(l2)) stop(fmt::format("G{} needs R or the centre ({}, {})", clockwise ? 2 : 3, l1, l2));
+      const double o1 = w.has(l1) ? to_mm(w.get(l1)) : 0, o2 = w.has(l2) ? to_mm(w.get(l2)) : 0;
+      c1 = arc_absolute_ ? o1 : s1 + o1;
+      c2 = arc_absolute_ ? o2 : s2 + o2;
+      const double r1 = std::hypot(s1 - c1, s2 - c2), r2 = std::hypot(e1 - c1, e2 - c2);
+      const double err = std::abs(r1 - r2);
+      if (err > tolerance && err > 0.001 * std::max(r1, r2))
+        stop(fmt::format("arc radii differ: {:.4f} at the start, {:.4f} at the end", to_units(r1), to_units(r2)),
+             w.col(w.has(l1) ? l1 : l2));
+      if (r1 == 0) stop("arc of zero radius");
+    }
+    int turns = 1;
+    if (turn_) {
+      turns = 1 + *turn_;
+      turn_.reset();
+    } else if (w.has('P')) {
+      turns = to_int(w.get('P'), w.col('P'));
+      if (turns < 1 || std::abs(w.get('P') - turns) > 1e-9) stop("P of an arc must be a positive integer", w.col('P'));
+    }
+    if (inverse_time_) {
+      double sweep = std::atan2(s2 - c2, s1 - c1) - std::atan2(e2 - c2, e1 - c1);  // clockwise angle
+      if (!clockwise) sweep = -sweep;
+      while (sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+      sweep += 2 * std::numbers::pi * (turns - 1);
+      const double planar = std::hypot(s1 - c1, s2 - c2) * sweep;
+      inverse_time_feed(w, std::hypot(planar, end[normal] - start[normal]));
+    }
+    Call& call = emit(CallKind::arc);
+    call.v = {e1, e2, c1, c2, static_cast<double>(clockwise ? -turns : turns), end[normal], end[3], end[4], end[5]};
+    set_program_position(end);
+    last_move_ = end;
+  }
+
+  // ---- canned cycles (G73, G81-G83, G85, G86, G89), XY plane ----------------
+
+  void cycle(const Words& w, const Block& block) {
+    const int code = motion_ / 10;
+    if (plane_ != 17) unsupported("canned cycles outside the XY plane (G18, G19)");
+    const char r_letter = c_.repeat_letter;
+    if (w.repeats && (*w.repeats < 1 || std::floor(*w.repeats) != *w.repeats || *w.repeats > 1e6))
+      stop(fmt::format("{} must be a positive integer", r_letter), w.col(r_letter));
+    const int repeats = w.repeats ? static_cast<int>(*w.repeats) : 1;
+    auto pos = program_position();
+    if (!cycle_initial_set_) {
+      cycle_initial_z_ = pos[2];
+      cycle_initial_set_ = true;
+    }
+    if (w.has('R')) cycle_r_prog_ = w.get('R');
+    else if (!cycle_r_set_) stop(fmt::format("G{} needs R", code));
+    if (w.has('Z')) cycle_z_prog_ = w.get('Z');
+    else if (!cycle_z_set_) stop(fmt::format("G{} needs Z", code));
+    cycle_r_set_ = cycle_z_set_ = true;
+    if (w.has('Q')) cycle_q_ = to_mm(w.get('Q'));
+    if (w.has('P')) cycle_p_ = w.get('P');
+    if ((code == 73 || code == 83) && cycle_q_ <= 0) stop(fmt::format("G{} needs a positive Q", code));
+    if ((code == 82 || code == 89) && !w.has('P') && cycle_p_ < 0) stop(fmt::format("G{} needs P", code));
+    if (code == 86 && state_.spindle_direction == 0) stop("G86 with the spindle not turning");
+    double r = to_mm(cycle_r_prog_), z = to_mm(cycle_z_prog_);
+    if (incremental_) {  // R from the initial level, Z from R (LinuxCNC)
+      r = cycle_initial_z_ + r;
+      z = r + z;
+    }
+    if (z > r) stop(fmt::format("G{}: Z {} above R {}", code, to_units(z), to_units(r)));
+    CycleEvent event;
+    event.name = fmt::format("G{}", code);
+    event.line = block.line;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    for (char c : std::string_view("XYZRQPL"))
+      if (w.has(c)) event.parameters.emplace_back(c, (c == 'P' || c == 'L') ? w.get(c) : to_mm(w.get(c)));
+    const double clear = retract_r_ ? r : std::max(cycle_initial_z_, r);
+    const double delta = 0.254;  // G73 retract and G83 clearance: 0.010 inch
+    double x = pos[0], y = pos[1];
+    // A cycle that started below R rises to R first, in every block of it,
+    // even when the tool is there already (as LinuxCNC 2.9 does).
+    if (cycle_initial_z_ < r) {
+      pos[2] = r;
+      move(CallKind::rapid, pos);
+    }
+    for (int k = 0; k < repeats; ++k) {
+      if (w.polar()) {
+        polar(w, x, y);
+      } else if (incremental_) {
+        if (w.has('X')) x += to_mm(w.get('X'));
+        if (w.has('Y')) y += to_mm(w.get('Y'));
+      } else {
+        if (w.has('X')) x = to_mm(w.get('X'));
+        if (w.has('Y')) y = to_mm(w.get('Y'));
+      }
+      auto at = [&](double zz) {
+        auto p = program_position();
+        p[0] = x, p[1] = y, p[2] = zz;
+        return p;
+      };
+      const double level = program_position()[2];
+      move(CallKind::rapid, at(level));
+      if (level != r) move(CallKind::rapid, at(r));
+      switch (code) {
+        case 81: move(CallKind::linear, at(z)); move(CallKind::rapid, at(clear)); break;
+        case 82:
+          move(CallKind::linear, at(z));
+          emit(CallKind::dwell).v[0] = cycle_p_;
+          move(CallKind::rapid, at(clear));
+          break;
+        case 73:
+        case 83:
+          for (double depth = r - cycle_q_; depth > z + 1e-12; depth -= cycle_q_) {
+            move(CallKind::linear, at(depth));
+            if (code == 83) move(CallKind::rapid, at(r));
+            move(CallKind::rapid, at(depth + delta));
+          }
+          move(CallKind::linear, at(z));
+          move(CallKind::rapid, at(clear));
+          break;
+        case 85: move(CallKind::linear, at(z)); move(CallKind::linear, at(r)); move(CallKind::rapid, at(clear)); break;
+        case 86: {  // bore, stop the spindle, rapid out, restart it as it turned
+          const auto direction = state_.spindle_direction;
+          move(CallKind::linear, at(z));
+          emit(CallKind::dwell).v[0] = cycle_p_;
+          state_.spindle_direction = 0;
+          emit(CallKind::spindle_stop);
+          move(CallKind::rapid, at(clear));
+          state_.spindle_direction = direction;
+          emit(direction > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          break;
+        }
+        case 89:
+          move(CallKind::linear, at(z));
+          emit(CallKind::dwell).v[0] = cycle_p_;
+          move(CallKind::linear, at(clear));
+          break;
+        default: break;
+      }
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
+  bool cycle_r_set_ = false, cycle_z_set_ = false;
+  bool single_cycle_set_ = false;
+  std::array<double, 2> single_cycle_end_{};  // X (radius) and Z of the last G90/G94
+
+  // ---- Fanuc lathe single cycles (0i-TF, G-code system A) ----------------
+  // G90 (outer/inner diameter): rapid in X, feed along Z, feed out in X,
+  // rapid back in Z. G94 (end face): rapid in Z, feed along X, feed back in
+  // Z, rapid back in X. Both return to where they started; modal, so a
+  // block with only a new X (or Z) repeats the cycle.
+  void single_cycle(const Words& w, const Block& block) {
+    const bool face = motion_ == 9400;
+    if (w.has('R')) unsupported(fmt::format("G{} with a taper R", face ? 94 : 90), w.col('R'));
+    if (state_.feed <= 0) stop(fmt::format("G{} with zero feed rate", face ? 94 : 90));
+    const auto start = program_position();
+    auto end = target(w, false);
+    // The cycle's X and Z are modal: a block giving only one keeps the other.
+    if (single_cycle_set_ && g_of(w, 1) == std::nullopt) {
+      if (!w.has('X') && !w.has('U')) end[0] = single_cycle_end_[0];
+      if (!w.has('Z') && !w.has('W')) end[2] = single_cycle_end_[1];
+    }
+    single_cycle_end_ = {end[0], end[2]};
+    single_cycle_set_ = true;
+    CycleEvent event;
+    event.name = face ? "G94" : "G90";
+    event.line = block.line;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    event.parameters = {{'X', end[0] * 2}, {'Z', end[2]}, {'F', state_.feed}};
+    auto at = [&](double x, double z) {
+      auto p = start;
+      p[0] = x, p[2] = z;
+      return p;
+    };
+    if (face) {
+      move(CallKind::rapid, at(start[0], end[2]));
+      move(CallKind::linear, at(end[0], end[2]));
+      move(CallKind::linear, at(end[0], start[2]));
+      move(CallKind::rapid, at(start[0], start[2]));
+    } else {
+      move(CallKind::rapid, at(end[0], start[2]));
+      move(CallKind::linear, at(end[0], end[2]));
+      move(CallKind::linear, at(start[0], end[2]));
+      move(CallKind::rapid, at(start[0], start[2]));
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
+
+  // ---- coordinate systems --------------------------------------------------
+
+  void g10(const Words& w, std::uint32_t column) {
+    if (!w.has('L')) stop("G10 needs L", column);
+    const int l = to_int(w.get('L'), w.col('L'));
+    if (l != 2 && l != 20) unsupported(fmt::format("G10 L{} (tool table)", l), column);
+    if (!w.has('P')) stop("G10 needs P", column);
+    int system = to_int(w.get('P'), w.col('P'));
+    if (system == 0) system = coord_system_;
+    if (system < 1 || system > 9) stop(fmt::format("G10 P{}: coordinate system out of 1..9", w.get('P')), w.col('P'));
+    if (w.has('R') && w.get('R') != 0) unsupported("G10 R coordinate system rotation", w.col('R'));
+    const auto pos = program_position();
+    for (int a = 0; a < axes; ++a) {
+      const char letter = axis_letters[a];
+      if (!w.has(letter)) continue;
+      double v = a < 3 ? to_mm(w.get(letter)) : w.get(letter);
+      if (l == 20) {  // the current position becomes v
+        v = machine_[a] - g92_[a] - (a == 2 ? tool_offset_ : 0) - v;
+      }
+      g5x_[system][a] = v;
+      params_[static_cast<std::size_t>(5201 + system * 20 + a)] = a < 3 ? to_units(v) : v;
+    }
+    (void)pos;
+    if (system == coord_system_) {
+      Call& call = emit(CallKind::g5x_offset);
+      call.v[0] = system;
+      std::copy(g5x_[system].begin(), g5x_[system].end(), call.v.begin() + 1);
+    }
+  }
+
+  void g92(const Words& w, std::uint32_t column) {
+    if (!w.any_axis()) stop("G92 needs an axis word", column);
+    const auto pos = program_position();
+    for (int a = 0; a < axes; ++a) {
+      const char letter = axis_letters[a];
+      if (!w.has(letter)) continue;
+      const double v = a < 3 ? to_mm(w.get(letter)) : w.get(letter);
+      g92_[a] += pos[a] - v;
+      params_[static_cast<std::size_t>(5211 + a)] = a < 3 ? to_units(g92_[a]) : g92_[a];
+    }
+    params_[5210] = 1;
+    emit_g92();
+  }
+  void g92_reset(bool clear_parameters) {
+    g92_ = {};
+    if (clear_parameters) {
+      for (int a = 0; a < 9; ++a) params_[static_cast<std::size_t>(5211 + a)] = 0;
+    }
+    params_[5210] = 0;
+    emit_g92();
+  }
+  void g92_restore() {
+    for (int a = 0; a < axes; ++a) {
+      const double v = params_[static_cast<std::size_t>(5211 + a)];
+      g92_[a] = a < 3 ? to_mm(v) : v;
+    }
+    params_[5210] = 1;
+    emit_g92();
+  }
+  void emit_g92() {
+    Call& call = emit(CallKind::g92_offset);
+    std::copy(g92_.begin(), g92_.end(), call.v.begin());
+  }
+
+  // G28/G30: through the programmed point to the stored position (machine
+  // coordinates in parameters 5161.. / 5181..).
+  void go_home(const Words& w, int base) {
+    if (w.any_axis()) move(CallKind::rapid, target(w, false));
+    auto pos = program_position();
+    const bool some_reference_axes = reference_axes_[0] || reference_axes_[1] || reference_axes_[2];
+    for (int a = 0; a < axes; ++a) {
+      const bool named = w.has(axis_letters[a]) || (c_.uw_incremental && ((a == 0 && w.has('U')) || (a == 2 && w.has('W'))));
+      if (w.any_axis() && !named) continue;
+      if (some_reference_axes && (a >= 3 || !reference_axes_[static_cast<std::size_t>(a)])) continue;
+      const double stored = params_[static_cast<std::size_t>(base + a)];
+      const double m = a < 3 ? to_mm(stored) : stored;
+      pos[a] = m - g5x_[coord_system_][a] - g92_[a] - (a == 2 ? tool_offset_ : 0);
+    }
+    move(CallKind::rapid, pos);
+  }
+  void store_home(int base) {
+    for (int a = 0; a < axes; ++a)
+      params_[static_cast<std::size_t>(base + a)] = a < 3 ? to_units(machine_[a]) : machine_[a];
+  }
+
+  // M2/M30 (RS274NGC 3.6.1): offsets and modes back to their defaults,
+  // spindle and coolant off.
+  void program_end() {
+    coord_system_ = 1;
+    plane_ = 17;
+    incremental_ = false;
+    feed_per_rev_ = false;
+    state_.feed_per_rev = false;
+    state_.feed = 0;
+    emit(CallKind::feed_rate).v[0] = 0;
+    state_.spindle_direction = 0;
+    emit(CallKind::spindle_stop);
+    if (state_.mist) emit(CallKind::mist_off);
+    if (state_.flood) emit(CallKind::flood_off);
+    state_.mist = state_.flood = false;
+    motion_ = 10;
+    emit(CallKind::program_end);
+    ended_ = true;
+  }
+};
+
+}  // namespace
+
+Result interpret(const Program& program, const Controller& controller, const Options& options) {
+  return Interpreter(program, controller, options).run();
+}
+
+Result interpret_text(std::string text, const Controller& controller, const Options& options) {
+  const Program program = parse_program(std::move(text), controller);
+  return interpret(program, controller, options);
+}
+
+}  // namespace stepnc::gcode

@@ -1,0 +1,109 @@
+// The Fanuc tables drive the same interpreter: diameter X and U/W, T0101,
+// G04 in milliseconds, lengths without a decimal point, K repeats, macro
+// variables with bare expressions, program numbers.
+#include <catch2/catch.hpp>
+
+#include <array>
+
+#include "calls_of_kind.h"
+#include "stepnc/gcode/interpreter.h"
+
+using namespace stepnc::gcode;
+
+namespace {
+Result run(const char* controller_name, const std::string& text) {
+  return interpret_text(text, *controller(controller_name));
+}
+}  // namespace
+
+TEST_CASE("Fanuc lathe: X and U are diameters, W is incremental Z, T0202 changes tool", "[gcode][fanuc]") {
+  const Result r = run("fanuc-lathe", "O1234\nG50 S3000\nG96 S200 M03\nT0202\nG00 X50. Z5.\nG01 U-10. W-20. F0.25\nG04 P500\nM30\n");
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 1);
+  CHECK(feeds[0]->v[0] == Approx(20));   // (50 - 10) / 2
+  CHECK(feeds[0]->v[2] == Approx(-15));
+  CHECK(feeds[0]->state.feed_per_rev);
+  CHECK(feeds[0]->state.css);
+  CHECK(feeds[0]->state.spindle == 200);
+  CHECK(feeds[0]->state.tool == 2);
+  const auto dwell = of(r, CallKind::dwell);
+  REQUIRE(dwell.size() == 1);
+  CHECK(dwell[0]->v[0] == Approx(0.5));
+}
+
+TEST_CASE("Fanuc: a length without a decimal point counts micrometres", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill", "G21 G94 F100\nG01 X20 Y20. Z-3\nM30\n");
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 1);
+  CHECK(feeds[0]->v[0] == Approx(0.02));
+  CHECK(feeds[0]->v[1] == Approx(20));
+  CHECK(feeds[0]->v[2] == Approx(-0.003));
+}
+
+TEST_CASE("Fanuc mill: K repeats a canned cycle, macro variables take bare expressions", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill", "G21 G90 F100\n#1=5.\n#2=#1*2+1\nG0 Z10.\nG91 G99 G81 X#2 Y0. Z-5. R-8. K3\nG80 G90\nM30\n");
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 3);
+  CHECK(feeds[0]->v[0] == Approx(11));
+  CHECK(feeds[1]->v[0] == Approx(22));
+  CHECK(feeds[2]->v[0] == Approx(33));
+  CHECK(feeds[2]->v[2] == Approx(-3));  // R = 10 - 8, Z = R - 5
+}
+
+TEST_CASE("Fanuc: what the table does not run yet is refused by name", "[gcode][fanuc]") {
+  const Result lathe = run("fanuc-lathe", "G00 X80. Z2.\nG71 U2. R1.\nM30\n");
+  REQUIRE(lathe.unsupported());
+  CHECK(lathe.errors[0].message == "unsupported: G71 multiple repetitive cycle");
+  CHECK(lathe.errors[0].pos.line == 2);
+  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");  // subprograms live in other files
+  REQUIRE(sub.unsupported());
+  CHECK(sub.errors[0].message == "unsupported: M98/M99 subprograms");
+  const Result word = run("fanuc-mill", "G01 E5.\nM30\n");
+  REQUIRE(word.errors.size() == 1);
+  CHECK(word.errors[0].message == "unknown word 'E' for fanuc-mill");
+}
+
+TEST_CASE("Fanuc macro B: WHILE DO / END, IF GOTO, IF THEN, GOTO", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill",
+                       "O2000\nG21 G90 G94 F100.\n#1=0\n"
+                       "WHILE [#1 LT 3] DO1\nG01 X[#1*10]\n#1=#1+1\nEND1\n"
+                       "IF [#1 EQ 3] THEN #2=7.\n"
+                       "IF [#2 GT 5] GOTO 50\nG01 Y99.\n"
+                       "N50 G01 Y#2\nGOTO 70\nG01 Z99.\nN70 M30\n");
+  for (const auto& e : r.errors) INFO(e.to_string("macro.nc"));
+  REQUIRE(r.ok());
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 4);
+  CHECK(feeds[0]->v[0] == 0);
+  CHECK(feeds[2]->v[0] == Approx(20));
+  CHECK(feeds[3]->v[1] == Approx(7));  // the Y99. and Z99. blocks were jumped over
+  CHECK(feeds[3]->line == 11);
+  const Result missing = run("fanuc-mill", "GOTO 10\nM30\n");
+  REQUIRE(missing.errors.size() == 1);
+  CHECK(missing.errors[0].message == "GOTO 10: no block N10");
+}
+
+TEST_CASE("Fanuc lathe G90 and G94 single cycles expand to four moves and stay modal", "[gcode][fanuc]") {
+  const Result r = run("fanuc-lathe", "G99 F0.2\nG00 X62. Z2.\nG90 X56. Z-30.\nX52.\nG00 X62. Z2.\nG94 X20. Z-2.\nM30\n");
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 3);
+  CHECK(r.cycles[0].name == "G90");
+  CHECK(r.cycles[1].name == "G90");
+  CHECK(r.cycles[2].name == "G94");
+  // the second G90 pass: rapid to radius 26, feed to Z-30, feed out to radius 31, rapid back to Z2
+  std::vector<std::array<double, 2>> xz;
+  for (std::uint32_t i = r.cycles[1].first_call; i < r.cycles[1].end_call; ++i)
+    xz.push_back({r.calls[i].v[0], r.calls[i].v[2]});
+  const std::vector<std::array<double, 2>> expected = {{26, 2}, {26, -30}, {31, -30}, {31, 2}};
+  CHECK(xz == expected);
+  CHECK(r.calls[r.cycles[1].first_call].kind == CallKind::rapid);
+  CHECK(r.calls[r.cycles[1].first_call + 1].kind == CallKind::linear);
+  // G94: rapid to Z-2, feed to radius 10, feed back to Z2, rapid out
+  CHECK(r.calls[r.cycles[2].first_call].v[2] == -2);
+  CHECK(r.calls[r.cycles[2].first_call + 1].v[0] == 10);
+  CHECK(r.calls[r.cycles[2].end_call - 1].v[0] == 31);
+}

@@ -1,0 +1,130 @@
+// Every .ngc program the Debian package linuxcnc-uspace ships (listed by
+// `dpkg -L`, so nothing that merely happens to lie on this machine) runs
+// through LinuxCNC's own interpreter (`rs274 -g`) and through ours. For
+// each program rs274 runs without error, our canonical calls must equal
+// its calls one by one (moves, feeds, spindle, tools, coolant), or we must
+// refuse the program with "unsupported: FEATURE". Counts are reported;
+// at least 90% must be supported.
+#include <catch2/catch.hpp>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unistd.h>
+
+#include "canonical_calls.h"
+#include "stepnc/gcode/interpreter.h"
+#include "stepnc/gcode/tool_list.h"
+#include "test_files.h"
+
+namespace fs = std::filesystem;
+using namespace stepnc::gcode;
+
+namespace {
+
+std::string run_capture(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    std::array<char, 4096> buffer;
+    std::size_t n;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
+    ::pclose(pipe);
+  }
+  return out;
+}
+
+std::vector<fs::path> shipped_programs() {
+  std::vector<fs::path> out;
+  std::istringstream files(run_capture("dpkg -L linuxcnc-uspace 2>/dev/null"));
+  for (std::string line; std::getline(files, line);)
+    if (line.ends_with(".ngc") && fs::is_regular_file(line)) out.emplace_back(line);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// LinuxCNC's standalone interpreter reads tool tables in inches.
+std::string linuxcnc_tool_table(const std::map<int, Tool>& tools) {
+  std::string out;
+  for (const auto& [number, tool] : tools)
+    out += fmt::format("T{} P{} D{:.6f} Z{:+.6f}\n", number, number, tool.diameter / 25.4, tool.length / 25.4);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a named refusal", "[gcode][linuxcnc]") {
+  if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the LinuxCNC comparison is skipped");
+    return;
+  }
+  const auto programs = shipped_programs();
+  REQUIRE(programs.size() >= 100);
+
+  const auto list = read_tool_list(stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"));
+  REQUIRE(list.ok());
+  Options options;
+  options.tools = list.tools;
+  const auto controller = *stepnc::gcode::controller("rs274ngc");
+
+  const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_lcnc_{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path table = dir / "tools.tbl", listing = dir / "out.canon";
+  std::ofstream(table) << linuxcnc_tool_table(list.tools);
+
+  std::size_t runnable = 0, agree = 0, refused_by_rs274 = 0, moves = 0;
+  std::map<std::string, std::vector<std::string>> unsupported;  // reason -> programs
+  std::vector<std::string> disagreements;
+  for (const fs::path& program : programs) {
+    fs::remove(listing);
+    // rs274 keeps its tool data in $HOME/.tool.mmap, truncated at start: a
+    // HOME of our own keeps concurrent runs (other tests) apart.
+    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1",
+                                            dir.string(), table.string(), program.string(), listing.string());
+    if (std::system(command.c_str()) != 0) {
+      ++refused_by_rs274;
+      continue;
+    }
+    ++runnable;
+    const Result ours = interpret_text(stepnc_test::read_file(program), controller, options);
+    if (!ours.ok()) {
+      if (ours.unsupported()) {
+        unsupported[ours.errors.front().message].push_back(program.filename().string());
+      } else {
+        disagreements.push_back(fmt::format("{}: we fail where rs274 runs: {}", program.string(),
+                                            ours.errors.front().to_string(program.filename().string())));
+      }
+      continue;
+    }
+    const auto theirs = canonical_calls(stepnc_test::read_file(listing));
+    const auto mine = canonical_calls(canonical_text(ours, 9));
+    const std::string difference = compare_calls(mine, theirs);
+    if (difference.empty()) {
+      ++agree;
+      moves += mine.size();
+    } else {
+      disagreements.push_back(fmt::format("{}: {}", program.string(), difference));
+    }
+  }
+  fs::remove_all(dir);
+
+  std::size_t refused = 0;
+  std::string reasons;
+  for (const auto& [reason, names] : unsupported) {
+    refused += names.size();
+    reasons += fmt::format("\n  {} ({}): {}", reason, names.size(), fmt::join(names, ", "));
+  }
+  WARN(fmt::format("linuxcnc-uspace programs: {} shipped, {} run by rs274 -g ({} it refuses); of these {} agree call "
+                   "for call ({} calls compared), {} refused as unsupported, {} disagree.{}",
+                   programs.size(), runnable, refused_by_rs274, agree, moves, refused, disagreements.size(), reasons));
+  for (const auto& d : disagreements) FAIL_CHECK(d);
+  CHECK(disagreements.empty());
+  CHECK(runnable >= 150);
+  CHECK(static_cast<double>(agree) >= 0.9 * static_cast<double>(runnable));
+}

@@ -1,0 +1,179 @@
+// Read-back of our own posters: every sample (NIST's ex1E.stp included) posted in RS274NGC, Fanuc and
+// Siemens 840D and read by the gcode front end (with the matching
+// controller table) gives the motion of the poster's own canonical
+// listing, move by move within 1 micrometre, feeds included. The Fanuc and
+// 840D read-backs are the first check those programs get from something
+// other than the poster.
+#include <catch2/catch.hpp>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "canonical_compare.h"
+#include "projects.h"
+#include "stepnc/gcode/interpreter.h"
+#include "stepnc/post/dialect.h"
+#include "stepnc/post/generate.h"
+
+using namespace stepnc;
+
+namespace {
+
+// Machine-safe retracts (G53 G0 Z0, G28, 840D SUPA and G74) go to a place
+// that is machine data: the poster's canonical form puts them at a
+// stand-in (Program::machine_safe), the front end where the offsets it
+// knows put them. So both sides leave them out: the calls of those blocks
+// from ours, the traverses to the stand-in from the poster's.
+bool machine_safe_block(std::string_view line) {
+  for (std::string_view word : {"G53", "G28", "SUPA", "G74"})
+    if (line.find(word) != std::string_view::npos) return true;
+  return false;
+}
+
+gcode::Result without_machine_safe_retracts(gcode::Result result, std::string_view text) {
+  const gcode::Program lines = gcode::parse_program(std::string(text), *gcode::controller("rs274ngc"));
+  std::erase_if(result.calls, [&](const gcode::Call& call) { return machine_safe_block(lines.line_text(call.line)); });
+  return result;
+}
+
+// The poster's listing without its traverses to the stand-in, before
+// moves that do not move are dropped (as ours are).
+std::string without_machine_safe_traverses(std::string_view listing, const post::Program& program) {
+  const post::Vec3 safe = program.machine_safe;
+  const bool lathe = program.machine == post::MachineKind::turning;
+  std::string kept;
+  while (!listing.empty()) {
+    const std::size_t end = std::min(listing.find('\n'), listing.size());
+    const std::string_view line = listing.substr(0, end);
+    listing.remove_prefix(std::min(end + 1, listing.size()));
+    const auto moves = post::testing::canonical_moves(line);
+    const bool to_safe = moves.size() == 1 && moves[0].name == "STRAIGHT_TRAVERSE" && moves[0].args.size() >= 3 &&
+                         std::abs(moves[0].args[2] - safe.z) < 1e-9 &&
+                         (!lathe || std::abs(moves[0].args[0] - safe.x) < 1e-9);
+    if (!to_safe) kept.append(line).push_back('\n');
+  }
+  return kept;
+}
+
+// Fanuc has no turn count on G2/G3, so the poster writes a helix of n turns
+// as n blocks, a full turn each and then the rest, climbing in proportion
+// to the angle (GcodePrinter::arc); its canonical listing keeps one call.
+// The same split here makes the two comparable.
+std::vector<post::testing::CanonicalMove> one_turn_per_arc(const std::vector<post::testing::CanonicalMove>& moves) {
+  constexpr double two_pi = 2 * std::numbers::pi;
+  std::vector<post::testing::CanonicalMove> out;
+  double x = 0, y = 0, z = 0;
+  for (const auto& m : moves) {
+    const bool arc = m.name == "ARC_FEED" && m.args.size() >= 6;
+    if (arc && std::abs(m.args[4]) > 1) {
+      const int extra = static_cast<int>(std::abs(m.args[4])) - 1;
+      const bool clockwise = m.args[4] < 0;
+      const double cx = m.args[2], cy = m.args[3];
+      const double a0 = std::atan2(y - cy, x - cx), a1 = std::atan2(m.args[1] - cy, m.args[0] - cx);
+      double rest = clockwise ? a0 - a1 : a1 - a0;
+      while (rest <= 1e-12) rest += two_pi;
+      const double total = rest + two_pi * extra;
+      for (int turn = 1; turn <= extra; ++turn) {
+        auto full = m;
+        full.args[0] = x;
+        full.args[1] = y;
+        full.args[4] = clockwise ? -1 : 1;
+        full.args[5] = z + (m.args[5] - z) * (two_pi * turn / total);
+        out.push_back(full);
+      }
+      auto last = m;
+      last.args[4] = clockwise ? -1 : 1;
+      out.push_back(last);
+    } else {
+      out.push_back(m);
+    }
+    if (arc) {
+      x = m.args[0], y = m.args[1], z = m.args[5];
+    } else if (m.name != "DWELL" && m.args.size() >= 3) {
+      x = m.args[0], y = m.args[1], z = m.args[2];
+    }
+  }
+  return out;
+}
+
+// Rapids that continue one another along a straight line are one motion:
+// an 840D drilling cycle retracts straight to RTP, where the poster's
+// listing (LinuxCNC's G99 model) stops at R on the way. Both lists are
+// compared with such stops removed.
+std::vector<post::testing::CanonicalMove> straight_rapids_joined(const std::vector<post::testing::CanonicalMove>& moves) {
+  std::vector<post::testing::CanonicalMove> out;
+  std::array<double, 3> before_last{}, last{};  // where the last kept move started and ended
+  auto end_of = [](const post::testing::CanonicalMove& m) {
+    return m.name == "ARC_FEED" ? std::array<double, 3>{m.args[0], m.args[1], m.args[5]}
+                                : std::array<double, 3>{m.args[0], m.args[1], m.args[2]};
+  };
+  for (const auto& m : moves) {
+    if (m.name == "DWELL" || m.args.size() < 3) {
+      out.push_back(m);
+      continue;
+    }
+    const auto end = end_of(m);
+    if (m.name == "STRAIGHT_TRAVERSE" && !out.empty() && out.back().name == "STRAIGHT_TRAVERSE") {
+      // last lies on the segment before_last -> end: replace the last move.
+      std::array<double, 3> u{}, v{};
+      for (int i = 0; i < 3; ++i) u[i] = last[i] - before_last[i], v[i] = end[i] - before_last[i];
+      const double cross = std::hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+      const double along = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+      const double length2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (cross < 1e-9 && along >= 0 && along <= length2) {
+        out.back() = m;
+        last = end;
+        continue;
+      }
+    }
+    out.push_back(m);
+    before_last = last;
+    last = end;
+  }
+  return out;
+}
+
+std::string read_back(const std::string& sample, post::Dialect dialect) {
+  const auto described = post::testing::describe_sample(sample);
+  REQUIRE(described.ok());
+  const auto generated = post::generate(described.project);
+  REQUIRE(generated.ok());
+  const std::string posted = post::print(generated.program, dialect).text;
+  const std::string poster_canonical = post::print(generated.program, post::Dialect::canonical).text;
+  const bool lathe = described.project.machine == post::MachineKind::turning;
+  const std::string name = dialect == post::Dialect::rs274ngc      ? "rs274ngc"
+                           : dialect == post::Dialect::siemens840d ? "siemens840d"
+                           : lathe                                 ? "fanuc-lathe"
+                                                                   : "fanuc-mill";
+
+  // Zero tool lengths: the poster's canonical form is in program coordinates.
+  const gcode::Result read = gcode::interpret_text(posted, *gcode::controller(name));
+  if (!read.ok()) return fmt::format("{} as {}: {}", sample, name, read.errors.front().to_string("posted"));
+  const auto ours_listed = post::testing::canonical_moves(gcode::canonical_text(without_machine_safe_retracts(read, posted), 9));
+  auto theirs = post::testing::canonical_moves(without_machine_safe_traverses(poster_canonical, generated.program));
+  if (dialect == post::Dialect::fanuc) theirs = one_turn_per_arc(theirs);
+  theirs = straight_rapids_joined(theirs);
+  const auto ours = straight_rapids_joined(ours_listed);
+  if (ours.size() < 5) return fmt::format("{} as {}: only {} moves", sample, name, ours.size());
+  const std::string difference = post::testing::compare_moves(ours, theirs, 0.001);
+  return difference.empty() ? "" : fmt::format("{} as {}: {}", sample, name, difference);
+}
+
+}  // namespace
+
+TEST_CASE("posted programs of every sample read back to the poster's canonical motion", "[gcode][posters]") {
+  for (const char* sample : {"milling/example1.stp", "milling/open_pocket_step.stp", "milling/facing_toolpath.stp",
+                             "milling/nested_setup_functions.stp", "milling/nist/ex1E.stp", "turning/shaft.stp"})
+    for (const auto dialect : {post::Dialect::rs274ngc, post::Dialect::fanuc, post::Dialect::siemens840d}) {
+      const std::string outcome = read_back(sample, dialect);
+      // Not expanded yet: the 840D feature cycles (CYCLE71 face milling,
+      // POCKET1, CYCLE81-86) that Example 1 posts; refused by name.
+      if (std::string_view(sample) == "milling/example1.stp" && dialect == post::Dialect::siemens840d)
+        CHECK(outcome.find("error: unsupported: CYCLE71 (siemens840d cycle)") != std::string::npos);
+      else
+        CHECK(outcome == "");
+    }
+}

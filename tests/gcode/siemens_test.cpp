@@ -1,0 +1,74 @@
+// The Siemens 840D table: names (DIAMON, LIMS=, $TC_DP, CYCLE832), `;`
+// comments, G71 metric, G4 F seconds; cycles not expanded yet are refused.
+#include <catch2/catch.hpp>
+
+#include "stepnc/gcode/interpreter.h"
+
+using namespace stepnc::gcode;
+
+TEST_CASE("Siemens 840D: DIAMON, G96 with LIMS=, tool data, CYCLE832 as an event, G4 F", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G18 G71 G90 G40 DIAMON ; a lathe\n"
+      "N20 $TC_DP1[1,1]=500 $TC_DP3[1,1]=150 $TC_DP6[1,1]=0.8\n"
+      "N30 T1 D1\nN40 M6\nN50 CYCLE832(0.02,102003)\n"
+      "N60 G96 S200 LIMS=3000 M3\nN70 G95 F0.25\nN80 G0 X83 Z6\nN90 G1 X40\nN100 G4 F0.5\nN110 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  CHECK(r.cycles[0].name == "CYCLE832");
+  CHECK(r.cycles[0].line == 5);
+  REQUIRE(r.cycles[0].parameters.size() == 2);
+  CHECK(r.cycles[0].parameters[0].second == Approx(0.02));
+  const Call* feed = nullptr;
+  const Call* dwell = nullptr;
+  for (const auto& c : r.calls) {
+    if (c.kind == CallKind::linear) feed = &c;
+    if (c.kind == CallKind::dwell) dwell = &c;
+  }
+  REQUIRE(feed);
+  CHECK(feed->v[0] == Approx(20));  // X40 is a diameter
+  CHECK(feed->v[2] == Approx(6));
+  CHECK(feed->state.feed == Approx(0.25));
+  CHECK(feed->state.feed_per_rev);
+  CHECK(feed->state.css);
+  CHECK(feed->state.tool == 1);
+  REQUIRE(dwell);
+  CHECK(dwell->v[0] == Approx(0.5));
+}
+
+TEST_CASE("Siemens 840D: feature cycles and unknown names are refused with their column", "[gcode][siemens]") {
+  const Result pocket = interpret_text("N10 G17 G71\nN20 POCKET1(10,0,2,-5,,40,20,5,50,50,0,3,1,0,1000,200,0,2)\nN30 M30\n",
+                                       *controller("siemens840d"));
+  REQUIRE(pocket.unsupported());
+  CHECK(pocket.errors[0].to_string("p.mpf").starts_with("p.mpf:2:5: error: unsupported: POCKET1 (siemens840d cycle)"));
+  const Result unknown = interpret_text("N10 G17 G71\nN20 FOO=3\nN30 M30\n", *controller("siemens840d"));
+  REQUIRE(unknown.errors.size() == 1);
+  CHECK(unknown.errors[0].message == "unknown address FOO for siemens840d");
+  CHECK(unknown.errors[0].pos.column == 5);
+}
+
+TEST_CASE("Siemens 840D drilling cycles CYCLE81/82/86 expand at the current position", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G17 G71 G90 G94 F150\nN20 S800 M3\nN30 G0 X20 Y60 Z30\nN40 Z10\nN50 CYCLE81(10,0,2,-47.643)\n"
+      "N60 G0 X40\nN70 CYCLE82(10,0,2,,5,0.5)\nN80 G0 X60\nN90 CYCLE86(10,0,2,-20,,0,3,0,0,0)\nN100 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("d.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 3);
+  CHECK(r.cycles[0].name == "CYCLE81");
+  std::vector<double> z;
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i) z.push_back(r.calls[i].v[2]);
+  CHECK(z == std::vector<double>{2, -47.643, 10});
+  // CYCLE82 with DPR 5: depth -5, dwell 0.5 s
+  const auto& c82 = r.cycles[1];
+  CHECK(r.calls[c82.first_call + 1].v[2] == -5);
+  CHECK(r.calls[c82.first_call + 2].kind == CallKind::dwell);
+  CHECK(r.calls[c82.first_call + 2].v[0] == 0.5);
+  // CYCLE86: bore, stop the spindle, rapid out, restart clockwise (SDIR 3)
+  const auto& c86 = r.cycles[2];
+  CHECK(r.calls[c86.first_call + 2].kind == CallKind::spindle_stop);
+  CHECK(r.calls[c86.end_call - 1].kind == CallKind::spindle_clockwise);
+  CHECK(r.calls[c86.end_call - 2].v[2] == 10);
+  CHECK(r.calls[c86.end_call - 2].v[0] == 60);
+}
