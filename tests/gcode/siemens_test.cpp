@@ -2,6 +2,7 @@
 // comments, G71 metric, G4 F seconds; cycles not expanded yet are refused.
 #include <catch2/catch.hpp>
 
+#include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 
 using namespace stepnc::gcode;
@@ -71,4 +72,50 @@ TEST_CASE("Siemens 840D drilling cycles CYCLE81/82/86 expand at the current posi
   CHECK(r.calls[c86.end_call - 1].kind == CallKind::spindle_clockwise);
   CHECK(r.calls[c86.end_call - 2].v[2] == 10);
   CHECK(r.calls[c86.end_call - 2].v[0] == 60);
+}
+
+// What the safe-motion posters write on the 840D: SUPA (a block in machine
+// coordinates, like G53), G74 with the machine axes it approaches, TURN=
+// for helices, MSG("...") for the operator.
+TEST_CASE("Siemens 840D: SUPA, G74 X1=0 Z1=0, TURN= helices and MSG", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G17 G71 G90 G94 G54\nN20 MSG(\"CLAMP THE BLOCK\")\nN30 G0 SUPA Z0 D0\nN40 T1 D1\nN50 M6\n"
+      "N60 S1000 M3 F300\nN70 G0 X10 Y0 Z5\nN80 G3 X10 Y0 Z-1 I-10 J0 TURN=2\nN90 G74 X1=0 Z1=0\nN100 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("s.mpf"));
+  REQUIRE(r.ok());
+  const auto messages = of(r, CallKind::message);
+  REQUIRE(messages.size() == 1);
+  CHECK(messages[0]->text == "CLAMP THE BLOCK");
+  const auto arcs = of(r, CallKind::arc);
+  REQUIRE(arcs.size() == 1);
+  CHECK(arcs[0]->v[4] == 3);  // counter-clockwise, the end on the third turn
+  CHECK(arcs[0]->v[5] == Approx(-1));
+  const auto rapids = of(r, CallKind::rapid);
+  REQUIRE(rapids.size() >= 3);
+  CHECK(rapids.front()->line == 3);  // SUPA Z0: machine zero with no offset active
+  CHECK(rapids.front()->v[2] == Approx(0));
+  CHECK(rapids.back()->line == 9);  // G74: X and Z to the reference point, Y stays
+  CHECK(rapids.back()->v[0] == Approx(0));
+  CHECK(rapids.back()->v[1] == Approx(0));
+  CHECK(rapids.back()->v[2] == Approx(0));
+
+  const Result turn_alone = interpret_text("N10 G17 G71 G90\nN20 G0 X1 TURN=2\nN30 M30\n", *controller("siemens840d"));
+  REQUIRE(turn_alone.errors.size() == 1);
+  CHECK(turn_alone.errors[0].to_string("s.mpf") ==
+        "s.mpf:2:11: error: TURN= without a circular move (G2/G3) in its block\n  N20 G0 X1 TURN=2");
+  const Result axis_alone = interpret_text("N10 G17 G71 G90\nN20 X1=5\nN30 M30\n", *controller("siemens840d"));
+  REQUIRE(axis_alone.errors.size() == 1);
+  CHECK(axis_alone.errors[0].message == "X1= outside G74");
+  const Result open_message = interpret_text("N10 MSG(\"NO END\nN20 M30\n", *controller("siemens840d"));
+  REQUIRE_FALSE(open_message.ok());
+}
+
+TEST_CASE("Fanuc lathe: G54 selects a workpiece coordinate system", "[gcode][fanuc]") {
+  const Result r = interpret_text("O1\nG18 G21 G40 G97 G99 G54\nT0101\nG0 X40. Z2.\nM30\n", *controller("fanuc-lathe"));
+  for (const auto& e : r.errors) INFO(e.to_string("l.nc"));
+  REQUIRE(r.ok());
+  const auto rapids = of(r, CallKind::rapid);
+  REQUIRE(rapids.size() == 1);
+  CHECK(rapids[0]->v[0] == Approx(20));
 }
