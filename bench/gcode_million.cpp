@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Interpreting a one-million-block RS274NGC program (lines, arcs, a
 // drilling cycle, parameters), against two baselines measured in the same
 // run: a newline scan of the same file, and LinuxCNC's `rs274 -g` on it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // cli/: the stepnc command-line tool. Each subcommand lives in
 // commands/<name>.cpp and registers itself on the CLI11 app; main() runs the
 // one the user chose. Only this room prints; the libraries return values.

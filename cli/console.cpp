@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // What every subcommand shares: verbosity, the input and output arguments,
 // diagnostics and output files.
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading a Part 21 file into the ISO 14649 typed model for a subcommand,
 // with every diagnostic printed to stderr.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc: inspect, check, rewrite and post ISO 14649 (STEP-NC) Part 21 files.
 #include <cstdio>
 #include <cstring>

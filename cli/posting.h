@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The path every posting command shares: read a file, describe its project
 // for the posters, and generate the program, printing every diagnostic.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Descriptions of instances for the CLI's output, as text and as JSON.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Help around the command line itself: "did you mean" for unknown
 // subcommands and options, and the bash completion script, both read from
 // the CLI11 definitions so they never drift from them.

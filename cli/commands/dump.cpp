@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc dump FILE #ID [--json]: show one instance with every attribute,
 // through reflection only.
 #include <charconv>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc format FILE [-o OUT]: read and write back, losslessly (the Part 21
 // layer's round trip: values keep their spelling, unknown entities and all
 // sections are kept; layout becomes canonical, comments are dropped).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc gcode FILE --controller NAME [--tools TOOLS.csv] [--canonical |
 // --json] [--plot OUT.svg]: read an ISO 6983 program into motion and print it.
 #include <fmt/format.h>

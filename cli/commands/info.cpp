@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc info FILE [--json]: what a file holds, at a glance.
 #include <algorithm>
 #include <map>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc plot FILE [-o OUT.svg] [--envelope]: draw the workpiece, the
 // features and the toolpaths (milling: top and front view; turning: the XZ
 // profile; rapids and feeds differ).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc post FILE --dialect D [-o OUT] [--trace MAP.json] [--write-tool-data]: write the NC
 // program for a file's project, and optionally the map from each NC block
 // back to its workingstep, operation and feature.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc query FILE PATH [--json]: evaluate a path query (see
 // stepnc/query/path_query.h).
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // stepnc validate FILE [--strict] [--json]: check a file against the ISO
 // 14649 schemas and report every problem.
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The canonical machining functions as LinuxCNC's `rs274 -g` prints them
 // ("%5d N..... NAME(args)", lengths in the program's units, 4 decimals).
 #include <fmt/format.h>

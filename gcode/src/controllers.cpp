@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The controller tables. Modal groups follow RS274NGC 3 (table 4) and
 // LinuxCNC 2.9's G-code reference; Fanuc's follow the Fanuc 0i-TF/0i-MF
 // operator's manuals (G-code system A for the lathe). A code the

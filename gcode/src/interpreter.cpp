@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The modal interpreter. Execution order within a block follows RS274NGC 3
 // table 8 (LinuxCNC 2.9's "G-code order of execution"); canned cycles are
 // expanded as LinuxCNC's interpreter expands them.

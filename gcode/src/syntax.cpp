@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The block reader. One pass over the text; whitespace is ignored outside
 // comments (RS274NGC 3.3.1), so Fanuc's `G01X20.Z-3.F.2` reads as written.
 #include "stepnc/gcode/syntax.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The tool-list CSV (shared/formats/tool-list.md). The interpreter needs
 // `tool`, `length` (G43) and `diameter`; the other columns are checked by
 // name and kept for the recognisers.

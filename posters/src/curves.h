@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ISO 14649-10 toolpath curves (the ISO 10303-42 curves Part 10 allows in a
 // cutter location trajectory) as polyline points and arcs about Z.
 #pragma once

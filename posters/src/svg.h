@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // A small SVG writer: elements with attributes, every text and attribute
 // value XML-escaped, pixel numbers printed one way. The plotter builds its
 // picture through it instead of pasting markup together.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stepnc tool's conventions, run through a shell as a user runs it:
 // exit codes of every subcommand, `-` for standard input and output,
 // outputs that are safe to write anywhere, JSON, "did you mean", --quiet

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Running the stepnc tool from a test as a user runs it, through a shell.
 #pragma once
 

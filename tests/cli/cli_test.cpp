@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The stepnc command-line tool, run as a user runs it: exit codes, output,
 // error messages, and no partial output files.
 #include <filesystem>

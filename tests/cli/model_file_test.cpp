@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading Part 21 files into the typed model, and writing them back.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>

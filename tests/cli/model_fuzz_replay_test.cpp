@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replays the typed-model fuzz corpus, the Part 21 corpora and the samples
 // through the typed fuzz body (the CI stand-in for a fuzzing run).
 #include <catch2/catch.hpp>

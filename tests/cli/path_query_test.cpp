@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Path queries over ISO 14649 Example 1.
 #include <catch2/catch.hpp>
 

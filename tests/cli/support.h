@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared helpers of the exchange, query and CLI tests.
 #pragma once
 

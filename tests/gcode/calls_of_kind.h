@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The calls of one kind in a result, in order (shared by the gcode tests).
 #pragma once
 

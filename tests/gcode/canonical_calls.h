@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Reading canonical-call listings (ours and `rs274 -g`'s) into the calls
 // that say what the machine does, for comparison.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Fanuc tables drive the same interpreter: diameter X and U/W, T0101,
 // G04 in milliseconds, lengths without a decimal point, K repeats, macro
 // variables with bare expressions, program numbers.

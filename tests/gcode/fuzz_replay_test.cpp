@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Replays the saved fuzz corpus and the malformed corpus through the fuzz
 // body (the CI stand-in for a fuzzing run).
 #include <catch2/catch.hpp>

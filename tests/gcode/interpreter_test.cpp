@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The interpreter: modal state, arcs, canned cycles, offsets, control flow,
 // provenance; values checked against what LinuxCNC's rs274 prints for the
 // same blocks.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Every .ngc program the Debian package linuxcnc-uspace ships (listed by
 // `dpkg -L`, so nothing that merely happens to lie on this machine) runs
 // through LinuxCNC's own interpreter (`rs274 -g`) and through ours. For

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The malformed corpus: every tests/gcode/malformed/NAME.ngc has a
 // NAME.expected holding the one diagnostic the interpreter stops with
 // (file:line:col: error: message, then the block). To refresh after a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Read-back of our own posters: every sample (NIST's ex1E.stp included) posted in RS274NGC, Fanuc and
 // Siemens 840D and read by the gcode front end (with the matching
 // controller table) gives the motion of the poster's own canonical

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The printed programs of seeds 002 and 004, transcribed into
 // samples/gcode/ (provenance and repairs in their header comments), run
 // with the counts shared/SEEDS-SPEC.md derives (2.2.6, T002-01; 4.2.5).

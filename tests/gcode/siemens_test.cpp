@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The Siemens 840D table: names (DIAMON, LIMS=, $TC_DP, CYCLE832), `;`
 // comments, G71 metric, G4 F seconds; cycles not expanded yet are refused.
 #include <catch2/catch.hpp>

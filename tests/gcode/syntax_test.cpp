@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The block reader: words, numbers in every spelling, comments, block
 // delete, O-words, expressions, errors with line and column.
 #include <catch2/catch.hpp>

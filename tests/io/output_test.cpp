@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safe output (runtime/io): each rule of stepnc/io/output.h, on real files,
 // links, FIFOs, devices and standard output.
 #include <cerrno>

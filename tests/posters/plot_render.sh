@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Every sample's plot (with and without --envelope) must parse as XML
 # (xmllint) and render to PNG (rsvg-convert), so a broken SVG fails CI; a
 # project named with &, < and > must come out as that name.

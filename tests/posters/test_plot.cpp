@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SVG plot: what a machinist needs on the picture (title, legend naming
 // every tool, one colour per tool, feature and workingstep labels, a side
 // view for milling, rapids unlike feeds, axes and a true scale bar), and XML

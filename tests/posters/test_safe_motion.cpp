@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Safe motion (issue 10, items 4 and 5) on every sample under samples/
 // that posts and on the hand-built projects, in every G-code dialect:
 // checked on the posted text, and on the height-map simulation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer entry point for the typed reader and writer (see model_fuzz_body.h).
 #include <cstddef>
 #include <cstdint>

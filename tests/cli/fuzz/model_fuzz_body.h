@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One fuzz iteration over the typed reader and writer (runtime/exchange),
 // shared by the libFuzzer target and the corpus replay test.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // libFuzzer entry point for the G-code reader and interpreter (see gcode_fuzz_body.h).
 #include <cstddef>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // One fuzz input through the reader and the interpreter, with a small
 // block and call budget so loops end quickly. The first byte picks the
 // controller table (rs274ngc, fanuc-mill, fanuc-lathe, siemens840d); the

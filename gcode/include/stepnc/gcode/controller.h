@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controllers as data: what one interpreter needs to know about a dialect.
 // A dialect is a row of tables, never a copy of the interpreter.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The modal interpreter: a parsed program and a controller table in, the
 // machine calls it commands out, each with the block it came from.
 // Lengths are mm (and mm/min, s) whatever the program's units; `inch`

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The interpreter's result for people and programs: JSON and an SVG plot.
 #pragma once
 

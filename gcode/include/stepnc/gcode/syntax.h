@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // ISO 6983 blocks read into words, parameter assignments, O-word statements
 // and comments. Values stay unevaluated expressions (RS274NGC `[...]`,
 // `#n`, `#<name>`), evaluated by the interpreter in program order.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Tool lists in the shop's one CSV format (shared/formats/tool-list.md):
 // G-code carries tool numbers; the list gives their geometry.
 #pragma once
