@@ -3,11 +3,8 @@
 // --json] [--plot OUT.svg]: read an ISO 6983 program into motion and print it.
 #include <fmt/format.h>
 
-#include <fstream>
-#include <iterator>
 
 #include "command.h"
-#include "posting.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
 #include "stepnc/gcode/tool_list.h"
@@ -28,20 +25,12 @@ struct GcodeOptions {
 
 // `-`: standard input.
 std::optional<std::string> read_text(const std::string& path) {
-  if (io::is_standard_stream(path)) {
-    std::string text;
-    if (const auto error = io::read_standard_input(text)) {
-      fmt::print(stderr, "{}\n", *error);
-      return std::nullopt;
-    }
-    return text;
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    fmt::print(stderr, "{}: cannot open\n", path);
+  std::string text;
+  if (const auto error = io::read_text(path, text)) {
+    fmt::print(stderr, "{}: {}\n", io::is_standard_stream(path) ? io::standard_input_name : path, *error);
     return std::nullopt;
   }
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return text;
 }
 
 int run_gcode(const GcodeOptions& options) {

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The compiler driver: parse every source, resolve, sort the diagnostics.
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 #include <tuple>
 
 #include "model/model.h"
@@ -68,23 +66,14 @@ CompileResult compile_files(std::span<const std::filesystem::path> files) {
   std::vector<SourceText> sources;
   std::vector<Diagnostic> unreadable;
   for (const std::filesystem::path& path : files) {
-    if (stepnc::io::is_standard_stream(path)) {  // `-`: standard input, as for every stepnc tool
-      std::string text;
-      if (auto error = stepnc::io::read_standard_input(text)) {
-        unreadable.push_back({Diagnostic::Severity::Error, stepnc::io::standard_input_name, 0, 0, *error});
-      } else {
-        sources.push_back({stepnc::io::standard_input_name, std::move(text)});
-      }
+    // `-`: standard input, as for every stepnc tool.
+    const std::string name = stepnc::io::is_standard_stream(path) ? stepnc::io::standard_input_name : path.string();
+    std::string text;
+    if (auto error = stepnc::io::read_text(path, text)) {
+      unreadable.push_back({Diagnostic::Severity::Error, name, 0, 0, *error});
       continue;
     }
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    if (in) text << in.rdbuf();
-    if (!in || in.bad()) {
-      unreadable.push_back({Diagnostic::Severity::Error, path.string(), 0, 0, "cannot read file"});
-      continue;
-    }
-    sources.push_back({path.string(), std::move(text).str()});
+    sources.push_back({name, std::move(text)});
   }
   if (!unreadable.empty()) return {nullptr, std::move(unreadable)};
   return compile(std::move(sources));

@@ -22,20 +22,18 @@ TEST_CASE("Siemens 840D: DIAMON, G96 with LIMS=, tool data, CYCLE832 as an event
   CHECK(r.cycles[0].line == 5);
   REQUIRE(r.cycles[0].parameters.size() == 2);
   CHECK(r.cycles[0].parameters[0].second == Approx(0.02));
-  const Call* feed = nullptr;
-  const Call* dwell = nullptr;
-  for (const auto& c : r.calls) {
-    if (c.kind == CallKind::linear) feed = &c;
-    if (c.kind == CallKind::dwell) dwell = &c;
-  }
-  REQUIRE(feed);
+  const auto feeds = of(r, CallKind::linear);
+  const auto dwells = of(r, CallKind::dwell);
+  REQUIRE_FALSE(feeds.empty());
+  REQUIRE_FALSE(dwells.empty());
+  const Call* feed = feeds.back();
+  const Call* dwell = dwells.back();
   CHECK(feed->v[0] == Approx(20));  // X40 is a diameter
   CHECK(feed->v[2] == Approx(6));
   CHECK(feed->state.feed == Approx(0.25));
   CHECK(feed->state.feed_per_rev);
   CHECK(feed->state.css);
   CHECK(feed->state.tool == 1);
-  REQUIRE(dwell);
   CHECK(dwell->v[0] == Approx(0.5));
 }
 

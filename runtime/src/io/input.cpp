@@ -3,6 +3,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -22,6 +24,14 @@ std::optional<std::string> read_standard_input(std::string& text) {
     }
     text.append(chunk, static_cast<std::size_t>(got));
   }
+}
+
+std::optional<std::string> read_text(const std::filesystem::path& path, std::string& text) {
+  if (is_standard_stream(path)) return read_standard_input(text);
+  std::ifstream in(path, std::ios::binary);
+  if (in) text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (!in || in.bad()) return std::string("cannot read file");
+  return std::nullopt;
 }
 
 }  // namespace stepnc::io

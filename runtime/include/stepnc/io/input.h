@@ -18,4 +18,8 @@ inline constexpr const char* standard_input_name = "<stdin>";
 /// Reads all of standard input into `text`; returns an error message on failure.
 std::optional<std::string> read_standard_input(std::string& text);
 
+/// Reads a whole file, or standard input for `-`, into `text`; returns an
+/// error message on failure ("cannot read file", or standard input's).
+std::optional<std::string> read_text(const std::filesystem::path& path, std::string& text);
+
 }  // namespace stepnc::io
