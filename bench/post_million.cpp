@@ -13,8 +13,9 @@
 
 #include "support.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

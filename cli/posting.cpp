@@ -7,7 +7,7 @@
 #include "load.h"
 #include "stepnc/io/input.h"
 #include "stepnc/p21/document.h"
-#include "stepnc/post/iso14649.h"
+#include "stepnc/machining/iso14649.h"
 
 namespace stepnc::cli {
 namespace {
@@ -15,11 +15,11 @@ namespace {
 // Prints posting diagnostics as file:line:col of the instance they name;
 // true when none is an error. The file is indexed again only to find those
 // lines.
-bool report(const std::filesystem::path& path, const std::vector<post::Diagnostic>& diagnostics) {
+bool report(const std::filesystem::path& path, const std::vector<machining::Diagnostic>& diagnostics) {
   bool ok = true;
   std::optional<p21::ReadResult> index;
-  for (const post::Diagnostic& diagnostic : diagnostics) {
-    const bool error = diagnostic.severity == post::Diagnostic::Severity::error;
+  for (const machining::Diagnostic& diagnostic : diagnostics) {
+    const bool error = diagnostic.severity == machining::Diagnostic::Severity::error;
     if (!error && verbosity() == Verbosity::quiet) continue;
     const bool from_stdin = io::is_standard_stream(path);
     std::string where = from_stdin ? std::string(io::standard_input_name) : path.string();
@@ -44,9 +44,9 @@ bool report(const std::filesystem::path& path, const std::vector<post::Diagnosti
 std::optional<PostedProject> post_file(const std::filesystem::path& path) {
   const auto file = load(path);
   if (!file) return std::nullopt;
-  post::DescribeResult described = post::describe_project(file->model);
+  machining::DescribeResult described = machining::describe_project(file->model);
   if (!report(path, described.diagnostics)) return std::nullopt;
-  post::GenerateResult generated = post::generate(described.project);
+  machining::GenerateResult generated = machining::generate(described.project);
   if (!report(path, generated.diagnostics)) return std::nullopt;
   return PostedProject{std::move(described.project), std::move(generated.program)};
 }

@@ -6,14 +6,14 @@
 #include <filesystem>
 #include <optional>
 
-#include "stepnc/post/generate.h"
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/generate.h"
+#include "stepnc/machining/description.h"
 
 namespace stepnc::cli {
 
 struct PostedProject {
-  post::MachiningProject project;
-  post::Program program;
+  machining::MachiningProject project;
+  machining::Program program;
 };
 
 // Null after printing why the file could not be posted.

@@ -7,7 +7,7 @@
 #include <iterator>
 
 #include "dialects.h"
-#include "stepnc/post/motion.h"
+#include "stepnc/machining/motion.h"
 
 namespace stepnc::post::detail {
 

@@ -9,6 +9,8 @@
 
 namespace stepnc::post {
 
+using namespace stepnc::machining;
+
 std::optional<Dialect> dialect_from_name(std::string_view name) {
   if (name == "rs274ngc") return Dialect::rs274ngc;
   if (name == "fanuc") return Dialect::fanuc;

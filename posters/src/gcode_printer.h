@@ -8,9 +8,12 @@
 #include <string_view>
 
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/program.h"
+#include "stepnc/machining/program.h"
 
 namespace stepnc::post::detail {
+
+// The printers read the machining room's program IR.
+using namespace stepnc::machining;
 
 // `v` with `decimals` fixed decimals, trailing zeros trimmed; a bare
 // integer keeps its point when `keep_point` (Fanuc reads "20" as 20 µm).

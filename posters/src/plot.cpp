@@ -12,11 +12,13 @@
 #include <set>
 #include <tuple>
 
-#include "stepnc/post/feature_geometry.h"
-#include "stepnc/post/motion.h"
+#include "stepnc/machining/feature_geometry.h"
+#include "stepnc/machining/motion.h"
 #include "svg.h"
 
 namespace stepnc::post {
+
+using namespace stepnc::machining;
 
 namespace {
 

@@ -37,9 +37,9 @@ std::string number(double value) {
   return text;
 }
 
-std::string points(const std::vector<Vec2>& points) {
+std::string points(const std::vector<machining::Vec2>& points) {
   std::string out;
-  for (const Vec2 p : points) {
+  for (const machining::Vec2 p : points) {
     if (!out.empty()) out += ' ';
     out += number(p.x) + ',' + number(p.y);
   }

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
 namespace stepnc::post::svg {
 
@@ -21,7 +21,7 @@ std::string escape(std::string_view text);
 std::string number(double value);
 
 // "x,y x,y ..." for polyline and polygon `points`.
-std::string points(const std::vector<Vec2>& points);
+std::string points(const std::vector<machining::Vec2>& points);
 
 struct Attribute {
   std::string_view name;

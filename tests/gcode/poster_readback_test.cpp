@@ -17,7 +17,7 @@
 #include "projects.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
 using namespace stepnc;
 
@@ -42,15 +42,15 @@ gcode::Result without_machine_safe_retracts(gcode::Result result, std::string_vi
 
 // The poster's listing without its traverses to the stand-in, before
 // moves that do not move are dropped (as ours are).
-std::string without_machine_safe_traverses(std::string_view listing, const post::Program& program) {
-  const post::Vec3 safe = program.machine_safe;
-  const bool lathe = program.machine == post::MachineKind::turning;
+std::string without_machine_safe_traverses(std::string_view listing, const machining::Program& program) {
+  const machining::Vec3 safe = program.machine_safe;
+  const bool lathe = program.machine == machining::MachineKind::turning;
   std::string kept;
   while (!listing.empty()) {
     const std::size_t end = std::min(listing.find('\n'), listing.size());
     const std::string_view line = listing.substr(0, end);
     listing.remove_prefix(std::min(end + 1, listing.size()));
-    const auto moves = post::testing::canonical_moves(line);
+    const auto moves = testing::canonical_moves(line);
     const bool to_safe = moves.size() == 1 && moves[0].name == "STRAIGHT_TRAVERSE" && moves[0].args.size() >= 3 &&
                          std::abs(moves[0].args[2] - safe.z) < 1e-9 &&
                          (!lathe || std::abs(moves[0].args[0] - safe.x) < 1e-9);
@@ -63,9 +63,9 @@ std::string without_machine_safe_traverses(std::string_view listing, const post:
 // as n blocks, a full turn each and then the rest, climbing in proportion
 // to the angle (GcodePrinter::arc); its canonical listing keeps one call.
 // The same split here makes the two comparable.
-std::vector<post::testing::CanonicalMove> one_turn_per_arc(const std::vector<post::testing::CanonicalMove>& moves) {
+std::vector<testing::CanonicalMove> one_turn_per_arc(const std::vector<testing::CanonicalMove>& moves) {
   constexpr double two_pi = 2 * std::numbers::pi;
-  std::vector<post::testing::CanonicalMove> out;
+  std::vector<testing::CanonicalMove> out;
   double x = 0, y = 0, z = 0;
   for (const auto& m : moves) {
     const bool arc = m.name == "ARC_FEED" && m.args.size() >= 6;
@@ -104,10 +104,10 @@ std::vector<post::testing::CanonicalMove> one_turn_per_arc(const std::vector<pos
 // an 840D drilling cycle retracts straight to RTP, where the poster's
 // listing (LinuxCNC's G99 model) stops at R on the way. Both lists are
 // compared with such stops removed.
-std::vector<post::testing::CanonicalMove> straight_rapids_joined(const std::vector<post::testing::CanonicalMove>& moves) {
-  std::vector<post::testing::CanonicalMove> out;
+std::vector<testing::CanonicalMove> straight_rapids_joined(const std::vector<testing::CanonicalMove>& moves) {
+  std::vector<testing::CanonicalMove> out;
   std::array<double, 3> before_last{}, last{};  // where the last kept move started and ended
-  auto end_of = [](const post::testing::CanonicalMove& m) {
+  auto end_of = [](const testing::CanonicalMove& m) {
     return m.name == "ARC_FEED" ? std::array<double, 3>{m.args[0], m.args[1], m.args[5]}
                                 : std::array<double, 3>{m.args[0], m.args[1], m.args[2]};
   };
@@ -138,13 +138,13 @@ std::vector<post::testing::CanonicalMove> straight_rapids_joined(const std::vect
 }
 
 std::string read_back(const std::string& sample, post::Dialect dialect) {
-  const auto described = post::testing::describe_sample(sample);
+  const auto described = testing::describe_sample(sample);
   REQUIRE(described.ok());
-  const auto generated = post::generate(described.project);
+  const auto generated = machining::generate(described.project);
   REQUIRE(generated.ok());
   const std::string posted = post::print(generated.program, dialect).text;
   const std::string poster_canonical = post::print(generated.program, post::Dialect::canonical).text;
-  const bool lathe = described.project.machine == post::MachineKind::turning;
+  const bool lathe = described.project.machine == machining::MachineKind::turning;
   const std::string name = dialect == post::Dialect::rs274ngc      ? "rs274ngc"
                            : dialect == post::Dialect::siemens840d ? "siemens840d"
                            : lathe                                 ? "fanuc-lathe"
@@ -153,13 +153,13 @@ std::string read_back(const std::string& sample, post::Dialect dialect) {
   // Zero tool lengths: the poster's canonical form is in program coordinates.
   const gcode::Result read = gcode::interpret_text(posted, *gcode::controller(name));
   if (!read.ok()) return fmt::format("{} as {}: {}", sample, name, read.errors.front().to_string("posted"));
-  const auto ours_listed = post::testing::canonical_moves(gcode::canonical_text(without_machine_safe_retracts(read, posted), 9));
-  auto theirs = post::testing::canonical_moves(without_machine_safe_traverses(poster_canonical, generated.program));
+  const auto ours_listed = testing::canonical_moves(gcode::canonical_text(without_machine_safe_retracts(read, posted), 9));
+  auto theirs = testing::canonical_moves(without_machine_safe_traverses(poster_canonical, generated.program));
   if (dialect == post::Dialect::fanuc) theirs = one_turn_per_arc(theirs);
   theirs = straight_rapids_joined(theirs);
   const auto ours = straight_rapids_joined(ours_listed);
   if (ours.size() < 5) return fmt::format("{} as {}: only {} moves", sample, name, ours.size());
-  const std::string difference = post::testing::compare_moves(ours, theirs, 0.001);
+  const std::string difference = testing::compare_moves(ours, theirs, 0.001);
   return difference.empty() ? "" : fmt::format("{} as {}: {}", sample, name, difference);
 }
 

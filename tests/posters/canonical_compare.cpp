@@ -6,7 +6,7 @@
 #include <charconv>
 #include <cmath>
 
-namespace stepnc::post::testing {
+namespace stepnc::testing {
 
 namespace {
 
@@ -107,4 +107,4 @@ std::vector<std::string> non_canonical_lines(std::string_view listing) {
   return out;
 }
 
-}  // namespace stepnc::post::testing
+}  // namespace stepnc::testing

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace stepnc::post::testing {
+namespace stepnc::testing {
 
 struct CanonicalMove {
   std::string name;          // STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED, DWELL
@@ -27,4 +27,4 @@ std::string compare_moves(const std::vector<CanonicalMove>& ours, const std::vec
 // Lines of a listing that are not canonical calls (interpreter errors).
 std::vector<std::string> non_canonical_lines(std::string_view listing);
 
-}  // namespace stepnc::post::testing
+}  // namespace stepnc::testing

@@ -3,8 +3,10 @@
 
 #include "projects.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

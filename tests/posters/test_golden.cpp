@@ -11,9 +11,11 @@
 #include "projects.h"
 #include "stepnc/io/output.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
 namespace fs = std::filesystem;
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

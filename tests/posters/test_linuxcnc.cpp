@@ -17,9 +17,11 @@
 #include "canonical_compare.h"
 #include "projects.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
 namespace fs = std::filesystem;
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

@@ -15,9 +15,11 @@
 #include <set>
 
 #include "projects.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 #include "stepnc/post/plot.h"
 
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

@@ -9,11 +9,13 @@
 #include <sstream>
 
 #include "projects.h"
-#include "simulation.h"
+#include "stepnc/machining/simulation.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
 namespace fs = std::filesystem;
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {
@@ -203,8 +205,8 @@ TEST_CASE("safe motion: every sample and dialect") {
 
     // On the simulation: nothing gouged, no rapid through material, no
     // full-feed plunge into material.
-    const auto report = lathe ? testing::simulate_turning(c.project, generated.program)
-                              : testing::simulate_milling(c.project, generated.program);
+    const auto report = lathe ? simulate_turning(c.project, generated.program)
+                              : simulate_milling(c.project, generated.program);
     CHECK(report.text() == "");
     CHECK(report.rapids_checked > 0);
   }
@@ -219,12 +221,12 @@ TEST_CASE("safe motion: the simulation notices a full-feed plunge into material"
   options.plunge_feed_ratio = 1;
   const auto result = generate(project, options);
   REQUIRE(result.ok());
-  const auto report = testing::simulate_milling(project, result.program);
+  const auto report = simulate_milling(project, result.program);
   REQUIRE_FALSE(report.problems.empty());
   CHECK(report.problems.front().find("feed plunge") != std::string::npos);
   // The same at the plunge feed passes.
   const auto reduced = generate(project);
-  CHECK(testing::simulate_milling(project, reduced.program).problems.empty());
+  CHECK(simulate_milling(project, reduced.program).problems.empty());
 }
 
 TEST_CASE("safe motion: approach and retract strategies are honoured") {
@@ -236,7 +238,7 @@ TEST_CASE("safe motion: approach and retract strategies are honoured") {
     const auto result = generate(project);
     for (const auto& d : result.diagnostics) INFO(d.to_string());
     REQUIRE(result.ok());
-    const auto report = testing::simulate_milling(project, result.program);
+    const auto report = simulate_milling(project, result.program);
     CHECK(report.text() == "");
     return result.program;
   };
@@ -367,7 +369,7 @@ TEST_CASE("cycles: reaming feeds out, drilling_type_strategy as motion") {
   REQUIRE(project.features.size() == 3);
   REQUIRE(std::holds_alternative<ClosedPocket>(project.features[2].shape));
   project.features.pop_back();
-  const auto report = testing::simulate_milling(project, program);
+  const auto report = simulate_milling(project, program);
   CHECK(report.text() == "");
 }
 

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "stepnc/post/program.h"
+#include "stepnc/machining/program.h"
 
 namespace stepnc::post {
 
@@ -41,15 +41,15 @@ struct PrintOptions {
 };
 
 /// Prints `program` in `dialect`.
-PrintedProgram print(const Program& program, Dialect dialect, const PrintOptions& options = {});
+PrintedProgram print(const machining::Program& program, Dialect dialect, const PrintOptions& options = {});
 
 /// The sidecar map as JSON: every traced line with its workingstep,
 /// operation and feature (`#id` and name).
-std::string trace_json(const Program& program, const PrintedProgram& printed);
+std::string trace_json(const machining::Program& program, const PrintedProgram& printed);
 
 /// The LinuxCNC tool table for a program (T, P, D and, when asked, the
 /// model's assembly length as Z offset). Real machines measure lengths;
 /// leave them out (Z0) to check motion in program coordinates.
-std::string linuxcnc_tool_table(const Program& program, bool with_lengths = true);
+std::string linuxcnc_tool_table(const machining::Program& program, bool with_lengths = true);
 
 }  // namespace stepnc::post

@@ -15,8 +15,8 @@
 
 #include <string>
 
-#include "stepnc/post/machining.h"
-#include "stepnc/post/program.h"
+#include "stepnc/machining/description.h"
+#include "stepnc/machining/program.h"
 
 namespace stepnc::post {
 
@@ -29,6 +29,6 @@ struct PlotOptions {
 };
 
 /// The SVG picture of `program`, posted from `project` (see the file comment).
-std::string plot_svg(const MachiningProject& project, const Program& program, const PlotOptions& options = {});
+std::string plot_svg(const machining::MachiningProject& project, const machining::Program& program, const PlotOptions& options = {});
 
 }  // namespace stepnc::post

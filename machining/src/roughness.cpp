@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "stepnc/post/roughness.h"
+#include "stepnc/machining/roughness.h"
 
 #include <cmath>
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 double residual_height(const TurningRoughnessInput& in) {
   constexpr double deg = 3.14159265358979323846 / 180;
@@ -15,4 +15,4 @@ double residual_height(const TurningRoughnessInput& in) {
   return r * (1 - std::cos(minor) + F * std::cos(minor) - std::sin(minor) * std::sqrt(2 * F - F * F));
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

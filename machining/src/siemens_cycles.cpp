@@ -11,7 +11,7 @@
 #include "geometry.h"
 #include "regions.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 namespace {
 
@@ -230,4 +230,4 @@ std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in) {
   return cycle;
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

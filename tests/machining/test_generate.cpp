@@ -7,9 +7,11 @@
 
 #include "projects.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/generate.h"
-#include "stepnc/post/roughness.h"
+#include "stepnc/machining/generate.h"
+#include "stepnc/machining/roughness.h"
 
+using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 namespace {

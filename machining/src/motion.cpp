@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "stepnc/post/motion.h"
+#include "stepnc/machining/motion.h"
 
 #include <cmath>
 
 #include "geometry.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 namespace {
 
@@ -187,4 +187,4 @@ std::vector<Vec3> arc_points(const Move& arc, double step) {
   return out;
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

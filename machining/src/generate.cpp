@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/generate.h"
 
 #include <fmt/format.h>
 
@@ -7,11 +7,11 @@
 #include <cmath>
 
 #include "geometry.h"
-#include "stepnc/post/roughness.h"
+#include "stepnc/machining/roughness.h"
 #include "regions.h"
 #include "siemens_cycles.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 std::string Diagnostic::to_string() const {
   return fmt::format("#{} '{}': {}: {}", where.id, where.name,
@@ -1615,4 +1615,4 @@ GenerateResult generate(const MachiningProject& project, const GenerateOptions& 
   return Generator(project, options).run();
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

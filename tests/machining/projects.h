@@ -4,10 +4,12 @@
 #pragma once
 
 #include "stepnc/meta/model.h"
-#include "stepnc/post/iso14649.h"
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/iso14649.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post::testing {
+namespace stepnc::testing {
+
+using namespace stepnc::machining;
 
 // ISO 14649-11 Example 1 (samples/milling/example1.stp): planar face,
 // round hole (drill, ream), closed pocket (rough, finish), with the
@@ -37,4 +39,4 @@ DescribeResult describe_sample(const std::string& relative_path);
 DescribeResult describe_text(const std::string& part21_text);
 std::string sample_path(const std::string& relative_path);
 
-}  // namespace stepnc::post::testing
+}  // namespace stepnc::testing

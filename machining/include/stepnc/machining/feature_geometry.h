@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// Negative inside the feature's XY outline, positive outside (huge for
 /// features without one, e.g. turning features).
@@ -17,4 +17,4 @@ double feature_signed_distance(const Feature& feature, Vec2 global);
 /// The outline as a closed polyline (arcs sampled every 5 degrees).
 std::vector<Vec2> feature_outline(const Feature& feature);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

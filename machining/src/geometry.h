@@ -9,17 +9,17 @@
 #include <variant>
 #include <vector>
 
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
 inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining
 
-namespace stepnc::post::geom {
+namespace stepnc::machining::geom {
 
 constexpr double pi = 3.14159265358979323846;
 
@@ -91,4 +91,4 @@ std::vector<std::pair<double, double>> offset_intervals(const Region& region, do
 // Tight bounds of the region in y.
 std::pair<double, double> y_range(const Region& region);
 
-}  // namespace stepnc::post::geom
+}  // namespace stepnc::machining::geom

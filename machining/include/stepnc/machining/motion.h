@@ -7,9 +7,9 @@
 
 #include <vector>
 
-#include "stepnc/post/program.h"
+#include "stepnc/machining/program.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// One motion or machine state change of an expanded program.
 struct Move {
@@ -33,4 +33,4 @@ std::vector<Move> expand_motion(const Program& program);
 /// Points along an arc move, at most `step` mm apart (for plots/simulation).
 std::vector<Vec3> arc_points(const Move& arc, double step);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

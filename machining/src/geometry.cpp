@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 Placement Placement::from_ref_direction(Vec3 location, double dx, double dy) {
   return Placement{location, std::atan2(dy, dx) * 180.0 / geom::pi};
@@ -25,9 +25,9 @@ Vec2 Placement::to_local(Vec2 global) const {
   return {c * dx + s * dy, -s * dx + c * dy};
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining
 
-namespace stepnc::post::geom {
+namespace stepnc::machining::geom {
 
 double length(Vec2 a) { return std::hypot(a.x, a.y); }
 
@@ -348,4 +348,4 @@ std::pair<double, double> y_range(const Region& region) {
   return {lo, hi};
 }
 
-}  // namespace stepnc::post::geom
+}  // namespace stepnc::machining::geom

@@ -2,10 +2,11 @@
 #include <catch2/catch.hpp>
 
 #include "projects.h"
-#include "simulation.h"
-#include "stepnc/post/generate.h"
+#include "stepnc/machining/simulation.h"
+#include "stepnc/machining/generate.h"
 
-using namespace stepnc::post;
+using namespace stepnc;
+using namespace stepnc::machining;
 
 namespace {
 
@@ -23,7 +24,7 @@ TEST_CASE("simulation: Example 1 cuts face, hole and pocket, and nothing else") 
   const auto project = testing::example1();
   const auto result = generate(project);
   REQUIRE(result.ok());
-  check(testing::simulate_milling(project, result.program));
+  check(simulate_milling(project, result.program));
 }
 
 TEST_CASE("simulation: every milling feature and hole cycle") {
@@ -31,7 +32,7 @@ TEST_CASE("simulation: every milling feature and hole cycle") {
   const auto result = generate(project);
   for (const auto& d : result.diagnostics) INFO(d.to_string());
   REQUIRE(result.ok());
-  check(testing::simulate_milling(project, result.program));
+  check(simulate_milling(project, result.program));
 }
 
 TEST_CASE("simulation: roughing alone leaves exactly its allowances") {
@@ -39,7 +40,7 @@ TEST_CASE("simulation: roughing alone leaves exactly its allowances") {
   project.main_workplan.children.resize(4);  // face, drill, ream, rough pocket
   const auto result = generate(project);
   REQUIRE(result.ok());
-  check(testing::simulate_milling(project, result.program));
+  check(simulate_milling(project, result.program));
 }
 
 TEST_CASE("simulation: the check notices a wrong program") {
@@ -55,7 +56,7 @@ TEST_CASE("simulation: the check notices a wrong program") {
       break;
     }
   }
-  CHECK_FALSE(testing::simulate_milling(project, program).problems.empty());
+  CHECK_FALSE(simulate_milling(project, program).problems.empty());
 }
 
 TEST_CASE("simulation: the shaft is turned to its profile, groove and face") {
@@ -63,5 +64,5 @@ TEST_CASE("simulation: the shaft is turned to its profile, groove and face") {
   const auto result = generate(project);
   for (const auto& d : result.diagnostics) INFO(d.to_string());
   REQUIRE(result.ok());
-  check(testing::simulate_turning(project, result.program));
+  check(simulate_turning(project, result.program));
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 /// @file
-/// The machining description the posters work from: plain C++ values, no
+/// The machining description posters, planners and recognisers work from: plain C++ values, no
 /// schema types. An adapter fills it from the typed ISO 14649 model (or a test
 /// builds it by hand); everything after that is shared by every dialect.
 ///
@@ -17,7 +17,7 @@
 #include <variant>
 #include <vector>
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// A Part 21 instance a value came from: `#id` plus its name (its_id / name
 /// attribute). id 0 means "not from the file" (made up by the poster).
@@ -467,4 +467,4 @@ struct MachiningProject {
   Executable main_workplan;  ///< the program structure to machine
 };
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

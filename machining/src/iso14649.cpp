@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "stepnc/post/iso14649.h"
+#include "stepnc/machining/iso14649.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -13,10 +13,10 @@
 #include "milling_schema.h"
 #include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
-#include "stepnc/post/feature_geometry.h"
+#include "stepnc/machining/feature_geometry.h"
 #include "curves.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 bool DescribeResult::ok() const {
   return std::none_of(diagnostics.begin(), diagnostics.end(),
@@ -994,4 +994,4 @@ class Describer {
 
 DescribeResult describe_project(const meta::Model& model) { return Describer(model).run(); }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

@@ -14,9 +14,9 @@
 #include <variant>
 #include <vector>
 
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// Where a block came from (seed 000 6: lets logged CNC data be joined back
 /// to features). Index 0 of Program::provenance is "the program itself".
@@ -178,4 +178,4 @@ struct Program {
   const ToolEntry* tool(int number) const;
 };
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

@@ -5,10 +5,10 @@
 
 #include <optional>
 
-#include "stepnc/post/machining.h"
-#include "stepnc/post/program.h"
+#include "stepnc/machining/description.h"
+#include "stepnc/machining/program.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 struct CycleInput {
   const Feature& feature;
@@ -26,4 +26,4 @@ struct CycleInput {
 // keeps the operation's intent (the printer then posts the motion).
 std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

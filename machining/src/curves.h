@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "machining_schema.h"
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post::detail {
+namespace stepnc::machining::detail {
 
 // B-splines become polylines that stay within this distance of the curve
 // (no dialect's spline word is used).
@@ -31,4 +31,4 @@ Vec3 point(const machining_schema::cartesian_point* p);
 void append_curve(const machining_schema::curve& curve, bool reversed, std::vector<ToolpathElement>& out,
                   std::vector<CurveProblem>& problems);
 
-}  // namespace stepnc::post::detail
+}  // namespace stepnc::machining::detail

@@ -8,13 +8,14 @@
 #include "machining_schema.h"
 #include "milling_schema.h"
 #include "projects.h"
-#include "simulation.h"
+#include "stepnc/machining/simulation.h"
 #include "stepnc/post/dialect.h"
-#include "stepnc/post/iso14649.h"
+#include "stepnc/machining/iso14649.h"
 #include "stepnc/post/plot.h"
 #include "test_files.h"
 
 using namespace stepnc;
+using namespace stepnc::machining;
 using namespace stepnc::post;
 
 TEST_CASE("Example 1 from its Part 21 file: the description the posters need") {
@@ -73,7 +74,7 @@ TEST_CASE("Example 1 from its Part 21 file posts, simulates clean and keeps the 
   const auto generated = generate(described.project);
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
-  const auto report = testing::simulate_milling(described.project, generated.program);
+  const auto report = simulate_milling(described.project, generated.program);
   CHECK(report.text() == "");
   const std::string siemens = print(generated.program, Dialect::siemens840d).text;
   // Table 1 but FFD: the infeed runs at the plunge feed (half the feedrate).
@@ -132,7 +133,7 @@ TEST_CASE("the shaft from its Part 21 file: turning description, posting, simula
   const auto generated = generate(p);
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
-  const auto report = testing::simulate_turning(p, generated.program);
+  const auto report = simulate_turning(p, generated.program);
   CHECK(report.text() == "");
 }
 
@@ -282,7 +283,7 @@ TEST_CASE("an open pocket and a step from their Part 21 file: extents run to the
   const auto generated = generate(p);
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
-  const auto report = testing::simulate_milling(p, generated.program);
+  const auto report = simulate_milling(p, generated.program);
   CHECK(report.text() == "");
   CHECK(report.cells_checked > 0);
 }
@@ -506,7 +507,7 @@ namespace {
 
 std::string simulation_problems(const MachiningProject& project, const Program& program) {
   std::string problems;
-  for (const auto& problem : testing::simulate_milling(project, program).problems) problems += problem + "\n";
+  for (const auto& problem : simulate_milling(project, program).problems) problems += problem + "\n";
   return problems;
 }
 
@@ -774,6 +775,6 @@ TEST_CASE("approach, retract and drilling strategies are read from the file") {
   const auto generated = generate(edited.project);
   for (const auto& d : generated.diagnostics) INFO(d.to_string());
   REQUIRE(generated.ok());
-  const auto report = testing::simulate_milling(edited.project, generated.program);
+  const auto report = simulate_milling(edited.project, generated.program);
   CHECK(report.text() == "");
 }

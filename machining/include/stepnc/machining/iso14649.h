@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "stepnc/meta/model.h"
-#include "stepnc/post/generate.h"
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/generate.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// A project's machining description, and the problems found making it.
 struct DescribeResult {
@@ -37,4 +37,4 @@ struct DescribeResult {
 /// bosses, slopes, wall boundaries, floor fillets), an error names the `#id`.
 DescribeResult describe_project(const meta::Model& model);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

@@ -8,7 +8,7 @@
 #include "milling_schema.h"
 #include "stepnc/exchange/model_file.h"
 
-namespace stepnc::post::testing {
+namespace stepnc::testing {
 
 namespace {
 
@@ -434,4 +434,4 @@ std::string sample_path(const std::string& relative_path) {
   return std::string(STEPNC_SOURCE_DIR) + "/samples/" + relative_path;
 }
 
-}  // namespace stepnc::post::testing
+}  // namespace stepnc::testing

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "simulation.h"
+#include "stepnc/machining/simulation.h"
 
 #include <fmt/format.h>
 
@@ -8,10 +8,10 @@
 #include <limits>
 #include <map>
 
-#include "stepnc/post/feature_geometry.h"
-#include "stepnc/post/motion.h"
+#include "stepnc/machining/feature_geometry.h"
+#include "stepnc/machining/motion.h"
 
-namespace stepnc::post::testing {
+namespace stepnc::machining {
 
 namespace {
 
@@ -325,4 +325,4 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
   return report;
 }
 
-}  // namespace stepnc::post::testing
+}  // namespace stepnc::machining

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "geometry.h"
-#include "stepnc/post/machining.h"
+#include "stepnc/machining/description.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 struct MillingRegion {
   geom::Region region;  // centred on `offset`
@@ -26,4 +26,4 @@ std::optional<RectangularProfile> as_rectangle(const PolygonProfile& polygon, Ve
 // nullopt for shapes without an XY region or with bad sizes.
 std::optional<MillingRegion> milling_region(const Feature& feature, double open_extension, std::string& problem);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

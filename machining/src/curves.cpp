@@ -7,7 +7,7 @@
 #include <cmath>
 #include <optional>
 
-namespace stepnc::post::detail {
+namespace stepnc::machining::detail {
 
 namespace {
 
@@ -357,4 +357,4 @@ void append_curve(const ms::curve& curve, bool reversed, std::vector<ToolpathEle
   }
 }
 
-}  // namespace stepnc::post::detail
+}  // namespace stepnc::machining::detail

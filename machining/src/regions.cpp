@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stepnc/post/feature_geometry.h"
+#include "stepnc/machining/feature_geometry.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 namespace {
 
@@ -145,4 +145,4 @@ std::vector<Vec2> feature_outline(const Feature& feature) {
   return out;
 }
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "stepnc/post/machining.h"
-#include "stepnc/post/program.h"
+#include "stepnc/machining/description.h"
+#include "stepnc/machining/program.h"
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// A problem found while posting, naming the instance it is about.
 struct Diagnostic {
@@ -54,4 +54,4 @@ struct GenerateResult {
 ///  - if/while and other control structures: an error diagnostic.
 GenerateResult generate(const MachiningProject& project, const GenerateOptions& options = {});
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining

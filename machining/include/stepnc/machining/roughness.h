@@ -5,7 +5,7 @@
 /// major and minor cutting edge angles K_r and K'_r leaves at feed f.
 #pragma once
 
-namespace stepnc::post {
+namespace stepnc::machining {
 
 /// The tool and feed of a turning pass, for residual_height() (seed 001 eq. 1 to 3).
 struct TurningRoughnessInput {
@@ -19,4 +19,4 @@ struct TurningRoughnessInput {
 /// feeds) or eq. 3 (sharp tool, r = 0).
 double residual_height(const TurningRoughnessInput& in);
 
-}  // namespace stepnc::post
+}  // namespace stepnc::machining
