@@ -105,7 +105,10 @@ CREATE TABLE operations (
   PRIMARY KEY (case_id, sequence));
 CREATE INDEX operations_by_tool ON operations (tool_id);
 )sql",
-    // 2: CNC data logs (Q7, seed 000).
+    // 2: CNC data logs (Q7, seed 000). A run's samples have the contiguous
+    // ids first_sample..last_sample (one transaction under the write lock
+    // writes them), so a report reads them by primary-key range and 1 M
+    // rows need no second index.
     R"sql(
 CREATE TABLE log_runs (
   id           INTEGER PRIMARY KEY,
@@ -115,6 +118,8 @@ CREATE TABLE log_runs (
   nc_file      TEXT NOT NULL,
   program      TEXT NOT NULL,
   row_count    INTEGER NOT NULL,
+  first_sample INTEGER NOT NULL,
+  last_sample  INTEGER NOT NULL,
   imported_at  TEXT NOT NULL,
   UNIQUE (log_sha256, nc_sha256));
 CREATE TABLE log_workingsteps (
@@ -128,8 +133,8 @@ CREATE TABLE log_workingsteps (
   first_line     INTEGER NOT NULL,
   PRIMARY KEY (run_id, workingstep_id));
 CREATE TABLE log_samples (
+  id              INTEGER PRIMARY KEY,
   run_id          INTEGER NOT NULL REFERENCES log_runs (id),
-  sequence        INTEGER NOT NULL,
   time            REAL NOT NULL,
   duration        REAL NOT NULL,
   line            INTEGER NOT NULL,
@@ -139,8 +144,7 @@ CREATE TABLE log_samples (
   programmed_feed REAL,
   spindle_speed   REAL NOT NULL,
   spindle_load    REAL NOT NULL,
-  workingstep_id  INTEGER,
-  PRIMARY KEY (run_id, sequence));
+  workingstep_id  INTEGER);
 )sql",
 };
 
