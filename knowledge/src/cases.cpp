@@ -313,7 +313,12 @@ QueryResult query_cases(const Store& store, const CaseQuery& query) {
     ranges.push_back(value + reach + margin);
     where += rtree ? fmt::format(" AND r.max{0} >= ? AND r.min{0} <= ?", k) : fmt::format(" AND c.dim{} BETWEEN ? AND ?", k);
   }
-  if (rtree && !ranges.empty()) sql += " JOIN case_dimensions r ON r.id = c.id";
+  // The R*Tree drives the join (CROSS JOIN fixes SQLite's join order):
+  // its box search first, then each candidate's row by primary key.
+  if (rtree && !ranges.empty()) {
+    sql = "SELECT c.id FROM case_dimensions r CROSS JOIN cases c";
+    where.replace(0, 7, " WHERE c.id = r.id AND ");
+  }
   if (!q.tool_kind.empty())
     where +=
         " AND EXISTS (SELECT 1 FROM operations o JOIN tools t ON t.id = o.tool_id WHERE o.case_id = c.id AND t.kind IN "
