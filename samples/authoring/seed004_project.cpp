@@ -122,7 +122,7 @@ void build_seed004(Model& m) {
   rings.cutmode = mill::cutmode_type::conventional;
   auto& helix = m.create<mill::plunge_helix>();  // L26: helix R7.2
   helix.radius = 7.2;
-  helix.angle = 0;  // the printed helix descends 20.9 mm in 0.62 turns; its angle is not given
+  helix.angle = 36.7;  // L26 descends 20.9 mm over 223.2 deg of R7.2 (28.05 mm): atan(20.9 / 28.05)
 
   // Rough (L21-L47): S1200 = 20 rev/s, F2400 = 0.04 m/s, 5 layers of 5.9,
   // rings 5 apart, side allowance 1, bottom 0.5.
