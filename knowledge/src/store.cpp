@@ -71,7 +71,9 @@ CREATE TABLE cases (
   location_x REAL NOT NULL, location_y REAL NOT NULL, location_z REAL NOT NULL,
   axis_x     REAL NOT NULL, axis_y     REAL NOT NULL, axis_z     REAL NOT NULL,
   dim1 REAL, dim2 REAL, dim3 REAL, dim4 REAL);
-CREATE INDEX cases_by_context ON cases (machine, material, feature_type, dim1);
+-- Covers the portable range filter: the range on dim1 is scanned in the
+-- index, dim2..dim4 are tested there too, no table row is read for them.
+CREATE INDEX cases_by_context ON cases (machine, material, feature_type, dim1, dim2, dim3, dim4);
 CREATE INDEX cases_by_feature ON cases (feature_key);
 CREATE TABLE feature_dimensions (
   case_id INTEGER NOT NULL REFERENCES cases (id),
