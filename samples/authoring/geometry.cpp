@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "geometry.h"
 
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+
 namespace stepnc_samples {
 
 namespace ms = machining_schema;
+namespace mill = milling_schema;
+namespace tools = milling_machine_tool_schema;
 using stepnc::meta::Model;
 
 ms::cartesian_point* point(Model& m, std::uint32_t id, const char* name, double x, double y, double z) {
@@ -50,6 +55,49 @@ ms::toleranced_length_measure* length(Model& m, std::uint32_t id, double size, m
   l.theoretical_size = size;
   l.implicit_tolerance = tolerance;
   return &l;
+}
+
+mill::milling_technology* technology(Model& m, std::uint32_t id, double feedrate, double spindle) {
+  auto& t = m.create<mill::milling_technology>(id);
+  t.feedrate = feedrate;
+  t.feedrate_reference = ms::tool_reference_point::tcp;
+  t.spindle = spindle;
+  t.synchronize_spindle_with_feed = false;
+  t.inhibit_feedrate_override = false;
+  t.inhibit_spindle_override = false;
+  return &t;
+}
+
+tools::milling_tool_dimension* dimension(Model& m, std::uint32_t id, double diameter) {
+  auto& d = m.create<tools::milling_tool_dimension>(id);
+  d.diameter = diameter;
+  return &d;
+}
+
+tools::milling_cutting_tool* tool(Model& m, std::uint32_t id, const char* name, ms::tool_body* body,
+                                  ms::cutting_component* edge, double assembly_length) {
+  auto& t = m.create<tools::milling_cutting_tool>(id);
+  t.its_id = name;
+  t.its_tool_body = body;
+  t.its_cutting_edge = {edge};
+  t.overall_assembly_length = assembly_length;
+  return &t;
+}
+
+ms::cutting_component* cutting_edge(Model& m, std::uint32_t id, double offset_length) {
+  auto& c = m.create<ms::cutting_component>(id);
+  c.tool_offset_length = offset_length;
+  return &c;
+}
+
+ms::machining_workingstep* workingstep(Model& m, std::uint32_t id, const char* name, ms::plane* secplane,
+                                       ms::manufacturing_feature* feature, ms::machining_operation* operation) {
+  auto& w = m.create<ms::machining_workingstep>(id);
+  w.its_id = name;
+  w.its_secplane = secplane;
+  w.its_feature = feature;
+  w.its_operation = operation;
+  return &w;
 }
 
 }  // namespace stepnc_samples

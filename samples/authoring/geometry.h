@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
-// Helpers for the geometry and tolerances every STEP-NC project repeats:
-// named points, directions, placements, planes and toleranced lengths.
+// Helpers for what every STEP-NC milling project repeats: named points,
+// directions, placements, planes, toleranced lengths, milling technology,
+// tools and workingsteps.
 // An id of 0 lets the model number the instance.
 #pragma once
 
 #include <cstdint>
 
 #include "machining_schema.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
 #include "stepnc/meta/model.h"
 
 namespace stepnc_samples {
@@ -24,5 +27,18 @@ machining_schema::plane* plane(stepnc::meta::Model& m, std::uint32_t id, const c
 machining_schema::plus_minus_value* tolerance(stepnc::meta::Model& m, std::uint32_t id, double upper, double lower);
 machining_schema::toleranced_length_measure* length(stepnc::meta::Model& m, std::uint32_t id, double size,
                                                     machining_schema::plus_minus_value* tolerance);
+
+
+milling_schema::milling_technology* technology(stepnc::meta::Model& m, std::uint32_t id, double feedrate, double spindle);
+milling_machine_tool_schema::milling_tool_dimension* dimension(stepnc::meta::Model& m, std::uint32_t id, double diameter);
+milling_machine_tool_schema::milling_cutting_tool* tool(stepnc::meta::Model& m, std::uint32_t id, const char* name,
+                                                        machining_schema::tool_body* body,
+                                                        machining_schema::cutting_component* edge,
+                                                        double assembly_length);
+machining_schema::cutting_component* cutting_edge(stepnc::meta::Model& m, std::uint32_t id, double offset_length);
+machining_schema::machining_workingstep* workingstep(stepnc::meta::Model& m, std::uint32_t id, const char* name,
+                                                     machining_schema::plane* secplane,
+                                                     machining_schema::manufacturing_feature* feature,
+                                                     machining_schema::machining_operation* operation);
 
 }  // namespace stepnc_samples
