@@ -93,7 +93,7 @@ MachiningProject example1() {
   p.features.push_back(feature(17, "HOLE1 D=22MM", Placement{{20, 60, 0}, 0}, 30, RoundHole{22, HoleBottom::through}));
   PolygonProfile outline{{{0, 0}, {0, 80}, {-50, 80}, {-50, 0}}, 10};  // #59 with orthogonal_radius #37
   p.features.push_back(feature(18, "POCKET1", Placement::from_ref_direction({45, 110, 0}, -1, 0), 30,
-                               ClosedPocket{outline, 1.0}));
+                               ClosedPocket{outline, 1.0, {}}));
 
   Operation face = operation(19, "FINISH PLANAR FACE1", OperationKind::plane_finish_milling, 0,
                              milling_tech(40, 0.040, -12), 10);
@@ -148,9 +148,9 @@ MachiningProject milling_features() {
 
   // Features (local frames; tops at z 0).
   p.features.push_back(feature(10, "CIRCULAR POCKET", Placement{{30, 30, 0}, 0}, 8,
-                               ClosedPocket{CircularProfile{36}, 0}));
+                               ClosedPocket{CircularProfile{36}, 0, {}}));
   PolygonProfile ell{{{0, 0}, {50, 0}, {50, 20}, {20, 20}, {20, 40}, {0, 40}}, 0};
-  p.features.push_back(feature(11, "L POCKET", Placement{{60, 10, 0}, 0}, 6, ClosedPocket{ell, 0}));
+  p.features.push_back(feature(11, "L POCKET", Placement{{60, 10, 0}, 0}, 6, ClosedPocket{ell, 0, {}}));
   p.features.push_back(feature(12, "OPEN POCKET", Placement{{140, 30, 0}, 0}, 5,
                                OpenPocket{RectangularProfile{40, 30, 6}, open_max_x}));
   p.features.push_back(feature(13, "STEP", Placement{{0, 100, 0}, 0}, 4, Step{160, 20}));

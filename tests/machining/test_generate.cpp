@@ -9,6 +9,7 @@
 #include "stepnc/post/dialect.h"
 #include "stepnc/machining/generate.h"
 #include "stepnc/machining/roughness.h"
+#include "stepnc/machining/simulation.h"
 
 using namespace stepnc;
 using namespace stepnc::machining;
@@ -206,10 +207,20 @@ TEST_CASE("diagnostics name the instance and stop the program") {
   }
 }
 
-TEST_CASE("contour_parallel on a non-convex profile is refused, bidirectional works") {
+TEST_CASE("contour_parallel clears a concave profile and a pocket with an island") {
   auto project = testing::milling_features();
-  project.operations[2].strategy = ContourParallel{};
-  CHECK(mentions(generate(project), "#32 'ZIGZAG L': error: contour_parallel on a non-convex general profile"));
+  project.operations[2].strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  SECTION("the L pocket") {}
+  SECTION("the L pocket around a square island") {
+    std::get<ClosedPocket>(project.features[1].shape).islands.push_back({{28.5, 8.5}, {31.5, 8.5}, {31.5, 11.5}, {28.5, 11.5}});
+  }
+  const auto result = generate(project);
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  const auto report = simulate_milling(project, result.program);
+  INFO(report.text());
+  CHECK(report.problems.empty());
+  CHECK(report.cells_checked > 1000);
 }
 
 TEST_CASE("unidirectional turning follows the cutting-depth list (seed 001 5.2)") {

@@ -154,6 +154,10 @@ struct PlanarFace {
 struct ClosedPocket {
   ClosedProfile profile;  ///< its outline
   double planar_radius = 0;  ///< fillet between floor and walls
+  /// Bosses standing from the floor to the pocket's top (its_boss), as
+  /// simple polygons in the pocket's frame; circles come linearised within
+  /// polygons::chordal_tolerance.
+  std::vector<std::vector<Vec2>> islands;
 };
 
 /// rectangular open pocket: the open sides lie in air
