@@ -1026,11 +1026,18 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   };
   // Each lap in turn, linked by feeds inside the region where they can be,
   // entered from `approach_z` where not.
-  auto run_laps = [&](const std::vector<Path>& paths, double z, double approach_z, bool first_entry) {
+  // `open_down_to`: where roughing left the pocket open (a finishing floor
+  // pass): an entry whose tool stays clear of the walls' allowance comes
+  // down to just above it at rapid.
+  auto run_laps = [&](const std::vector<Path>& paths, double z, double approach_z, bool first_entry,
+                      std::optional<Roughed> open_down_to = std::nullopt) {
     for (std::size_t i = 0; i < paths.size(); ++i) {
       const Path& lap = paths[i];
       if ((i == 0 && first_entry) || !feed_link(lap.start)) {
-        move_to_start(job, lap.start, approach_z, z, {}, room_at(region, lap.start - offset, d_final, &lap));
+        double entry_z = approach_z;
+        if (open_down_to && -geom::signed_distance(region, lap.start - offset) >= r + open_down_to->side + 1e-3)
+          entry_z = std::min(entry_z, open_down_to->floor + options_.safety_distance);
+        move_to_start(job, lap.start, entry_z, z, {}, room_at(region, lap.start - offset, d_final, &lap));
       } else {
         feed(global(job, lap.start, z));
       }
@@ -1084,7 +1091,7 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
     // Roughing clears each level completely, so the next plunge can start
     // just above it; finishing levels cut the walls only and plunge from
     // above the feature (the tool stays where the last wall lap ended).
-    double approach_z = (rough ? last_level : job.top) + options_.safety_distance;
+    const double approach_z = (rough ? last_level : job.top) + options_.safety_distance;
     const bool floor = k + 1 == levels.size();
     if (!rough && !floor && circle) {
       // A round wall: down the circle itself, a helix at the plunge feed
@@ -1092,8 +1099,12 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
       const Path& lap = boundary_laps.front();
       if (k == 0) move_to_start(job, lap.start, approach_z, approach_z, {}, EntryRoom{});
       feedrate({job.tech.feed.value * options_.plunge_feed_ratio, job.tech.feed.per_revolution});
+      // As many turns as keep it no steeper than the ramp angle.
       const geom::Segment& turn = lap.segments.front();
-      emit(Arc{ArcPlane::xy, global(job, lap.start, z), global(job, turn.centre, z), turn.clockwise, 0});
+      const double pitch = 2 * geom::pi * geom::length(lap.start - turn.centre) *
+                           std::tan(options_.ramp_angle_deg * geom::pi / 180);
+      const int turns = std::max(1, static_cast<int>(std::ceil((pos_.z - z) / std::max(pitch, eps) - 1e-9)));
+      emit(Arc{ArcPlane::xy, global(job, lap.start, z), global(job, turn.centre, z), turn.clockwise, turns - 1});
       feedrate(job.tech.feed);
       path_at(job, lap, z);
     } else if (!rough && !floor) {
@@ -1101,10 +1112,9 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
       run_laps(boundary_laps, z, approach_z, true);
     } else if (contour) {
       // Enter at the inner lap, then outwards lap by lap.
-      if (!rough && roughed != roughed_.end() && roughed->second.floor >= z - eps &&
-          -geom::signed_distance(region, laps.front().start - offset) >= r + roughed->second.side + 1e-3)
-        approach_z = std::min(approach_z, roughed->second.floor + options_.safety_distance);
-      run_laps(laps, z, approach_z, true);
+      std::optional<Roughed> open;
+      if (!rough && roughed != roughed_.end() && roughed->second.floor >= z - eps) open = roughed->second;
+      run_laps(laps, z, approach_z, true, open);
     } else {
       zigzag(z, approach_z);
       run_laps(boundary_laps, z, approach_z, true);
