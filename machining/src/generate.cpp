@@ -207,7 +207,7 @@ class Generator {
   bool predrilled(const Job& job, Vec3 target) const;
   EntryRoom room_at(const Region& region, Vec2 local, double d_final, const Path* along) const;
   void leave(const Job& job);
-  void drill_explicit(const Job& job, const DrillCycle& cycle, const DrillingStrategy& strategy);
+  void drill_explicit(const Job& job, const DrillCycle& cycle, const DrillingStrategy& strategy, bool oriented_stop);
   void check_technology(const Job& job);
   Vec3 global(const Job& job, Vec2 local, double z, Vec2 offset = {}) const;
   void go_clear(Vec2 xy, double clear);
@@ -1222,7 +1222,10 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
       cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
       break;
     case OperationKind::boring:
-      cycle.kind = op.spindle_stop_at_bottom ? DrillKind::bore_spindle_stop : DrillKind::bore_feed_out;
+      // spindle_stop_at_bottom: an oriented stop and a lift-off away from
+      // the wall before the rapid out (drill_explicit), never G86's rapid
+      // out with the edge on the bore.
+      cycle.kind = DrillKind::bore_feed_out;
       cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
       break;
     case OperationKind::tapping:
@@ -1241,8 +1244,9 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   if (cycle.r >= cycle.clear - eps) cycle.clear = cycle.r;
   go_clear({cycle.x, cycle.y}, job.clear);
   rapid({cycle.x, cycle.y, cycle.clear});
-  if (op.drilling_strategy && cycle.kind != DrillKind::tap) {
-    drill_explicit(job, cycle, *op.drilling_strategy);
+  const bool oriented_stop = op.kind == OperationKind::boring && op.spindle_stop_at_bottom;
+  if ((op.drilling_strategy || oriented_stop) && cycle.kind != DrillKind::tap) {
+    drill_explicit(job, cycle, op.drilling_strategy.value_or(DrillingStrategy{}), oriented_stop);
   } else {
     feedrate({cycle.feed, false});
     emit(cycle);
@@ -1257,8 +1261,10 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
 // by reduced_feed_at_end over the last depth_of_end; pecks (multistep)
 // scaled by reduced_cut_* in those zones, each followed by a rapid back to
 // R and down to just above the last depth, as G83 does; dwell; out at the
-// retract feed for boring and reaming, else at rapid.
-void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingStrategy& st) {
+// retract feed for boring and reaming, else at rapid; with an oriented
+// stop, the spindle stops at its angle, the bar moves off the wall and
+// leaves at rapid, and the spindle starts again.
+void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingStrategy& st, bool oriented_stop) {
   const double start_end = c.top - st.depth_of_start, end_start = c.bottom + st.depth_of_end;
   auto zone_ratio = [&](double z, double start, double end) {
     return z > start_end + eps ? start : z <= end_start + eps ? end : 1.0;
@@ -1273,7 +1279,8 @@ void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingSt
     }
     // Split the feed at the zone borders.
     for (const double border : {start_end, end_start}) {
-      if (border < z - eps && border > next + eps) {
+      const bool zone = border == start_end ? st.depth_of_start > eps : st.depth_of_end > eps;
+      if (zone && border < z - eps && border > next + eps) {
         feedrate({c.feed * zone_ratio(z - eps, st.reduced_feed_at_start, st.reduced_feed_at_end), false});
         feed({c.x, c.y, border});
         z = border;
@@ -1290,15 +1297,17 @@ void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingSt
     }
   }
   if (c.dwell > 0) emit(Dwell{c.dwell});
-  if (c.kind == DrillKind::bore_feed_out || c.kind == DrillKind::bore_spindle_stop) {
-    if (c.kind == DrillKind::bore_spindle_stop) emit(SpindleOff{});
-    if (c.kind == DrillKind::bore_feed_out) {
-      feedrate({c.retract_feed, false});
-      feed({c.x, c.y, c.r});
-    } else {
-      rapid({c.x, c.y, c.r});
-      emit(*spindle_);
-    }
+  if (oriented_stop) {
+    emit(SpindleOff{options_.boring_orientation_deg});
+    const double a = options_.boring_orientation_deg * geom::pi / 180;
+    const Vec3 off{c.x - options_.boring_lift_off * std::cos(a), c.y - options_.boring_lift_off * std::sin(a), c.bottom};
+    feed(off);
+    rapid({off.x, off.y, c.r});
+    rapid({c.x, c.y, c.r});
+    emit(*spindle_);
+  } else if (c.kind == DrillKind::bore_feed_out) {
+    feedrate({c.retract_feed, false});
+    feed({c.x, c.y, c.r});
   } else {
     rapid({c.x, c.y, c.r});
   }
