@@ -869,7 +869,8 @@ void Generator::workingstep(const Executable& executable) {
     } else if (auto* slot_shape = std::get_if<Slot>(&shape); slot_shape && bottom_side) {
       slot(job, *slot_shape);
     } else if (bottom_side && (std::holds_alternative<ClosedPocket>(shape) || std::holds_alternative<OpenPocket>(shape) ||
-                               std::holds_alternative<Step>(shape) || std::holds_alternative<RoundHole>(shape))) {
+                               std::holds_alternative<Step>(shape) || std::holds_alternative<RoundHole>(shape) ||
+                               std::holds_alternative<OutsideProfile>(shape))) {
       // A round hole milled with a smaller end mill is a circular pocket.
       std::string problem;
       const auto region = milling_region(*job.feature, tool_radius(job) + options_.approach_clearance, problem);

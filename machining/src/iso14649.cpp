@@ -318,6 +318,8 @@ class Describer {
         step(*wall, out);
       } else if (auto* groove = as<ms::slot>(&f)) {
         slot(*groove, out);
+      } else if (auto* outside = as<ms::general_outside_profile>(&f)) {
+        outside_profile(*outside, out);
       } else {
         unsupported(f, f.its_id, "feature");
       }
@@ -450,13 +452,27 @@ class Describer {
                         pocket.depth));
       return;
     }
-    std::vector<Vec2> outline;  // in the boss's frame
-    if (auto* rect = as<ms::rectangular_closed_profile>(boss.its_boundary)) {
+    const auto outline = closed_outline(boss.its_boundary, boss, boss.its_id, "boss");
+    if (!outline) return;
+    std::vector<Vec2> local;
+    for (const Vec2 v : *outline) {
+      const Vec3 g = frame->to_global(v);
+      local.push_back(pocket.placement.to_local({g.x, g.y}));
+    }
+    shape.islands.push_back(std::move(local));
+  }
+
+  // A closed profile as a polygon in its feature's frame (centred on the
+  // placement; circles linearised within polygons::chordal_tolerance).
+  std::optional<std::vector<Vec2>> closed_outline(const ms::profile* profile, const meta::Instance& owner,
+                                                  std::string_view name, std::string_view what) {
+    std::vector<Vec2> outline;
+    if (auto* rect = as<ms::rectangular_closed_profile>(profile)) {
       const double hx = size(rect->profile_length) / 2, hy = size(rect->profile_width) / 2;
       outline = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
-    } else if (auto* circle = as<ms::circular_closed_profile>(boss.its_boundary)) {
+    } else if (auto* circle = as<ms::circular_closed_profile>(profile)) {
       outline = polygons::circle({0, 0}, size(circle->diameter) / 2);
-    } else if (auto* general = as<ms::general_closed_profile>(boss.its_boundary);
+    } else if (auto* general = as<ms::general_closed_profile>(profile);
                general && as<ms::polyline>(general->closed_profile_shape)) {
       for (const ms::cartesian_point* p : as<ms::polyline>(general->closed_profile_shape)->points) {
         const Vec3 v = point(p);
@@ -465,19 +481,34 @@ class Describer {
       if (outline.size() > 1 && std::hypot(outline.front().x - outline.back().x, outline.front().y - outline.back().y) < 1e-9)
         outline.pop_back();
     } else {
-      error(boss, boss.its_id, "boss outline must be a rectangular, circular or polyline profile");
-      return;
+      error(owner, name, fmt::format("{} outline must be a rectangular, circular or polyline closed profile", what));
+      return std::nullopt;
     }
     if (outline.size() < 3) {
-      error(boss, boss.its_id, "boss outline needs at least three vertices");
+      error(owner, name, fmt::format("{} outline needs at least three vertices", what));
+      return std::nullopt;
+    }
+    return outline;
+  }
+
+  // general_outside_profile: the stock around a closed outline, milled
+  // down to the depth out to the workpiece block's edge (which the file
+  // does not repeat: the adapter takes the block, as for open pockets).
+  void outside_profile(const ms::general_outside_profile& f, Feature& out) {
+    auto outline = closed_outline(f.feature_boundary, f, f.its_id, "outside profile");
+    if (!outline) return;
+    const auto box = block(f.its_workpiece);
+    if (!box) {
+      error(f, f.its_id, "general_outside_profile needs its workpiece's BLOCK bounding geometry: the stock around "
+                         "the profile runs to the block's edge");
       return;
     }
-    std::vector<Vec2> local;
-    for (const Vec2 v : outline) {
-      const Vec3 g = frame->to_global(v);
-      local.push_back(pocket.placement.to_local({g.x, g.y}));
-    }
-    shape.islands.push_back(std::move(local));
+    OutsideProfile shape;
+    shape.outline = std::move(*outline);
+    for (const Vec2 corner : {Vec2{box->min.x, box->min.y}, Vec2{box->max.x, box->min.y}, Vec2{box->max.x, box->max.y},
+                              Vec2{box->min.x, box->max.y}})
+      shape.stock.push_back(out.placement.to_local(corner));
+    out.shape = std::move(shape);
   }
 
   void closed_pocket(const ms::closed_pocket& pocket, Feature& out) {

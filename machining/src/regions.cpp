@@ -134,6 +134,25 @@ std::optional<MillingRegion> milling_region(const Feature& feature, double open_
   if (auto* hole = std::get_if<RoundHole>(&shape)) {
     return MillingRegion{geom::Circle{hole->diameter / 2}, {}};
   }
+  if (auto* outside = std::get_if<OutsideProfile>(&shape)) {
+    // The stock around the outline; its outer edge lies in air, so it
+    // moves out by `open_extension` like an open side.
+    if (outside->outline.size() < 3 || outside->stock.size() < 3) {
+      problem = "outside profile needs an outline and the workpiece block around it";
+      return std::nullopt;
+    }
+    auto stock = polygons::offset(polygons::make_area(outside->stock), open_extension);
+    if (stock.rings.size() != 1) {
+      problem = "the workpiece block around the outside profile is not a simple outline";
+      return std::nullopt;
+    }
+    auto area = polygons::make_area(stock.rings.front(), {outside->outline});
+    if (area.rings.size() != 2) {
+      problem = "the outside profile must lie inside the workpiece block";
+      return std::nullopt;
+    }
+    return MillingRegion{std::move(area), {}};
+  }
   problem = "not a milling feature";
   return std::nullopt;
 }

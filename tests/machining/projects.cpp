@@ -279,6 +279,37 @@ MachiningProject shaft() {
   return p;
 }
 
+MachiningProject outside_profile() {
+  MachiningProject p;
+  p.source = {1, "OUTSIDE PROFILE"};
+  p.workpiece.source = {2, "BLOCK 100x80x20"};
+  p.workpiece.block_min = {0, 0, -20};
+  p.workpiece.block_max = {100, 80, 0};
+  p.security_plane = 20;
+  p.tools.push_back(mill(100, "ENDMILL 10", 10, 0, 3, 75));
+  const Technology tech = milling_tech(200, 0.02, -40);
+  OutsideProfile hexagon;
+  for (int k = 0; k < 6; ++k) {
+    const double a = 3.14159265358979323846 / 3 * k;
+    hexagon.outline.push_back({25 * std::cos(a), 25 * std::sin(a)});
+  }
+  const Placement at{{50, 40, 0}, 0};
+  for (const Vec2 corner : {Vec2{0, 0}, Vec2{100, 0}, Vec2{100, 80}, Vec2{0, 80}}) hexagon.stock.push_back(at.to_local(corner));
+  p.features.push_back(feature(10, "HEXAGON", at, 8, hexagon));
+  Operation rough = operation(30, "ROUGH HEXAGON", OperationKind::bottom_and_side_rough_milling, 0, tech, 5);
+  rough.strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  rough.axial_cutting_depth = 4;
+  rough.allowance_side = 0.5;
+  rough.allowance_bottom = 0.3;
+  Operation finish = operation(31, "FINISH HEXAGON", OperationKind::bottom_and_side_finish_milling, 0, tech, 5);
+  finish.strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  finish.axial_cutting_depth = 8;
+  p.operations = {rough, finish};
+  p.main_workplan.source = {3, "MAIN"};
+  p.main_workplan.children = {workingstep(50, "WS ROUGH HEXAGON", 0, 0), workingstep(51, "WS FINISH HEXAGON", 0, 1)};
+  return p;
+}
+
 MachiningProject explicit_toolpath(std::size_t points) {
   MachiningProject p;
   p.source = {1, "EXPLICIT TOOLPATH"};

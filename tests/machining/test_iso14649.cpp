@@ -331,6 +331,30 @@ TEST_CASE("an L pocket with an island and a milled hole from their Part 21 files
         std::string::npos);
 }
 
+TEST_CASE("a general_outside_profile from Part 21: the stock around a boss milled to the block's edge") {
+  // hole_milling.stp with its hole turned into the outside of a 30 mm
+  // round boss in the 80 x 80 block.
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/hole_milling.stp"));
+  const std::string hole = "#16=ROUND_HOLE('HOLE D30',#9,(#28,#31),#18,#21,#22,$,#23);";
+  REQUIRE(text.find(hole) != std::string::npos);
+  text.replace(text.find(hole), hole.size(),
+               "#16=GENERAL_OUTSIDE_PROFILE('BOSS D30',#9,(#28,#31),#18,#21,#901,#900);\n"
+               "#900=CIRCULAR_CLOSED_PROFILE($,#22);\n#901=LINEAR_PATH($,#22,#1);");
+  const auto described = testing::describe_text(text);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto& shape = std::get<OutsideProfile>(described.project.features[0].shape);
+  CHECK(shape.outline.size() > 100);  // the circle within 1 um
+  REQUIRE(shape.stock.size() == 4);
+  CHECK(shape.stock[0].x == Approx(-40));  // block corner (0, 0) from the boss centre (40, 40)
+  CHECK(shape.stock[2].y == Approx(40));
+  const auto generated = generate(described.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const auto report = simulate_milling(described.project, generated.program);
+  CHECK(report.text() == "");
+}
+
 namespace {
 
 // A typed model with a 100 x 60 x 20 block workpiece and one feature in a
