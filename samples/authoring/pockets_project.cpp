@@ -116,30 +116,32 @@ struct Shop {
     return &s;
   }
 
-  // Rough leaving `side` and `bottom`, then finish, with one tool.
+  // A bottom-and-side operation: contour-parallel, one tool.
+  template <typename Operation>
+  Operation& bottom_and_side(const char* name, tools::milling_cutting_tool* tool, mill::milling_technology* tech,
+                             double axial_depth, double stepover) {
+    auto& op = m.create<Operation>();
+    op.its_id = name;
+    op.retract_plane = 5;
+    op.its_tool = tool;
+    op.its_technology = tech;
+    op.its_machine_functions = functions;
+    op.its_machining_strategy = contour_parallel();
+    op.axial_cutting_depth = axial_depth;
+    op.radial_cutting_depth = stepover;
+    return op;
+  }
+
+  // Rough leaving 0.5 mm on the walls and 0.3 mm on the floor, then finish.
   std::pair<ms::machining_operation*, ms::machining_operation*> rough_and_finish(
       const char* rough_name, const char* finish_name, tools::milling_cutting_tool* tool, double rough_depth,
       double stepover, double finish_depth) {
-    auto& rough = m.create<mill::bottom_and_side_rough_milling>();
-    rough.its_id = rough_name;
-    rough.retract_plane = 5;
-    rough.its_tool = tool;
-    rough.its_technology = technology(0.02, -50);  // 1200 mm/min, 3000 rev/min
-    rough.its_machine_functions = functions;
-    rough.its_machining_strategy = contour_parallel();
-    rough.axial_cutting_depth = rough_depth;
-    rough.radial_cutting_depth = stepover;
+    auto& rough = bottom_and_side<mill::bottom_and_side_rough_milling>(
+        rough_name, tool, technology(0.02, -50), rough_depth, stepover);  // 1200 mm/min, 3000 rev/min
     rough.allowance_side = 0.5;
     rough.allowance_bottom = 0.3;
-    auto& finish = m.create<mill::bottom_and_side_finish_milling>();
-    finish.its_id = finish_name;
-    finish.retract_plane = 5;
-    finish.its_tool = tool;
-    finish.its_technology = technology(0.015, -60);  // 900 mm/min, 3600 rev/min
-    finish.its_machine_functions = functions;
-    finish.its_machining_strategy = contour_parallel();
-    finish.axial_cutting_depth = finish_depth;
-    finish.radial_cutting_depth = stepover;
+    auto& finish = bottom_and_side<mill::bottom_and_side_finish_milling>(
+        finish_name, tool, technology(0.015, -60), finish_depth, stepover);  // 900 mm/min, 3600 rev/min
     return {&rough, &finish};
   }
 

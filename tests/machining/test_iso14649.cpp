@@ -335,10 +335,10 @@ TEST_CASE("a general_outside_profile from Part 21: the stock around a boss mille
   // hole_milling.stp with its hole turned into the outside of a 30 mm
   // round boss in the 80 x 80 block.
   std::string text = stepnc_test::read_file(testing::sample_path("milling/hole_milling.stp"));
-  const std::string hole = "#16=ROUND_HOLE('HOLE D30',#9,(#28,#31),#18,#21,#22,$,#23);";
+  const std::string hole = "#16=ROUND_HOLE('HOLE D30',#9,(#29,#32),#18,#21,#22,$,#23);";
   REQUIRE(text.find(hole) != std::string::npos);
   text.replace(text.find(hole), hole.size(),
-               "#16=GENERAL_OUTSIDE_PROFILE('BOSS D30',#9,(#28,#31),#18,#21,#901,#900);\n"
+               "#16=GENERAL_OUTSIDE_PROFILE('BOSS D30',#9,(#29,#32),#18,#21,#901,#900);\n"
                "#900=CIRCULAR_CLOSED_PROFILE($,#22);\n#901=LINEAR_PATH($,#22,#1);");
   const auto described = testing::describe_text(text);
   for (const auto& d : described.diagnostics) INFO(d.to_string());

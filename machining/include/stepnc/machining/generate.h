@@ -41,7 +41,7 @@ struct GenerateOptions {
   /// so that at this orientation its edge points along +X of the work
   /// offset, and the lift-off runs along -X.
   double boring_orientation_deg = 0;
-  double boring_lift_off = 0.2;
+  double boring_lift_off = 0.2;  ///< mm off the wall after the oriented stop (see boring_orientation_deg)
 };
 
 /// A program, and the problems found making it.
