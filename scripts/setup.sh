@@ -8,6 +8,7 @@ packages=(
   g++ cmake ninja-build ccache        # toolchain; ccache keeps CI rebuilds short
   antlr4 libantlr4-runtime-dev        # expressc's parser generator and runtime (expressc only)
   libfmt-dev                          # formatting in every room
+  libpolyclipping-dev                 # Clipper: polygon offsets and Booleans (machining room)
   catch2                              # unit tests (v2, header-only)
   libcli11-dev                        # command-line parsing for expressc and stepnc
   nlohmann-json3-dev                  # JSON model dump and its tests

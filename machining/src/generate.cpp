@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "geometry.h"
 #include "stepnc/machining/roughness.h"
@@ -206,7 +207,7 @@ class Generator {
   bool predrilled(const Job& job, Vec3 target) const;
   EntryRoom room_at(const Region& region, Vec2 local, double d_final, const Path* along) const;
   void leave(const Job& job);
-  void drill_explicit(const Job& job, const DrillCycle& cycle, const DrillingStrategy& strategy);
+  void drill_explicit(const Job& job, const DrillCycle& cycle, const DrillingStrategy& strategy, bool oriented_stop);
   void check_technology(const Job& job);
   Vec3 global(const Job& job, Vec2 local, double z, Vec2 offset = {}) const;
   void go_clear(Vec2 xy, double clear);
@@ -248,6 +249,10 @@ class Generator {
   bool at_machine_safe_ = false;  // after a MachineRetract, before any other move
   Vec3 last_direction_{};          // of the last feed move, for tangent retracts
   std::vector<DrilledHole> drilled_;
+  struct Roughed {  // a feature roughed earlier: cleared down to `floor`, `side` left on the walls
+    double floor = 0, side = 0;
+  };
+  std::map<std::int64_t, Roughed> roughed_;  // by feature #id
 };
 
 void Generator::error(const Source& where, std::string message) {
@@ -864,7 +869,9 @@ void Generator::workingstep(const Executable& executable) {
     } else if (auto* slot_shape = std::get_if<Slot>(&shape); slot_shape && bottom_side) {
       slot(job, *slot_shape);
     } else if (bottom_side && (std::holds_alternative<ClosedPocket>(shape) || std::holds_alternative<OpenPocket>(shape) ||
-                               std::holds_alternative<Step>(shape))) {
+                               std::holds_alternative<Step>(shape) || std::holds_alternative<RoundHole>(shape) ||
+                               std::holds_alternative<OutsideProfile>(shape))) {
+      // A round hole milled with a smaller end mill is a circular pocket.
       std::string problem;
       const auto region = milling_region(*job.feature, tool_radius(job) + options_.approach_clearance, problem);
       if (!region) {
@@ -964,12 +971,8 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
     warning(job.feature->source, fmt::format("pocket floor fillet (planar_radius {:g}) is smaller than the "
                                               "tool's corner radius {:g}",
                                               pocket->planar_radius, job.tool->corner_radius));
-  if (auto* polygon = std::get_if<geom::Polygon>(&region); polygon && contour && !geom::is_convex(*polygon)) {
-    error(op.source, "contour_parallel on a non-convex general profile is not supported; use bidirectional_milling");
-    return;
-  }
-  const auto final_lap = geom::offset_lap(region, d_final);
-  if (!final_lap) {
+  const auto final_laps = geom::offset_laps(region, d_final);
+  if (final_laps.empty()) {
     error(job.feature->source, "the profile is too narrow for the tool: the tool centre path collapses");
     return;
   }
@@ -995,16 +998,53 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
   };
 
   const double s = stepover(job);
-  std::vector<Path> laps;  // from the inside out, sharing one start ray
+  // Laps from the inside out. Rectangles and circles: one per level, all
+  // sharing one start ray. Areas (any simple outline, islands included):
+  // every ring of each inward offset, innermost level first.
+  std::vector<Path> laps;
   const int n = std::max(0, static_cast<int>(std::ceil((m - d_final) / s - 1e-9)));
   // The innermost lap sits at the inradius (a line or point for rectangles
-  // and circles; just inside it for polygons, whose offset vanishes there).
-  const double inner = std::holds_alternative<geom::Polygon>(region) ? m - 0.01 : m;
+  // and circles; just inside it for areas, whose offset vanishes there).
+  const bool area = std::holds_alternative<polygons::Area>(region);
+  const double inner = area ? std::max(d_final, m - 0.01) : m;
   for (int i = n; i >= 0; --i) {
     const double d = n == 0 ? d_final : d_final + (inner - d_final) * i / n;
-    if (auto lap = geom::offset_lap(region, std::max(d, d_final))) laps.push_back(placed(*lap));
+    for (const Path& lap : geom::offset_laps(region, std::max(d, d_final))) laps.push_back(placed(lap));
   }
-  const Path boundary_lap = placed(*final_lap);
+  std::vector<Path> boundary_laps;
+  for (const Path& lap : final_laps) boundary_laps.push_back(placed(lap));
+
+  // A straight feed from the tool's position to `to` that stays inside the
+  // tool-centre region cuts nothing it should not; otherwise lift over the
+  // material and enter again.
+  auto feed_link = [&](Vec2 to) {
+    const Vec2 prev = job.feature->placement.to_local({pos_.x, pos_.y}) - offset;
+    for (int k = 0; k <= 20; ++k) {
+      const Vec2 p = prev + (to - offset - prev) * (k / 20.0);
+      if (geom::signed_distance(region, p) > -d_final + 1e-6) return false;
+    }
+    return true;
+  };
+  // Each lap in turn, linked by feeds inside the region where they can be,
+  // entered from `approach_z` where not.
+  // `open_down_to`: where roughing left the pocket open (a finishing floor
+  // pass): an entry whose tool stays clear of the walls' allowance comes
+  // down to just above it at rapid.
+  auto run_laps = [&](const std::vector<Path>& paths, double z, double approach_z, bool first_entry,
+                      std::optional<Roughed> open_down_to = std::nullopt) {
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      const Path& lap = paths[i];
+      if ((i == 0 && first_entry) || !feed_link(lap.start)) {
+        double entry_z = approach_z;
+        if (open_down_to && -geom::signed_distance(region, lap.start - offset) >= r + open_down_to->side + 1e-3)
+          entry_z = std::min(entry_z, open_down_to->floor + options_.safety_distance);
+        move_to_start(job, lap.start, entry_z, z, {}, room_at(region, lap.start - offset, d_final, &lap));
+      } else {
+        feed(global(job, lap.start, z));
+      }
+      path_at(job, lap, z);
+    }
+  };
 
   // Zig-zag lines across the tool-centre region, clipped to it.
   auto zigzag = [&](double z, double approach_z) {
@@ -1022,16 +1062,7 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
         const Vec2 from{x0, y}, to{x1, y};
         // Link with a straight feed when it stays inside the tool-centre
         // region; otherwise lift over the material.
-        bool linked = false;
-        if (!first) {
-          const Vec2 prev = job.feature->placement.to_local({pos_.x, pos_.y}) - offset;
-          linked = true;
-          for (int k = 0; k <= 20 && linked; ++k) {
-            const Vec2 p = prev + (from - prev) * (k / 20.0);
-            linked = geom::signed_distance(region, p) <= -d_final + 1e-6;
-          }
-        }
-        if (linked) {
+        if (!first && feed_link(from + offset)) {
           feed(global(job, from, z, offset));
         } else {
           EntryRoom room = room_at(region, from, d_final, nullptr);
@@ -1050,36 +1081,50 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
                                    op.axial_cutting_depth);
   const auto cycle = begin_feature_cycle(job);
   double last_level = job.top;
+  // Finishing after roughing in this program: the pocket is open down to
+  // the roughed floor, so the floor pass starts just above it where the
+  // tool stays clear of the walls' allowance, instead of spiralling down
+  // through cleared space from the top.
+  const auto roughed = roughed_.find(job.feature->source.id);
+  const bool circle = std::holds_alternative<geom::Circle>(region);
   for (std::size_t k = 0; k < levels.size(); ++k) {
     const double z = levels[k];
     // Roughing clears each level completely, so the next plunge can start
-    // just above it; finishing levels cut the walls only and always plunge
-    // from above the feature.
+    // just above it; finishing levels cut the walls only and plunge from
+    // above the feature (the tool stays where the last wall lap ended).
     const double approach_z = (rough ? last_level : job.top) + options_.safety_distance;
     const bool floor = k + 1 == levels.size();
-    if (!rough && !floor) {
-      // Finishing: the walls layer by layer with the boundary lap only.
-      move_to_start(job, boundary_lap.start, approach_z, z, {},
-                    room_at(region, boundary_lap.start - offset, d_final, &boundary_lap));
-      path_at(job, boundary_lap, z);
+    if (!rough && !floor && circle) {
+      // A round wall: down the circle itself, a helix at the plunge feed
+      // (helical interpolation), then the lap at size.
+      const Path& lap = boundary_laps.front();
+      if (k == 0) move_to_start(job, lap.start, approach_z, approach_z, {}, EntryRoom{});
+      feedrate({job.tech.feed.value * options_.plunge_feed_ratio, job.tech.feed.per_revolution});
+      // As many turns as keep it no steeper than the ramp angle.
+      const geom::Segment& turn = lap.segments.front();
+      const double pitch = 2 * geom::pi * geom::length(lap.start - turn.centre) *
+                           std::tan(options_.ramp_angle_deg * geom::pi / 180);
+      const int turns = std::max(1, static_cast<int>(std::ceil((pos_.z - z) / std::max(pitch, eps) - 1e-9)));
+      emit(Arc{ArcPlane::xy, global(job, lap.start, z), global(job, turn.centre, z), turn.clockwise, turns - 1});
+      feedrate(job.tech.feed);
+      path_at(job, lap, z);
+    } else if (!rough && !floor) {
+      // Finishing: the walls layer by layer with the boundary laps only.
+      run_laps(boundary_laps, z, approach_z, true);
     } else if (contour) {
-      // Enter at the inner lap, then outwards lap by lap along the start ray.
-      move_to_start(job, laps.front().start, approach_z, z, {},
-                    room_at(region, laps.front().start - offset, d_final, &laps.front()));
-      for (const Path& lap : laps) {
-        feed(global(job, lap.start, z));
-        path_at(job, lap, z);
-      }
+      // Enter at the inner lap, then outwards lap by lap.
+      std::optional<Roughed> open;
+      if (!rough && roughed != roughed_.end() && roughed->second.floor >= z - eps) open = roughed->second;
+      run_laps(laps, z, approach_z, true, open);
     } else {
       zigzag(z, approach_z);
-      move_to_start(job, boundary_lap.start, approach_z, z, {},
-                    room_at(region, boundary_lap.start - offset, d_final, &boundary_lap));
-      path_at(job, boundary_lap, z);
+      run_laps(boundary_laps, z, approach_z, true);
     }
     last_level = z;
   }
   leave(job);
   end_feature_cycle(cycle);
+  if (rough) roughed_[job.feature->source.id] = {levels.back(), side};
 }
 
 std::optional<std::size_t> Generator::begin_feature_cycle(const Job& job) {
@@ -1178,7 +1223,10 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
       cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
       break;
     case OperationKind::boring:
-      cycle.kind = op.spindle_stop_at_bottom ? DrillKind::bore_spindle_stop : DrillKind::bore_feed_out;
+      // spindle_stop_at_bottom: an oriented stop and a lift-off away from
+      // the wall before the rapid out (drill_explicit), never G86's rapid
+      // out with the edge on the bore.
+      cycle.kind = DrillKind::bore_feed_out;
       cycle.retract_feed = cycle.feed * (op.feed_on_retract > 0 ? op.feed_on_retract : 1);
       break;
     case OperationKind::tapping:
@@ -1197,8 +1245,9 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
   if (cycle.r >= cycle.clear - eps) cycle.clear = cycle.r;
   go_clear({cycle.x, cycle.y}, job.clear);
   rapid({cycle.x, cycle.y, cycle.clear});
-  if (op.drilling_strategy && cycle.kind != DrillKind::tap) {
-    drill_explicit(job, cycle, *op.drilling_strategy);
+  const bool oriented_stop = op.kind == OperationKind::boring && op.spindle_stop_at_bottom;
+  if ((op.drilling_strategy || oriented_stop) && cycle.kind != DrillKind::tap) {
+    drill_explicit(job, cycle, op.drilling_strategy.value_or(DrillingStrategy{}), oriented_stop);
   } else {
     feedrate({cycle.feed, false});
     emit(cycle);
@@ -1213,8 +1262,10 @@ void Generator::hole(const Job& job, const RoundHole& hole_shape) {
 // by reduced_feed_at_end over the last depth_of_end; pecks (multistep)
 // scaled by reduced_cut_* in those zones, each followed by a rapid back to
 // R and down to just above the last depth, as G83 does; dwell; out at the
-// retract feed for boring and reaming, else at rapid.
-void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingStrategy& st) {
+// retract feed for boring and reaming, else at rapid; with an oriented
+// stop, the spindle stops at its angle, the bar moves off the wall and
+// leaves at rapid, and the spindle starts again.
+void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingStrategy& st, bool oriented_stop) {
   const double start_end = c.top - st.depth_of_start, end_start = c.bottom + st.depth_of_end;
   auto zone_ratio = [&](double z, double start, double end) {
     return z > start_end + eps ? start : z <= end_start + eps ? end : 1.0;
@@ -1229,7 +1280,8 @@ void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingSt
     }
     // Split the feed at the zone borders.
     for (const double border : {start_end, end_start}) {
-      if (border < z - eps && border > next + eps) {
+      const bool zone = border == start_end ? st.depth_of_start > eps : st.depth_of_end > eps;
+      if (zone && border < z - eps && border > next + eps) {
         feedrate({c.feed * zone_ratio(z - eps, st.reduced_feed_at_start, st.reduced_feed_at_end), false});
         feed({c.x, c.y, border});
         z = border;
@@ -1246,15 +1298,17 @@ void Generator::drill_explicit(const Job&, const DrillCycle& c, const DrillingSt
     }
   }
   if (c.dwell > 0) emit(Dwell{c.dwell});
-  if (c.kind == DrillKind::bore_feed_out || c.kind == DrillKind::bore_spindle_stop) {
-    if (c.kind == DrillKind::bore_spindle_stop) emit(SpindleOff{});
-    if (c.kind == DrillKind::bore_feed_out) {
-      feedrate({c.retract_feed, false});
-      feed({c.x, c.y, c.r});
-    } else {
-      rapid({c.x, c.y, c.r});
-      emit(*spindle_);
-    }
+  if (oriented_stop) {
+    emit(SpindleOff{options_.boring_orientation_deg});
+    const double a = options_.boring_orientation_deg * geom::pi / 180;
+    const Vec3 off{c.x - options_.boring_lift_off * std::cos(a), c.y - options_.boring_lift_off * std::sin(a), c.bottom};
+    feed(off);
+    rapid({off.x, off.y, c.r});
+    rapid({c.x, c.y, c.r});
+    emit(*spindle_);
+  } else if (c.kind == DrillKind::bore_feed_out) {
+    feedrate({c.retract_feed, false});
+    feed({c.x, c.y, c.r});
   } else {
     rapid({c.x, c.y, c.r});
   }

@@ -58,35 +58,7 @@ Path Path::reversed() const {
   return out;
 }
 
-Polygon counter_clockwise(std::vector<Vec2> vertices) {
-  double area2 = 0;
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    area2 += cross(vertices[i], vertices[(i + 1) % vertices.size()]);
-  if (area2 < 0) std::reverse(vertices.begin(), vertices.end());
-  return Polygon{std::move(vertices)};
-}
-
-bool is_convex(const Polygon& polygon) {
-  const auto& v = polygon.vertices;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2 a = v[i], b = v[(i + 1) % v.size()], c = v[(i + 2) % v.size()];
-    if (cross(b - a, c - b) < -1e-12) return false;
-  }
-  return true;
-}
-
 namespace {
-
-bool inside_polygon(const Polygon& polygon, Vec2 p) {
-  bool inside = false;
-  const auto& v = polygon.vertices;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-    if ((v[i].y > p.y) != (v[j].y > p.y) &&
-        p.x < (v[j].x - v[i].x) * (p.y - v[i].y) / (v[j].y - v[i].y) + v[i].x)
-      inside = !inside;
-  }
-  return inside;
-}
 
 double signed_distance_rect(const RoundedRect& r, Vec2 p) {
   // Pick the corner of p's quadrant; inside that corner's square the
@@ -98,40 +70,26 @@ double signed_distance_rect(const RoundedRect& r, Vec2 p) {
   return length(outside) + std::min(std::max(q.x, q.y), 0.0) - rad;
 }
 
-double signed_distance_polygon(const Polygon& polygon, Vec2 p) {
-  double best = std::numeric_limits<double>::infinity();
-  const auto& v = polygon.vertices;
-  for (std::size_t i = 0; i < v.size(); ++i)
-    best = std::min(best, distance_to_segment(p, v[i], v[(i + 1) % v.size()]));
-  return inside_polygon(polygon, p) ? -best : best;
-}
-
-// Convex polygon clipped by every edge's half-plane moved inward by d.
-std::vector<Vec2> convex_offset(const Polygon& polygon, double d) {
-  std::vector<Vec2> out = polygon.vertices;
-  const auto& v = polygon.vertices;
-  for (std::size_t i = 0; i < v.size() && !out.empty(); ++i) {
-    const Vec2 a = v[i], b = v[(i + 1) % v.size()];
-    const Vec2 dir = (b - a) * (1.0 / length(b - a));
-    const Vec2 inward{-dir.y, dir.x};
-    const Vec2 origin = a + inward * d;
-    auto side = [&](Vec2 p) { return dot(p - origin, inward); };
-    std::vector<Vec2> next;
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      const Vec2 p = out[k], q = out[(k + 1) % out.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) next.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) next.push_back(p + (q - p) * (sp / (sp - sq)));
-    }
-    out = std::move(next);
-  }
-  return out;
-}
-
 Path closed_polyline(const std::vector<Vec2>& points) {
   Path path{points.front(), {}};
   for (std::size_t i = 1; i <= points.size(); ++i) path.segments.push_back(Segment::line(points[i % points.size()]));
   return path;
+}
+
+// A ring as a lap starting at its longest edge, the best place to ramp in.
+Path ring_lap(const polygons::Ring& ring) {
+  std::size_t longest = 0;
+  double best = -1;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const double l = length(ring[(i + 1) % ring.size()] - ring[i]);
+    if (l > best + 1e-9) {
+      best = l;
+      longest = i;
+    }
+  }
+  std::vector<Vec2> rotated(ring.begin() + static_cast<std::ptrdiff_t>(longest), ring.end());
+  rotated.insert(rotated.end(), ring.begin(), ring.begin() + static_cast<std::ptrdiff_t>(longest));
+  return closed_polyline(rotated);
 }
 
 std::optional<Path> rect_lap(const RoundedRect& rect, double d) {
@@ -172,48 +130,6 @@ std::optional<Path> rect_lap(const RoundedRect& rect, double d) {
   return path;
 }
 
-// Inward offset of a (possibly non-convex) polygon: lines meet at convex
-// vertices, arcs round reflex ones. Fails when an edge turns around.
-std::optional<Path> polygon_lap(const Polygon& polygon, double d) {
-  const auto& v = polygon.vertices;
-  const std::size_t n = v.size();
-  auto inward = [&](std::size_t i) {
-    const Vec2 e = v[(i + 1) % n] - v[i];
-    const double len = length(e);
-    return Vec2{-e.y / len, e.x / len};
-  };
-  // For every vertex: where the offset arrives and leaves (equal at convex ones).
-  std::vector<Vec2> arrive(n), leave(n);
-  std::vector<bool> reflex(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t prev = (i + n - 1) % n;
-    const Vec2 e0 = v[i] - v[prev], e1 = v[(i + 1) % n] - v[i];
-    const Vec2 n0 = inward(prev), n1 = inward(i);
-    reflex[i] = cross(e0, e1) < -1e-12;
-    if (reflex[i]) {
-      arrive[i] = v[i] + n0 * d;
-      leave[i] = v[i] + n1 * d;
-    } else {
-      // Intersection of the two offset lines.
-      const Vec2 p0 = v[prev] + n0 * d, p1 = v[i] + n1 * d;
-      const double denom = cross(e0, e1);
-      const Vec2 p = std::abs(denom) < 1e-12 ? v[i] + n1 * d : p0 + e0 * (cross(p1 - p0, e1) / denom);
-      arrive[i] = leave[i] = p;
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 e = v[(i + 1) % n] - v[i];
-    if (dot(arrive[(i + 1) % n] - leave[i], e) <= 1e-9) return std::nullopt;
-  }
-  Path path{leave[0], {}};
-  for (std::size_t k = 1; k <= n; ++k) {
-    const std::size_t i = k % n;
-    path.segments.push_back(Segment::line(arrive[i]));
-    if (reflex[i]) path.segments.push_back({leave[i], true, v[i], true});
-  }
-  return path;
-}
-
 std::pair<double, double> rect_x_extent(const RoundedRect& rect, double d, double y) {
   const double hx = rect.hx - d, hy = rect.hy - d;
   auto side = [&](std::size_t upper, std::size_t lower) {
@@ -231,37 +147,59 @@ std::pair<double, double> rect_x_extent(const RoundedRect& rect, double d, doubl
 double signed_distance(const Region& region, Vec2 p) {
   if (auto* r = std::get_if<RoundedRect>(&region)) return signed_distance_rect(*r, p);
   if (auto* c = std::get_if<Circle>(&region)) return length(p) - c->radius;
-  return signed_distance_polygon(std::get<Polygon>(region), p);
+  return polygons::signed_distance(std::get<polygons::Area>(region), p);
 }
 
 double inradius(const Region& region) {
   if (auto* r = std::get_if<RoundedRect>(&region)) return std::min(r->hx, r->hy);
   if (auto* c = std::get_if<Circle>(&region)) return c->radius;
-  const auto& polygon = std::get<Polygon>(region);
-  double lo = 0, hi = 1e6;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = (lo + hi) / 2;
-    (convex_offset(polygon, mid).size() >= 3 ? lo : hi) = mid;
-  }
-  return lo;
+  return polygons::inradius(std::get<polygons::Area>(region));
 }
 
-std::optional<Path> offset_lap(const Region& region, double d) {
-  if (auto* r = std::get_if<RoundedRect>(&region)) return rect_lap(*r, d);
+std::vector<Path> offset_laps(const Region& region, double d) {
+  std::vector<Path> out;
+  if (auto* r = std::get_if<RoundedRect>(&region)) {
+    if (auto lap = rect_lap(*r, d)) out.push_back(std::move(*lap));
+    return out;
+  }
   if (auto* c = std::get_if<Circle>(&region)) {
     const double rho = c->radius - d;
-    if (rho < -1e-9) return std::nullopt;
+    if (rho < -1e-9) return out;
     Path path{{0, -std::max(rho, 0.0)}, {}};
     if (rho > 1e-9) path.segments.push_back({path.start, true, {0, 0}, false});
-    return path;
+    out.push_back(std::move(path));
+    return out;
   }
-  const auto& polygon = std::get<Polygon>(region);
-  if (is_convex(polygon)) {
-    const auto points = convex_offset(polygon, d);
-    if (points.size() < 3) return std::nullopt;
-    return closed_polyline(points);
+  for (const auto& ring : polygons::offset(std::get<polygons::Area>(region), -d).rings) out.push_back(ring_lap(ring));
+  return out;
+}
+
+polygons::Ring outline_ring(const Region& region) {
+  if (auto* area = std::get_if<polygons::Area>(&region)) return area->rings.empty() ? polygons::Ring{} : area->rings.front();
+  if (auto* c = std::get_if<Circle>(&region)) return polygons::circle({0, 0}, c->radius);
+  polygons::Ring ring;
+  const auto laps = offset_laps(region, 0);
+  if (laps.empty()) return ring;
+  Vec2 from = laps.front().start;
+  for (const auto& seg : laps.front().segments) {
+    if (seg.arc) {
+      const Vec2 a = from - seg.centre, b = seg.to - seg.centre;
+      double sweep = std::atan2(cross(a, b), dot(a, b));
+      if (!seg.clockwise && sweep < 0) sweep += 2 * pi;
+      if (seg.clockwise && sweep > 0) sweep -= 2 * pi;
+      const double r = length(a), start = std::atan2(a.y, a.x);
+      const double step = 2 * std::acos(std::clamp(1 - polygons::chordal_tolerance / std::max(r, 1e-9), -1.0, 1.0));
+      const int n = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / std::max(step, 1e-6))));
+      for (int i = 1; i < n; ++i) {
+        const double t = start + sweep * i / n;
+        ring.push_back(seg.centre + Vec2{r * std::cos(t), r * std::sin(t)});
+      }
+    }
+    ring.push_back(seg.to);
+    from = seg.to;
   }
-  return polygon_lap(polygon, d);
+  if (ring.size() > 1 && length(ring.front() - ring.back()) < 1e-9) ring.pop_back();
+  return ring;
 }
 
 std::vector<std::pair<double, double>> offset_intervals(const Region& region, double d, double y) {
@@ -278,73 +216,18 @@ std::vector<std::pair<double, double>> offset_intervals(const Region& region, do
     }
     return out;
   }
-  // Polygon: inside intervals of the line, minus every edge's capsule of radius d.
-  const auto& v = std::get<Polygon>(region).vertices;
-  std::vector<double> crossings;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
-    if ((v[i].y > y) != (v[j].y > y))
-      crossings.push_back(v[i].x + (v[j].x - v[i].x) * (y - v[i].y) / (v[j].y - v[i].y));
-  }
-  std::sort(crossings.begin(), crossings.end());
-  std::vector<std::pair<double, double>> removed;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2 a = v[i], b = v[(i + 1) % v.size()];
-    // Points of the line within d of segment ab: union of two discs and a band.
-    auto disc = [&](Vec2 c) {
-      const double dy = y - c.y;
-      if (std::abs(dy) < d) {
-        const double h = std::sqrt(d * d - dy * dy);
-        removed.push_back({c.x - h, c.x + h});
-      }
-    };
-    disc(a);
-    disc(b);
-    const Vec2 e = b - a;
-    const double len = length(e);
-    const Vec2 nrm{-e.y / len, e.x / len};
-    // Band: |dot(p - a, nrm)| < d and 0 < dot(p - a, e) < len^2, along p = (x, y).
-    double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-    auto constrain = [&](double coef, double constant, double min, double max) {
-      // min < coef * x + constant < max
-      if (std::abs(coef) < 1e-15) {
-        if (constant <= min || constant >= max) {
-          lo = 1;  // empty
-          hi = 0;
-        }
-        return;
-      }
-      double x0 = (min - constant) / coef, x1 = (max - constant) / coef;
-      if (x0 > x1) std::swap(x0, x1);
-      lo = std::max(lo, x0);
-      hi = std::min(hi, x1);
-    };
-    constrain(nrm.x, nrm.y * (y - a.y) - nrm.x * a.x, -d, d);
-    constrain(e.x, e.y * (y - a.y) - e.x * a.x, 0, len * len);
-    if (lo < hi) removed.push_back({lo, hi});
-  }
-  std::sort(removed.begin(), removed.end());
-  for (std::size_t k = 0; k + 1 < crossings.size(); k += 2) {
-    double lo = crossings[k], hi = crossings[k + 1];
-    for (const auto& [r0, r1] : removed) {
-      if (r1 <= lo || r0 >= hi) continue;
-      if (r0 > lo) out.push_back({lo, r0});
-      lo = std::max(lo, r1);
-      if (lo >= hi) break;
-    }
-    if (lo < hi) out.push_back({lo, hi});
-  }
-  std::erase_if(out, [](const auto& iv) { return iv.second - iv.first < 1e-9; });
-  return out;
+  return polygons::scanline(polygons::offset(std::get<polygons::Area>(region), -d), y);
 }
 
 std::pair<double, double> y_range(const Region& region) {
   if (auto* r = std::get_if<RoundedRect>(&region)) return {-r->hy, r->hy};
   if (auto* c = std::get_if<Circle>(&region)) return {-c->radius, c->radius};
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (const Vec2 p : std::get<Polygon>(region).vertices) {
-    lo = std::min(lo, p.y);
-    hi = std::max(hi, p.y);
-  }
+  for (const auto& ring : std::get<polygons::Area>(region).rings)
+    for (const Vec2 p : ring) {
+      lo = std::min(lo, p.y);
+      hi = std::max(hi, p.y);
+    }
   return {lo, hi};
 }
 

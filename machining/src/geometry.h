@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // 2D shapes the toolpath generator offsets and clips, in a feature's local
-// frame. Internal to the posters.
+// frame. Rounded rectangles and circles keep their arcs exactly; any other
+// outline (concave, with islands) is a polygons::Area offset by Clipper.
 #pragma once
 
 #include <array>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "stepnc/machining/description.h"
+#include "stepnc/machining/polygons.h"
 
 namespace stepnc::machining {
 
@@ -63,14 +65,8 @@ struct Circle {
   double radius = 0;
 };
 
-struct Polygon {  // simple, counter-clockwise
-  std::vector<Vec2> vertices;
-};
-
-using Region = std::variant<RoundedRect, Circle, Polygon>;
-
-Polygon counter_clockwise(std::vector<Vec2> vertices);
-bool is_convex(const Polygon& polygon);
+// Any other outline: a simple polygon, with islands as holes.
+using Region = std::variant<RoundedRect, Circle, polygons::Area>;
 
 // Signed distance from p to the region's boundary: negative inside.
 double signed_distance(const Region& region, Vec2 p);
@@ -78,11 +74,16 @@ double signed_distance(const Region& region, Vec2 p);
 // The largest inward offset that leaves a non-empty region.
 double inradius(const Region& region);
 
-// The closed path at inward distance d (tool centre of a lap), counter-
-// clockwise, starting on the local -y side at x = 0 for rectangles and
-// circles. Empty when the offset vanishes or, for non-convex polygons,
-// when it no longer follows every edge.
-std::optional<Path> offset_lap(const Region& region, double d);
+// The closed paths at inward distance d (tool centre of a lap): one for
+// rectangles and circles, counter-clockwise, starting on the local -y side
+// at x = 0; for areas one per ring of the offset (outer rings counter-
+// clockwise, rings around islands clockwise, so all keep the material on
+// the same side), each starting at its longest edge. Empty when the
+// offset vanishes.
+std::vector<Path> offset_laps(const Region& region, double d);
+
+// The region's outline as one ring (arcs within polygons::chordal_tolerance).
+polygons::Ring outline_ring(const Region& region);
 
 // Where the horizontal line at y lies inside the region offset inward by d:
 // sorted disjoint x intervals.

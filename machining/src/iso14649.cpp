@@ -14,6 +14,7 @@
 #include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
 #include "stepnc/machining/feature_geometry.h"
+#include "stepnc/machining/polygons.h"
 #include "curves.h"
 
 namespace stepnc::machining {
@@ -317,6 +318,8 @@ class Describer {
         step(*wall, out);
       } else if (auto* groove = as<ms::slot>(&f)) {
         slot(*groove, out);
+      } else if (auto* outside = as<ms::general_outside_profile>(&f)) {
+        outside_profile(*outside, out);
       } else {
         unsupported(f, f.its_id, "feature");
       }
@@ -411,9 +414,9 @@ class Describer {
 
   // What the posters' pockets cannot carry (bosses, a slope, a floor
   // neither flat nor through) is an error, never dropped.
-  std::vector<std::string> unsupported_pocket_parts(const ms::pocket& pocket) {
+  std::vector<std::string> unsupported_pocket_parts(const ms::pocket& pocket, bool islands_allowed = false) {
     std::vector<std::string> problems;
-    if (!pocket.its_boss.empty()) problems.emplace_back("bosses (islands)");
+    if (!islands_allowed && !pocket.its_boss.empty()) problems.emplace_back("bosses (islands)");
     if (pocket.slope && std::abs(*pocket.slope) > 1e-9)
       problems.push_back(fmt::format("a slope of {:g} degrees", *pocket.slope));
     if (!as<ms::planar_pocket_bottom_condition>(pocket.bottom_condition) &&
@@ -425,8 +428,91 @@ class Describer {
     return problems;
   }
 
+  // A boss of a closed pocket (its_boss) as an island: its outline in the
+  // pocket's frame. The posters' island stands from the floor to the
+  // pocket's top, so a boss whose top lies lower (it would be machined
+  // over) or that is sloped is refused.
+  void island(const ms::boss& boss, const Feature& pocket, ClosedPocket& shape) {
+    auto frame = placement(boss.feature_placement, boss, boss.its_id);
+    if (!frame) return;
+    if (std::abs(frame->location.z - pocket.placement.location.z) > 1e-6) {
+      error(boss, boss.its_id,
+            fmt::format("boss top at z {:g}, pocket top at z {:g}: only bosses rising to the pocket's top are "
+                        "supported",
+                        frame->location.z, pocket.placement.location.z));
+      return;
+    }
+    if (boss.slope && std::abs(*boss.slope) > 1e-9) {
+      error(boss, boss.its_id, fmt::format("a boss with a slope of {:g} degrees is not supported", *boss.slope));
+      return;
+    }
+    if (auto z = plane_z(boss.depth); z && -*z < pocket.depth - 1e-6) {
+      error(boss, boss.its_id,
+            fmt::format("boss height {:g} is less than the pocket depth {:g}: the boss must reach the floor", -*z,
+                        pocket.depth));
+      return;
+    }
+    const auto outline = closed_outline(boss.its_boundary, boss, boss.its_id, "boss");
+    if (!outline) return;
+    std::vector<Vec2> local;
+    for (const Vec2 v : *outline) {
+      const Vec3 g = frame->to_global(v);
+      local.push_back(pocket.placement.to_local({g.x, g.y}));
+    }
+    shape.islands.push_back(std::move(local));
+  }
+
+  // A closed profile as a polygon in its feature's frame (centred on the
+  // placement; circles linearised within polygons::chordal_tolerance).
+  std::optional<std::vector<Vec2>> closed_outline(const ms::profile* profile, const meta::Instance& owner,
+                                                  std::string_view name, std::string_view what) {
+    std::vector<Vec2> outline;
+    if (auto* rect = as<ms::rectangular_closed_profile>(profile)) {
+      const double hx = size(rect->profile_length) / 2, hy = size(rect->profile_width) / 2;
+      outline = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};
+    } else if (auto* circle = as<ms::circular_closed_profile>(profile)) {
+      outline = polygons::circle({0, 0}, size(circle->diameter) / 2);
+    } else if (auto* general = as<ms::general_closed_profile>(profile);
+               general && as<ms::polyline>(general->closed_profile_shape)) {
+      for (const ms::cartesian_point* p : as<ms::polyline>(general->closed_profile_shape)->points) {
+        const Vec3 v = point(p);
+        outline.push_back({v.x, v.y});
+      }
+      if (outline.size() > 1 && std::hypot(outline.front().x - outline.back().x, outline.front().y - outline.back().y) < 1e-9)
+        outline.pop_back();
+    } else {
+      error(owner, name, fmt::format("{} outline must be a rectangular, circular or polyline closed profile", what));
+      return std::nullopt;
+    }
+    if (outline.size() < 3) {
+      error(owner, name, fmt::format("{} outline needs at least three vertices", what));
+      return std::nullopt;
+    }
+    return outline;
+  }
+
+  // general_outside_profile: the stock around a closed outline, milled
+  // down to the depth out to the workpiece block's edge (which the file
+  // does not repeat: the adapter takes the block, as for open pockets).
+  void outside_profile(const ms::general_outside_profile& f, Feature& out) {
+    auto outline = closed_outline(f.feature_boundary, f, f.its_id, "outside profile");
+    if (!outline) return;
+    const auto box = block(f.its_workpiece);
+    if (!box) {
+      error(f, f.its_id, "general_outside_profile needs its workpiece's BLOCK bounding geometry: the stock around "
+                         "the profile runs to the block's edge");
+      return;
+    }
+    OutsideProfile shape;
+    shape.outline = std::move(*outline);
+    for (const Vec2 corner : {Vec2{box->min.x, box->min.y}, Vec2{box->max.x, box->min.y}, Vec2{box->max.x, box->max.y},
+                              Vec2{box->min.x, box->max.y}})
+      shape.stock.push_back(out.placement.to_local(corner));
+    out.shape = std::move(shape);
+  }
+
   void closed_pocket(const ms::closed_pocket& pocket, Feature& out) {
-    if (const auto problems = unsupported_pocket_parts(pocket); !problems.empty())
+    if (const auto problems = unsupported_pocket_parts(pocket, true); !problems.empty())
       error(pocket, pocket.its_id, fmt::format("closed pocket with {} is not supported", fmt::join(problems, ", ")));
     const double corner = size(pocket.orthogonal_radius);
     ClosedPocket shape;
@@ -451,6 +537,8 @@ class Describer {
     } else {
       error(pocket, pocket.its_id, "pocket outline must be a rectangular, circular or polyline profile");
     }
+    for (const ms::boss* boss : pocket.its_boss)
+      if (boss) island(*boss, out, shape);
     out.shape = std::move(shape);
   }
 

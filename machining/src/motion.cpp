@@ -67,7 +67,13 @@ class Expander {
     clockwise_ = s.clockwise;
     spindle_event(true, s.clockwise);
   }
-  void on(const SpindleOff&) { spindle_event(false, clockwise_); }
+  void on(const SpindleOff& s) {
+    spindle_event(false, clockwise_);
+    if (!s.orient_deg) return;
+    Move m = make(Move::Kind::spindle_orient, pos_, pos_);
+    m.value = *s.orient_deg;
+    push(m);
+  }
   void on(const FeedRate& f) {
     Move m = make(Move::Kind::feed_rate, pos_, pos_);
     m.value = f.value;
@@ -135,13 +141,6 @@ class Expander {
         straight(bottom);
         if (c.dwell > 0) dwell(c.dwell);
         straight(r);
-        break;
-      case DrillKind::bore_spindle_stop:
-        straight(bottom);
-        dwell(c.dwell);
-        spindle_event(false, clockwise_);
-        traverse(r);
-        spindle_event(true, clockwise_);
         break;
     }
   }

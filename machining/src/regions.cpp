@@ -46,35 +46,70 @@ std::optional<RectangularProfile> as_rectangle(const PolygonProfile& polygon, Ve
   return RectangularProfile{size.x, size.y, polygon.corner_radius};
 }
 
+namespace {
+
+// A pocket outline minus its islands, as a Clipper area.
+std::optional<MillingRegion> with_islands(const MillingRegion& outline, const ClosedPocket& pocket, std::string& problem) {
+  polygons::Ring outer = geom::outline_ring(outline.region);
+  for (Vec2& p : outer) p = p + outline.offset;
+  std::vector<polygons::Ring> islands;
+  for (const auto& island : pocket.islands) {
+    if (island.size() < 3) {
+      problem = "an island needs at least three vertices";
+      return std::nullopt;
+    }
+    islands.push_back(island);
+  }
+  auto area = polygons::make_area(outer, islands);
+  if (area.empty()) {
+    problem = "the islands leave nothing of the pocket";
+    return std::nullopt;
+  }
+  return MillingRegion{std::move(area), {}};
+}
+
+std::optional<MillingRegion> pocket_outline(const ClosedPocket& pocket, std::string& problem) {
+  if (auto* rect = std::get_if<RectangularProfile>(&pocket.profile)) {
+    if (rect->length <= 0 || rect->width <= 0 || 2 * rect->corner_radius > std::min(rect->length, rect->width)) {
+      problem = fmt::format("rectangular profile {} x {} with corner radius {} is not a valid pocket outline",
+                            rect->length, rect->width, rect->corner_radius);
+      return std::nullopt;
+    }
+    return open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, {});
+  }
+  if (auto* circle = std::get_if<CircularProfile>(&pocket.profile)) {
+    if (circle->diameter <= 0) {
+      problem = "circular profile without a positive diameter";
+      return std::nullopt;
+    }
+    return MillingRegion{geom::Circle{circle->diameter / 2}, {}};
+  }
+  const auto& polygon = std::get<PolygonProfile>(pocket.profile);
+  Vec2 centre;
+  if (auto rect = as_rectangle(polygon, centre)) {
+    auto region = open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, centre);
+    return region;
+  }
+  if (polygon.vertices.size() < 3) {
+    problem = "general profile needs at least three vertices";
+    return std::nullopt;
+  }
+  auto area = polygons::make_area(polygon.vertices);
+  if (area.rings.size() != 1) {
+    problem = "general profile is not a simple polygon";
+    return std::nullopt;
+  }
+  return MillingRegion{std::move(area), {}};
+}
+
+}  // namespace
+
 std::optional<MillingRegion> milling_region(const Feature& feature, double open_extension, std::string& problem) {
   const auto& shape = feature.shape;
   if (auto* pocket = std::get_if<ClosedPocket>(&shape)) {
-    if (auto* rect = std::get_if<RectangularProfile>(&pocket->profile)) {
-      if (rect->length <= 0 || rect->width <= 0 || 2 * rect->corner_radius > std::min(rect->length, rect->width)) {
-        problem = fmt::format("rectangular profile {} x {} with corner radius {} is not a valid pocket outline",
-                              rect->length, rect->width, rect->corner_radius);
-        return std::nullopt;
-      }
-      return open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, {});
-    }
-    if (auto* circle = std::get_if<CircularProfile>(&pocket->profile)) {
-      if (circle->diameter <= 0) {
-        problem = "circular profile without a positive diameter";
-        return std::nullopt;
-      }
-      return MillingRegion{geom::Circle{circle->diameter / 2}, {}};
-    }
-    const auto& polygon = std::get<PolygonProfile>(pocket->profile);
-    Vec2 centre;
-    if (auto rect = as_rectangle(polygon, centre)) {
-      auto region = open_rectangle(rect->length, rect->width, rect->corner_radius, open_none, 0, centre);
-      return region;
-    }
-    if (polygon.vertices.size() < 3) {
-      problem = "general profile needs at least three vertices";
-      return std::nullopt;
-    }
-    return MillingRegion{geom::counter_clockwise(polygon.vertices), {}};
+    auto outline = pocket_outline(*pocket, problem);
+    if (!outline || pocket->islands.empty()) return outline;
+    return with_islands(*outline, *pocket, problem);
   }
   if (auto* open = std::get_if<OpenPocket>(&shape)) {
     const auto& p = open->profile;
@@ -99,24 +134,48 @@ std::optional<MillingRegion> milling_region(const Feature& feature, double open_
   if (auto* hole = std::get_if<RoundHole>(&shape)) {
     return MillingRegion{geom::Circle{hole->diameter / 2}, {}};
   }
+  if (auto* outside = std::get_if<OutsideProfile>(&shape)) {
+    // The stock around the outline; its outer edge lies in air, so it
+    // moves out by `open_extension` like an open side.
+    if (outside->outline.size() < 3 || outside->stock.size() < 3) {
+      problem = "outside profile needs an outline and the workpiece block around it";
+      return std::nullopt;
+    }
+    auto stock = polygons::offset(polygons::make_area(outside->stock), open_extension);
+    if (stock.rings.size() != 1) {
+      problem = "the workpiece block around the outside profile is not a simple outline";
+      return std::nullopt;
+    }
+    auto area = polygons::make_area(stock.rings.front(), {outside->outline});
+    if (area.rings.size() != 2) {
+      problem = "the outside profile must lie inside the workpiece block";
+      return std::nullopt;
+    }
+    return MillingRegion{std::move(area), {}};
+  }
   problem = "not a milling feature";
   return std::nullopt;
 }
 
-double feature_signed_distance(const Feature& feature, Vec2 global) {
+std::function<double(Vec2)> feature_distance(const Feature& feature) {
   std::string problem;
-  const auto region = milling_region(feature, 0, problem);
-  if (!region) return 1e300;
-  return geom::signed_distance(region->region, feature.placement.to_local(global) - region->offset);
+  auto region = milling_region(feature, 0, problem);
+  if (!region) return [](Vec2) { return 1e300; };
+  return [region = std::move(*region), placement = feature.placement](Vec2 global) {
+    return geom::signed_distance(region.region, placement.to_local(global) - region.offset);
+  };
 }
+
+double feature_signed_distance(const Feature& feature, Vec2 global) { return feature_distance(feature)(global); }
 
 std::vector<Vec2> feature_outline(const Feature& feature) {
   std::string problem;
   const auto region = milling_region(feature, 0, problem);
   std::vector<Vec2> out;
   if (!region) return out;
-  const auto lap = geom::offset_lap(region->region, 0);
-  if (!lap) return out;
+  const auto laps = geom::offset_laps(region->region, 0);
+  if (laps.empty()) return out;
+  const auto* lap = &laps.front();
   auto add = [&](Vec2 local) {
     const Vec3 p = feature.placement.to_global(local + region->offset);
     out.push_back({p.x, p.y});

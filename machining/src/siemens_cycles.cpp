@@ -114,6 +114,7 @@ std::optional<FeatureCycle> siemens_feature_cycle(const CycleInput& in) {
   FeatureCycle cycle;
   if (auto* pocket = std::get_if<ClosedPocket>(&in.feature.shape)) {
     if (!contour_like(in.op.strategy)) return std::nullopt;  // POCKET1/2 mill contour-parallel
+    if (!pocket->islands.empty()) return std::nullopt;        // and know no islands
     // POCKET1/2 plunge at the centre: a ramp or helix the file asks for
     // is posted as motion.
     if (!std::holds_alternative<std::monostate>(in.op.approach) &&

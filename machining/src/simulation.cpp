@@ -182,6 +182,8 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
           unreachable.push_back({{g.x, g.y}, largest_radius * 1.5});
         }
 
+  std::vector<std::function<double(Vec2)>> distance;
+  for (const Feature& f : project.features) distance.push_back(feature_distance(f));
   std::size_t reported = 0;
   for (int j = 0; j < map.ny(); ++j) {
     for (int i = 0; i < map.nx(); ++i) {
@@ -190,7 +192,7 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
       double may_reach = w.block_max.z;                             // deepest bottom allowed near it
       for (std::size_t k = 0; k < project.features.size(); ++k) {
         const Feature& f = project.features[k];
-        const double d = feature_signed_distance(f, c);
+        const double d = distance[k](c);
         const Allowance a = allowance.count(static_cast<int>(k)) ? allowance[static_cast<int>(k)] : Allowance{};
         const bool through = std::holds_alternative<RoundHole>(f.shape) &&
                              std::get<RoundHole>(f.shape).bottom == HoleBottom::through;

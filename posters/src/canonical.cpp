@@ -59,6 +59,9 @@ PrintedProgram print_canonical(const Program& program) {
       case Move::Kind::spindle_stop:
         put(prov, "STOP_SPINDLE_TURNING", 0);
         break;
+      case Move::Kind::spindle_orient:  // as rs274 -g prints M19 R
+        put(prov, "ORIENT_SPINDLE", 0, num(m.value), 0);
+        break;
       case Move::Kind::feed_rate:
         put(prov, "SET_FEED_MODE", 0, m.flag ? 1 : 0);
         put(prov, "SET_FEED_RATE", num(m.value));

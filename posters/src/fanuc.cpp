@@ -84,6 +84,12 @@ class FanucPrinter final : public GcodePrinter {
     finish_line();
   }
   void spindle_off() override { line("M05"); }
+  // M19: the orientation the machine builder set (0i parameter 4077); the
+  // setter mounts the bar to it, so the angle is not in the block.
+  void spindle_orient(double) override {
+    spindle_off();
+    line("M19");
+  }
   void coolant(const Coolant& c) override { line(c.flood ? "M08" : c.mist ? "M07" : "M09"); }
   void feed_rate(const FeedRate& f) override {
     start_line();

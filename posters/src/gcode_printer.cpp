@@ -78,7 +78,10 @@ void GcodePrinter::statement(const Statement& s, std::size_t index) {
         } else if constexpr (std::is_same_v<S, SpindleOn>) {
           spindle_on(st);
         } else if constexpr (std::is_same_v<S, SpindleOff>) {
-          spindle_off();
+          if (st.orient_deg)
+            spindle_orient(*st.orient_deg);
+          else
+            spindle_off();
         } else if constexpr (std::is_same_v<S, FeedRate>) {
           feed_rate(st);
         } else if constexpr (std::is_same_v<S, Coolant>) {
@@ -257,7 +260,6 @@ void GcodePrinter::drill_cycle_words(const DrillCycle& c) {
     case DrillKind::peck: word("G83"); break;
     case DrillKind::tap: word("G84"); break;
     case DrillKind::bore_feed_out: word(c.dwell > 0 ? "G89" : "G85"); break;
-    case DrillKind::bore_spindle_stop: word("G86"); break;
   }
   word('X', c.x);
   word('Y', c.y);

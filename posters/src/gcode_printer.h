@@ -56,6 +56,15 @@ class GcodePrinter {
   // Print the cycle and return true, or return false to print its motion.
   virtual bool feature_cycle(const FeatureCycle&) { return false; }
   virtual void spindle_off() { line("M5"); }
+  // Oriented spindle stop: LinuxCNC M5 then `M19 R angle` (M19 alone
+  // would orient a turning spindle).
+  virtual void spindle_orient(double angle_deg) {
+    spindle_off();
+    start_line();
+    word("M19");
+    word('R', angle_deg);
+    finish_line();
+  }
   virtual void coolant(const Coolant& c);
   // A pallet exchange stops for the operator where the dialect has no pallet word.
   virtual void program_stop(const ProgramStop& s);

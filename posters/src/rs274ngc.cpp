@@ -86,7 +86,7 @@ class Rs274ngcPrinter final : public GcodePrinter {
     drill_cycle_words(c);
     // P is sticky between cycles in LinuxCNC: give it to every cycle that
     // dwells (G82, G89; G84 and G86 always dwell, P0 for none).
-    if (c.dwell > 0 || c.kind == DrillKind::bore_spindle_stop || c.kind == DrillKind::tap) word('P', c.dwell);
+    if (c.dwell > 0 || c.kind == DrillKind::tap) word('P', c.dwell);
     word('F', c.feed);
     finish_line();
     line("G80");

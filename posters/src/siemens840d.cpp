@@ -194,14 +194,14 @@ class Siemens840dPrinter final : public GcodePrinter {
         // operation's feed, RFF feed_on_retract (else the feed).
         p.insert(p.end(), {c.dwell, c.feed, c.retract_feed > 0 ? c.retract_feed : c.feed});
         return call("CYCLE85", p);
-      case DrillKind::bore_spindle_stop:
-        // CYCLE86(RTP, RFP, SDIS, DP, DPR, DTB, SDIR, RPA, RPO, RPAP, POSS):
-        // spindle_stop_at_bottom. SDIR the spindle direction restored after
-        // the stop, lift-off RPA/RPO/RPAP 0 (straight out, as G86), POSS
-        // (oriented stop angle) left out.
-        p.insert(p.end(), {c.dwell, spindle_direction(), 0.0, 0.0, 0.0});
-        return call("CYCLE86", p);
     }
+  }
+
+  // SPOS positions the spindle: it stops at the angle.
+  void spindle_orient(double angle_deg) override {
+    start_line();
+    word(fmt::format("SPOS={:g}", angle_deg));
+    finish_line();
   }
 
   bool feature_cycle(const FeatureCycle& cycle) override {

@@ -8,10 +8,12 @@
 #include <unistd.h>
 
 #include "example1_project.h"
+#include "pockets_project.h"
 #include "machining_schema.h"
 #include "stepnc/meta/io.h"
 #include "stepnc/p21/document.h"
 #include "support.h"
+#include "test_files.h"
 #include "turning_machine_tool_schema.h"
 #include "turning_project.h"
 
@@ -102,4 +104,28 @@ TEST_CASE("the turning project is written as a valid ISO 14649-12 file", "[gener
   REQUIRE(first != nullptr);
   CHECK(meta::instance_cast<turning_machine_tool_schema::turning_machine_tool>(
             static_cast<meta::Instance*>(first->its_operation->its_tool)) != nullptr);
+}
+
+// samples/milling/l_pocket_island.stp and hole_milling.stp are these
+// programs' output (`pockets l_pocket_island|hole_milling OUT.stp`), byte
+// for byte, and read back into valid typed instances.
+TEST_CASE("the everyday milling samples are the authoring program's output", "[generated][authoring]") {
+  struct Sample {
+    const char* file;
+    void (*build)(meta::Model&);
+    meta::FileHeader (*header)();
+  };
+  for (const Sample& sample : {Sample{"l_pocket_island.stp", stepnc_samples::build_l_pocket_island,
+                                      stepnc_samples::l_pocket_island_header},
+                               Sample{"hole_milling.stp", stepnc_samples::build_hole_milling,
+                                      stepnc_samples::hole_milling_header}}) {
+    INFO(sample.file);
+    meta::Model authored;
+    sample.build(authored);
+    const std::string text = meta::to_text(authored, sample.header());
+    CHECK(stepnc_test::read_file(std::string(STEPNC_SOURCE_DIR "/samples/milling/") + sample.file) == text);
+    auto loaded = stepnc_test::load_text(text, iso14649_registry());
+    CHECK(loaded->problems.empty());
+    CHECK(meta::to_text(loaded->model, sample.header()) == text);
+  }
 }

@@ -93,7 +93,7 @@ MachiningProject example1() {
   p.features.push_back(feature(17, "HOLE1 D=22MM", Placement{{20, 60, 0}, 0}, 30, RoundHole{22, HoleBottom::through}));
   PolygonProfile outline{{{0, 0}, {0, 80}, {-50, 80}, {-50, 0}}, 10};  // #59 with orthogonal_radius #37
   p.features.push_back(feature(18, "POCKET1", Placement::from_ref_direction({45, 110, 0}, -1, 0), 30,
-                               ClosedPocket{outline, 1.0}));
+                               ClosedPocket{outline, 1.0, {}}));
 
   Operation face = operation(19, "FINISH PLANAR FACE1", OperationKind::plane_finish_milling, 0,
                              milling_tech(40, 0.040, -12), 10);
@@ -148,9 +148,9 @@ MachiningProject milling_features() {
 
   // Features (local frames; tops at z 0).
   p.features.push_back(feature(10, "CIRCULAR POCKET", Placement{{30, 30, 0}, 0}, 8,
-                               ClosedPocket{CircularProfile{36}, 0}));
+                               ClosedPocket{CircularProfile{36}, 0, {}}));
   PolygonProfile ell{{{0, 0}, {50, 0}, {50, 20}, {20, 20}, {20, 40}, {0, 40}}, 0};
-  p.features.push_back(feature(11, "L POCKET", Placement{{60, 10, 0}, 0}, 6, ClosedPocket{ell, 0}));
+  p.features.push_back(feature(11, "L POCKET", Placement{{60, 10, 0}, 0}, 6, ClosedPocket{ell, 0, {}}));
   p.features.push_back(feature(12, "OPEN POCKET", Placement{{140, 30, 0}, 0}, 5,
                                OpenPocket{RectangularProfile{40, 30, 6}, open_max_x}));
   p.features.push_back(feature(13, "STEP", Placement{{0, 100, 0}, 0}, 4, Step{160, 20}));
@@ -276,6 +276,37 @@ MachiningProject shaft() {
   p.main_workplan.children = {workingstep(30, "WS FACE ROUGH", 0, 0),     workingstep(31, "WS FACE FINISH", 0, 1),
                               workingstep(32, "WS CENTRE DRILL", 1, 2),   workingstep(33, "WS CONTOUR ROUGH", 2, 3),
                               workingstep(34, "WS CONTOUR FINISH", 2, 4), workingstep(35, "WS GROOVE", 3, 5)};
+  return p;
+}
+
+MachiningProject outside_profile() {
+  MachiningProject p;
+  p.source = {1, "OUTSIDE PROFILE"};
+  p.workpiece.source = {2, "BLOCK 100x80x20"};
+  p.workpiece.block_min = {0, 0, -20};
+  p.workpiece.block_max = {100, 80, 0};
+  p.security_plane = 20;
+  p.tools.push_back(mill(100, "ENDMILL 10", 10, 0, 3, 75));
+  const Technology tech = milling_tech(200, 0.02, -40);
+  OutsideProfile hexagon;
+  for (int k = 0; k < 6; ++k) {
+    const double a = 3.14159265358979323846 / 3 * k;
+    hexagon.outline.push_back({25 * std::cos(a), 25 * std::sin(a)});
+  }
+  const Placement at{{50, 40, 0}, 0};
+  for (const Vec2 corner : {Vec2{0, 0}, Vec2{100, 0}, Vec2{100, 80}, Vec2{0, 80}}) hexagon.stock.push_back(at.to_local(corner));
+  p.features.push_back(feature(10, "HEXAGON", at, 8, hexagon));
+  Operation rough = operation(30, "ROUGH HEXAGON", OperationKind::bottom_and_side_rough_milling, 0, tech, 5);
+  rough.strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  rough.axial_cutting_depth = 4;
+  rough.allowance_side = 0.5;
+  rough.allowance_bottom = 0.3;
+  Operation finish = operation(31, "FINISH HEXAGON", OperationKind::bottom_and_side_finish_milling, 0, tech, 5);
+  finish.strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  finish.axial_cutting_depth = 8;
+  p.operations = {rough, finish};
+  p.main_workplan.source = {3, "MAIN"};
+  p.main_workplan.children = {workingstep(50, "WS ROUGH HEXAGON", 0, 0), workingstep(51, "WS FINISH HEXAGON", 0, 1)};
   return p;
 }
 

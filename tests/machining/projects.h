@@ -25,6 +25,10 @@ MachiningProject milling_features();
 // (cutting-depth list) and finish, relief groove.
 MachiningProject shaft();
 
+// A 100 x 80 x 20 block milled down 8 mm around a hexagonal outline
+// (general_outside_profile), roughed and finished contour-parallel.
+MachiningProject outside_profile();
+
 // A freeform operation whose explicit toolpath is a polyline plus an arc.
 MachiningProject explicit_toolpath(std::size_t points);
 

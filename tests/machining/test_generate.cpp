@@ -9,6 +9,7 @@
 #include "stepnc/post/dialect.h"
 #include "stepnc/machining/generate.h"
 #include "stepnc/machining/roughness.h"
+#include "stepnc/machining/simulation.h"
 
 using namespace stepnc;
 using namespace stepnc::machining;
@@ -206,10 +207,47 @@ TEST_CASE("diagnostics name the instance and stop the program") {
   }
 }
 
-TEST_CASE("contour_parallel on a non-convex profile is refused, bidirectional works") {
+TEST_CASE("contour_parallel clears a concave profile and a pocket with an island") {
   auto project = testing::milling_features();
-  project.operations[2].strategy = ContourParallel{};
-  CHECK(mentions(generate(project), "#32 'ZIGZAG L': error: contour_parallel on a non-convex general profile"));
+  project.operations[2].strategy = ContourParallel{6, Rotation::unspecified, CutMode::climb};
+  SECTION("the L pocket") {}
+  SECTION("the L pocket around a square island") {
+    std::get<ClosedPocket>(project.features[1].shape).islands.push_back({{28.5, 8.5}, {31.5, 8.5}, {31.5, 11.5}, {28.5, 11.5}});
+  }
+  const auto result = generate(project);
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  const auto report = simulate_milling(project, result.program);
+  INFO(report.text());
+  CHECK(report.problems.empty());
+  CHECK(report.cells_checked > 1000);
+}
+
+TEST_CASE("general_outside_profile: the stock around a hexagon milled away to the block's edge") {
+  const auto project = testing::outside_profile();
+  const auto result = generate(project);
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  const auto report = simulate_milling(project, result.program);
+  INFO(report.text());
+  CHECK(report.problems.empty());
+  CHECK(report.cells_checked > 1000);
+  // The finishing lap runs 5 mm (the tool radius) outside the hexagon's
+  // sides: 25 cos 30 + 5 from the centre at the middle of a side.
+  double closest = 1e9;
+  Vec3 at{};
+  for (const auto& block : result.program.blocks) {
+    if (auto* l = std::get_if<Linear>(&block.statement); l && at.z == Approx(-8) && l->to.z == Approx(-8)) {
+      // Distance from the hexagon's centre to the segment at -> l->to.
+      const double dx = l->to.x - at.x, dy = l->to.y - at.y, len2 = dx * dx + dy * dy;
+      const double t = len2 > 0 ? std::clamp(((50 - at.x) * dx + (40 - at.y) * dy) / len2, 0.0, 1.0) : 0.0;
+      closest = std::min(closest, std::hypot(at.x + dx * t - 50, at.y + dy * t - 40));
+    }
+    if (auto* l = std::get_if<Linear>(&block.statement)) at = l->to;
+    if (auto* r = std::get_if<Rapid>(&block.statement)) at = r->to;
+    if (auto* c = std::get_if<Arc>(&block.statement)) at = c->to;
+  }
+  CHECK(closest == Approx(25 * std::cos(3.14159265358979323846 / 6) + 5).margin(0.01));
 }
 
 TEST_CASE("unidirectional turning follows the cutting-depth list (seed 001 5.2)") {

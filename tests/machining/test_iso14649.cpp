@@ -288,6 +288,73 @@ TEST_CASE("an open pocket and a step from their Part 21 file: extents run to the
   CHECK(report.cells_checked > 0);
 }
 
+TEST_CASE("an L pocket with an island and a milled hole from their Part 21 files") {
+  const DescribeResult island = testing::describe_sample("milling/l_pocket_island.stp");
+  for (const auto& d : island.diagnostics) INFO(d.to_string());
+  REQUIRE(island.ok());
+  REQUIRE(island.project.features.size() == 1);
+  const auto& pocket = std::get<ClosedPocket>(island.project.features[0].shape);
+  CHECK(std::get<PolygonProfile>(pocket.profile).vertices.size() == 6);
+  // The 14 x 10 boss at (40, 37) in the pocket's frame at (20, 20).
+  REQUIRE(pocket.islands.size() == 1);
+  const auto& corners = pocket.islands[0];
+  REQUIRE(corners.size() == 4);
+  CHECK(corners[0].x == Approx(13));
+  CHECK(corners[0].y == Approx(12));
+  CHECK(corners[2].x == Approx(27));
+  CHECK(corners[2].y == Approx(22));
+
+  const DescribeResult hole = testing::describe_sample("milling/hole_milling.stp");
+  for (const auto& d : hole.diagnostics) INFO(d.to_string());
+  REQUIRE(hole.ok());
+  CHECK(std::get<RoundHole>(hole.project.features[0].shape).diameter == 30);
+  CHECK(hole.project.operations[0].kind == OperationKind::bottom_and_side_rough_milling);
+  CHECK(hole.project.tools[0].diameter == 12);
+
+  // A boss that does not reach the pocket's top, or is sloped, is refused by #id.
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/l_pocket_island.stp"));
+  const std::string top = "#28=CARTESIAN_POINT('ISLAND',(40.,37.,30.));";
+  REQUIRE(text.find(top) != std::string::npos);
+  std::string lower = text;
+  lower.replace(lower.find(top), top.size(), "#28=CARTESIAN_POINT('ISLAND',(40.,37.,25.));");
+  const auto low = testing::describe_text(lower);
+  REQUIRE_FALSE(low.ok());
+  CHECK(low.diagnostics.front().to_string().find("#27 'ISLAND 14 X 10': error: boss top at z 25, pocket top at z 30") !=
+        std::string::npos);
+  std::string sloped = text;
+  const std::string boss = "#27=BOSS('ISLAND 14 X 10',#9,(),#29,#32,#24,$);";
+  REQUIRE(sloped.find(boss) != std::string::npos);
+  sloped.replace(sloped.find(boss), boss.size(), "#27=BOSS('ISLAND 14 X 10',#9,(),#29,#32,#24,5.);");
+  const auto slope = testing::describe_text(sloped);
+  REQUIRE_FALSE(slope.ok());
+  CHECK(slope.diagnostics.front().to_string().find("a boss with a slope of 5 degrees is not supported") !=
+        std::string::npos);
+}
+
+TEST_CASE("a general_outside_profile from Part 21: the stock around a boss milled to the block's edge") {
+  // hole_milling.stp with its hole turned into the outside of a 30 mm
+  // round boss in the 80 x 80 block.
+  std::string text = stepnc_test::read_file(testing::sample_path("milling/hole_milling.stp"));
+  const std::string hole = "#16=ROUND_HOLE('HOLE D30',#9,(#29,#32),#18,#21,#22,$,#23);";
+  REQUIRE(text.find(hole) != std::string::npos);
+  text.replace(text.find(hole), hole.size(),
+               "#16=GENERAL_OUTSIDE_PROFILE('BOSS D30',#9,(#29,#32),#18,#21,#901,#900);\n"
+               "#900=CIRCULAR_CLOSED_PROFILE($,#22);\n#901=LINEAR_PATH($,#22,#1);");
+  const auto described = testing::describe_text(text);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const auto& shape = std::get<OutsideProfile>(described.project.features[0].shape);
+  CHECK(shape.outline.size() > 100);  // the circle within 1 um
+  REQUIRE(shape.stock.size() == 4);
+  CHECK(shape.stock[0].x == Approx(-40));  // block corner (0, 0) from the boss centre (40, 40)
+  CHECK(shape.stock[2].y == Approx(40));
+  const auto generated = generate(described.project);
+  for (const auto& d : generated.diagnostics) INFO(d.to_string());
+  REQUIRE(generated.ok());
+  const auto report = simulate_milling(described.project, generated.program);
+  CHECK(report.text() == "");
+}
+
 namespace {
 
 // A typed model with a 100 x 60 x 20 block workpiece and one feature in a

@@ -37,7 +37,10 @@ TEST_CASE("hole cycles in each dialect") {
   CHECK(has_line(ngc, "G99 G82 X130 Y80 Z-2 R2 P0.5 F300"));   // centre drilling with dwell
   CHECK(has_line(ngc, "G99 G83 X130 Y80 Z-20 R2 Q6 F300"));     // peck drilling
   CHECK(has_line(ngc, "G99 G84 X130 Y80 Z-20 R2 P0 F450"));     // tapping: 1.5 mm x 300 rev/min
-  CHECK(has_line(ngc, "G99 G86 X145 Y80 Z-15 R2 P0 F300"));     // boring, spindle stop
+  // Boring with a spindle stop: down at feed, an oriented stop, 0.2 mm off
+  // the wall along -X, out at rapid, the spindle on again (no G86).
+  CHECK(ngc.find("G86") == std::string::npos);
+  CHECK(ngc.find("\nZ2\nG1 Z-15\nM5\nM19 R0\nX144.8\nG0 Z2\nX145\nS900 M3\n") != std::string::npos);
   CHECK(has_line(ngc, "G99 G89 X145 Y80 Z-15 R2 P0.2 F300"));   // boring, dwell, feed out
 
   const std::string fanuc = posted(project, Dialect::fanuc);
@@ -51,8 +54,9 @@ TEST_CASE("hole cycles in each dialect") {
   CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-6,,6,0,0,1,1)\n") != std::string::npos);
   // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
   CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,3,,1.5,,300,300)\n") != std::string::npos);
-  // ..., DTB, SDIR, RPA, RPO, RPAP
-  CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,3,0,0,0)\n") != std::string::npos);
+  CHECK(siemens.find("CYCLE86") == std::string::npos);
+  CHECK(siemens.find(" SPOS=0\n") != std::string::npos);
+  CHECK(fanuc.find("\nM05\nM19\nX144.8\n") != std::string::npos);
   CHECK(siemens.find(" CYCLE85(5,0,2,-15,,0.2,300,300)\n") != std::string::npos);
   // Round-ended slot as SLOT1, circular pocket as POCKET2. CDIR is G2/G3:
   // conventional (the STEP-NC default) with M3 runs G2, climb G3.
@@ -60,15 +64,16 @@ TEST_CASE("hole cycles in each dialect") {
   CHECK(siemens.find(" POCKET2(5,0,2,-7.7,,18,30,30,600,1200,3,3,0.5,1)\n") != std::string::npos);
 }
 
-TEST_CASE("840D tapping and boring restore the spindle direction; a left-hand tap has a negative PIT") {
+TEST_CASE("840D tapping restores the spindle direction; a left-hand tap has a negative PIT") {
   auto project = testing::milling_features();
   for (auto& op : project.operations)
     if (op.technology && op.technology->spindle_rpm) *op.technology->spindle_rpm = -*op.technology->spindle_rpm;
   const std::string siemens = posted(project, Dialect::siemens840d);
   // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
   CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,4,,-1.5,,300,300)\n") != std::string::npos);
-  // ..., DTB, SDIR, RPA, RPO, RPAP
-  CHECK(siemens.find(" CYCLE86(5,0,2,-15,,0,4,0,0,0)\n") != std::string::npos);
+  // Boring with a spindle stop starts the spindle again the way it turned.
+  CHECK(siemens.find(" SPOS=0\n") != std::string::npos);
+  CHECK(siemens.find(" S900 M4\n") != std::string::npos);
   // Conventional milling with M4 runs counter-clockwise: G3.
   CHECK(siemens.find(" SLOT1(5,0,2,-5,,1,54,14,40,75,0,0,,600,1200,3,3,0,2,3,1200,2400)\n") != std::string::npos);
 }

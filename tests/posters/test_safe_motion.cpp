@@ -168,8 +168,13 @@ void check_program_text(const std::string& text, Dialect dialect, bool lathe, bo
     }
     if (lathe) CHECK(lines[i].find("CYCLE832") == std::string::npos);
     CHECK(lines[i].find("$TC_DP") == std::string::npos);
-    // A stopped spindle only where a boring operation asks for it.
-    if (!stopped_spindle_boring) CHECK(lines[i].find("G86") == std::string::npos);
+    // Never G86 (a rapid out with the edge on the bore); an oriented stop
+    // only where a boring operation stops its spindle.
+    CHECK(lines[i].find("G86") == std::string::npos);
+    if (!stopped_spindle_boring) {
+      CHECK(lines[i].find("M19") == std::string::npos);
+      CHECK(lines[i].find("SPOS") == std::string::npos);
+    }
   }
 }
 

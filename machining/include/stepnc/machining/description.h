@@ -154,6 +154,10 @@ struct PlanarFace {
 struct ClosedPocket {
   ClosedProfile profile;  ///< its outline
   double planar_radius = 0;  ///< fillet between floor and walls
+  /// Bosses standing from the floor to the pocket's top (its_boss), as
+  /// simple polygons in the pocket's frame; circles come linearised within
+  /// polygons::chordal_tolerance.
+  std::vector<std::vector<Vec2>> islands;
 };
 
 /// rectangular open pocket: the open sides lie in air
@@ -177,6 +181,14 @@ struct Step {
 
 /// The bottom condition of a round hole.
 enum class HoleBottom { through, flat, conical };
+
+/// The outside of a part (ISO 14649-10 general_outside_profile): the stock
+/// around a closed outline is milled away down to the depth, out to the
+/// edge of the workpiece block.
+struct OutsideProfile {
+  std::vector<Vec2> outline;  ///< the part's outline, local coordinates (circles linearised)
+  std::vector<Vec2> stock;    ///< the workpiece block's outline in the same frame
+};
 
 /// A drilled or bored hole along local -z (ISO 14649-10 round_hole).
 struct RoundHole {
@@ -213,7 +225,7 @@ struct CentreHole {
 
 /// The shape of a feature, one alternative per supported feature kind.
 using FeatureShape = std::variant<PlanarFace, ClosedPocket, OpenPocket, Slot, Step, RoundHole,
-                                  TurningProfile, TurningFace, Groove, CentreHole>;
+                                  TurningProfile, TurningFace, Groove, CentreHole, OutsideProfile>;
 
 /// A manufacturing feature: where it is and what shape it has.
 struct Feature {

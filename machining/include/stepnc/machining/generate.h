@@ -35,6 +35,13 @@ struct GenerateOptions {
   /// Above the security plane (mills) or beyond the safe corner (lathes):
   /// where listings and simulations put the machine-safe retract.
   double machine_safe_margin = 50;
+  /// Boring with `spindle_stop_at_bottom`: the spindle stops oriented at
+  /// this angle, and the bar moves this far (mm) away from the wall before
+  /// it leaves the bore. ISO 14649 gives neither: the setter mounts the bar
+  /// so that at this orientation its edge points along +X of the work
+  /// offset, and the lift-off runs along -X.
+  double boring_orientation_deg = 0;
+  double boring_lift_off = 0.2;  ///< mm off the wall after the oriented stop (see boring_orientation_deg)
 };
 
 /// A program, and the problems found making it.

@@ -14,14 +14,14 @@ namespace stepnc::machining {
 /// One motion or machine state change of an expanded program.
 struct Move {
   /// What the move is.
-  enum class Kind { rapid, feed, arc, dwell, tool_change, spindle, spindle_stop, feed_rate, coolant };
+  enum class Kind { rapid, feed, arc, dwell, tool_change, spindle, spindle_stop, spindle_orient, feed_rate, coolant };
   Kind kind = Kind::rapid;  ///< what the move is
   Vec3 from;                ///< start point
   Vec3 to;                  ///< end point
   Vec3 centre;               ///< arcs
   ArcPlane plane = ArcPlane::xy;  ///< arcs: the plane
   int rotation = 0;          ///< arcs: -1/1 per LinuxCNC (CW negative), +-(1+extra turns)
-  double value = 0;          ///< dwell s, feed, spindle rpm, tool number
+  double value = 0;          ///< dwell s, feed, spindle rpm, tool number, orientation degrees
   bool flag = false;         ///< spindle: clockwise; feed_rate: per rev; coolant: flood
   std::uint32_t block = 0;   ///< index of the IR block that produced it
 };

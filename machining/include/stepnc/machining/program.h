@@ -47,8 +47,12 @@ struct SpindleOn {
   double surface_speed = 0;   ///< m/min
   double max_rpm = 0;         ///< CSS limit, 0 = none
 };
-/// Stop the spindle (M5).
-struct SpindleOff {};
+/// Stop the spindle (M5), or stop it oriented.
+struct SpindleOff {
+  /// Oriented stop: the spindle halts at this angle (LinuxCNC `M19 R`,
+  /// Fanuc `M19`, 840D `SPOS=`), so a boring bar's edge points a known way.
+  std::optional<double> orient_deg;
+};
 /// Set the feed (F).
 struct FeedRate {
   double value = 0;  ///< mm/min, or mm/rev when per_revolution
@@ -85,8 +89,7 @@ enum class DrillKind {
   drill,        ///< G81 / CYCLE81 (G82 / CYCLE82 when dwell > 0)
   peck,         ///< G83 / CYCLE83, full retract to r between pecks
   tap,          ///< G84 / CYCLE84
-  bore_feed_out,       ///< G85 / CYCLE85 (reaming)
-  bore_spindle_stop,   ///< G86 / CYCLE86
+  bore_feed_out,       ///< G85 / CYCLE85 (reaming, boring without a spindle stop)
 };
 /// A canned drilling cycle at one hole, with the LinuxCNC meaning of every
 /// field (G98/G99 family). The cycle starts at (x, y, clear), goes to r, and

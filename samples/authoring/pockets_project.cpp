@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "pockets_project.h"
+
+#include <initializer_list>
+#include <string>
+#include <utility>
+
+#include "geometry.h"
+
+#include "machining_schema.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+
+namespace stepnc_samples {
+
+namespace ms = machining_schema;
+namespace mill = milling_schema;
+namespace tools = milling_machine_tool_schema;
+using stepnc::meta::Model;
+
+namespace {
+
+// What both projects share: an aluminium block on a vise, the setup with
+// its security plane 20 mm over the block, coolant, and end mills.
+struct Shop {
+  Model& m;
+  ms::workpiece* workpiece = nullptr;
+  ms::setup* setup = nullptr;
+  ms::plane* security = nullptr;
+  mill::milling_machine_functions* functions = nullptr;
+  ms::direction* up = nullptr;
+  ms::direction* along_x = nullptr;
+  ms::plus_minus_value* tolerance = nullptr;
+
+  Shop(Model& model, const char* name, double x, double y, double z) : m(model) {
+    up = direction(m, 0, "Z", 0, 0, 1);
+    along_x = direction(m, 0, "X", 1, 0, 0);
+    tolerance = stepnc_samples::tolerance(m, 0, 0.05, 0.05);
+    auto* origin = placement(m, 0, "BLOCK ORIGIN", point(m, 0, "BLOCK ORIGIN", 0, 0, 0), up, along_x);
+    auto& aluminium = m.create<ms::material>();
+    aluminium.standard_identifier = "EN 573-3";
+    aluminium.material_identifier = "AL 6082";
+    auto& temper = m.create<ms::descriptive_parameter>();
+    temper.parameter_name = "TEMPER";
+    temper.descriptive_string = "T6";
+    aluminium.material_property = {&temper};
+    auto& block = m.create<ms::block>();
+    block.name = "RAW BLOCK";
+    block.position = origin;
+    block.x = x;
+    block.y = y;
+    block.z = z;
+    workpiece = &m.create<ms::workpiece>();
+    workpiece->its_id = name;
+    workpiece->its_material = &aluminium;
+    workpiece->global_tolerance = 0.01;
+    workpiece->its_bounding_geometry = &block;
+    security = plane(m, 0, "SECURITY PLANE",
+                     placement(m, 0, "SECURITY PLANE", point(m, 0, "SECURITY PLANE", 0, 0, z + 20), up, along_x));
+    auto& on_vise = m.create<ms::workpiece_setup>();
+    on_vise.its_workpiece = workpiece;
+    on_vise.its_origin = origin;
+    setup = &m.create<ms::setup>();
+    setup->its_id = "SETUP 1: VISE";
+    setup->its_origin = origin;
+    setup->its_secplane = security;
+    setup->its_workpiece_setup = {&on_vise};
+    functions = &m.create<mill::milling_machine_functions>();
+    functions->coolant = true;
+    functions->through_spindle_coolant = false;
+    functions->chip_removal = true;
+  }
+
+  ms::axis2_placement_3d* at(const char* name, double x, double y, double z) {
+    return placement(m, 0, name, point(m, 0, name, x, y, z), up, along_x);
+  }
+
+  ms::plane* depth(const char* name, double depth) { return plane(m, 0, name, at(name, 0, 0, -depth)); }
+
+  ms::toleranced_length_measure* size(double value) { return length(m, 0, value, tolerance); }
+
+  tools::milling_cutting_tool* end_mill(const char* name, double diameter, int flutes, double length) {
+    auto& size = m.create<tools::milling_tool_dimension>();
+    size.diameter = diameter;
+    auto& body = m.create<tools::endmill>();
+    body.dimension = &size;
+    body.number_of_teeth = flutes;
+    body.hand_of_cut = tools::hand::right;
+    body.coolant_through_tool = false;
+    auto& edge = m.create<ms::cutting_component>();
+    edge.tool_offset_length = length;
+    auto& tool = m.create<tools::milling_cutting_tool>();
+    tool.its_id = name;
+    tool.its_tool_body = &body;
+    tool.its_cutting_edge = {&edge};
+    tool.overall_assembly_length = length;
+    return &tool;
+  }
+
+  // Feed in m/s, spindle in rev/s (negative: clockwise, M3).
+  mill::milling_technology* technology(double feedrate, double spindle) {
+    auto& t = m.create<mill::milling_technology>();
+    t.feedrate = feedrate;
+    t.feedrate_reference = ms::tool_reference_point::tcp;
+    t.spindle = spindle;
+    t.synchronize_spindle_with_feed = false;
+    t.inhibit_feedrate_override = false;
+    t.inhibit_spindle_override = false;
+    return &t;
+  }
+
+  mill::contour_parallel* contour_parallel() {
+    auto& s = m.create<mill::contour_parallel>();
+    s.allow_multiple_passes = true;
+    s.cutmode = mill::cutmode_type::climb;
+    return &s;
+  }
+
+  // A bottom-and-side operation: contour-parallel, one tool.
+  template <typename Operation>
+  Operation& bottom_and_side(const char* name, tools::milling_cutting_tool* tool, mill::milling_technology* tech,
+                             double axial_depth, double stepover) {
+    auto& op = m.create<Operation>();
+    op.its_id = name;
+    op.retract_plane = 5;
+    op.its_tool = tool;
+    op.its_technology = tech;
+    op.its_machine_functions = functions;
+    op.its_machining_strategy = contour_parallel();
+    op.axial_cutting_depth = axial_depth;
+    op.radial_cutting_depth = stepover;
+    return op;
+  }
+
+  // Rough leaving 0.5 mm on the walls and 0.3 mm on the floor, then finish.
+  std::pair<ms::machining_operation*, ms::machining_operation*> rough_and_finish(
+      const char* rough_name, const char* finish_name, tools::milling_cutting_tool* tool, double rough_depth,
+      double stepover, double finish_depth) {
+    auto& rough = bottom_and_side<mill::bottom_and_side_rough_milling>(
+        rough_name, tool, technology(0.02, -50), rough_depth, stepover);  // 1200 mm/min, 3000 rev/min
+    rough.allowance_side = 0.5;
+    rough.allowance_bottom = 0.3;
+    auto& finish = bottom_and_side<mill::bottom_and_side_finish_milling>(
+        finish_name, tool, technology(0.015, -60), finish_depth, stepover);  // 900 mm/min, 3600 rev/min
+    return {&rough, &finish};
+  }
+
+  void main_workplan(const char* project_name,
+                     std::initializer_list<std::pair<ms::manufacturing_feature*, ms::machining_operation*>> steps) {
+    auto& plan = m.create<ms::workplan>();
+    plan.its_id = "MAIN WORKPLAN";
+    plan.its_setup = setup;
+    for (const auto& [feature, operation] : steps) {
+      auto& ws = m.create<ms::machining_workingstep>();
+      ws.its_id = std::string("WS ") + std::string(operation->its_id.view());
+      ws.its_secplane = security;
+      ws.its_feature = feature;
+      ws.its_operation = operation;
+      plan.its_elements.push_back(&ws);
+    }
+    auto& project = m.create<ms::project>();
+    project.its_id = project_name;
+    project.main_workplan = &plan;
+    project.its_workpieces = {workpiece};
+  }
+};
+
+stepnc::meta::FileHeader header(const char* file, const char* what, const char* detail) {
+  stepnc::meta::FileHeader h;
+  h.description = {what, detail};
+  h.name = file;
+  h.time_stamp = "2026-11-23T00:00:00";
+  h.author = {"stepnc project"};
+  h.organization = {"stepnc project"};
+  h.originating_system = "stepnc samples/authoring";
+  h.schemas = {"MACHINING_SCHEMA", "MILLING_SCHEMA", "MILLING_MACHINE_TOOL_SCHEMA"};
+  return h;
+}
+
+}  // namespace
+
+void build_l_pocket_island(Model& m) {
+  // A 120 x 100 x 30 block, origin at a bottom corner. The L pocket, 10 mm
+  // deep: an 80 x 35 arm along X and a 40 x 60 arm along Y from the corner
+  // at (20, 20); a 14 x 10 boss stands in the X arm, 12 mm from its walls.
+  Shop shop(m, "BLOCK 120 X 100 X 30", 120, 100, 30);
+  auto& outline = m.create<ms::polyline>();
+  outline.name = "L OUTLINE";
+  auto* start = point(m, 0, "L1", 0, 0, 0);
+  outline.points = {start,
+                    point(m, 0, "L2", 80, 0, 0),
+                    point(m, 0, "L3", 80, 35, 0),
+                    point(m, 0, "L4", 40, 35, 0),
+                    point(m, 0, "L5", 40, 60, 0),
+                    point(m, 0, "L6", 0, 60, 0),
+                    start};
+  auto& boundary = m.create<ms::general_closed_profile>();
+  boundary.closed_profile_shape = &outline;
+
+  auto& island_outline = m.create<ms::rectangular_closed_profile>();
+  island_outline.profile_length = shop.size(14);
+  island_outline.profile_width = shop.size(10);
+  auto& island = m.create<ms::boss>();
+  island.its_id = "ISLAND 14 X 10";
+  island.its_workpiece = shop.workpiece;
+  island.feature_placement = shop.at("ISLAND", 40, 37, 30);
+  island.depth = shop.depth("ISLAND HEIGHT", 10);
+  island.its_boundary = &island_outline;
+
+  auto& pocket = m.create<ms::closed_pocket>();
+  pocket.its_id = "L POCKET";
+  pocket.its_workpiece = shop.workpiece;
+  pocket.feature_placement = shop.at("L POCKET", 20, 20, 30);
+  pocket.depth = shop.depth("L POCKET DEPTH", 10);
+  pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  pocket.its_boss = {&island};
+  pocket.feature_boundary = &boundary;
+
+  auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
+  const auto [rough, finish] = shop.rough_and_finish("ROUGH L POCKET", "FINISH L POCKET", mill_10, 5, 5, 10);
+  pocket.its_operations = {rough, finish};
+  shop.main_workplan("L POCKET WITH ISLAND", {{&pocket, rough}, {&pocket, finish}});
+}
+
+stepnc::meta::FileHeader l_pocket_island_header() {
+  return header("l_pocket_island.stp", "STEPNC SAMPLE: AN L-SHAPED CLOSED POCKET WITH AN ISLAND",
+                "GENERAL_CLOSED_PROFILE WITH A BOSS, CONTOUR_PARALLEL ROUGH AND FINISH");
+}
+
+void build_hole_milling(Model& m) {
+  // An 80 x 80 x 30 block; a 30 mm hole, 20 mm deep with a flat floor, at
+  // its middle, milled with a 12 mm end mill: rough in 5 mm levels, then
+  // the wall down a helix and the floor at size.
+  Shop shop(m, "BLOCK 80 X 80 X 30", 80, 80, 30);
+  auto& hole = m.create<ms::round_hole>();
+  hole.its_id = "HOLE D30";
+  hole.its_workpiece = shop.workpiece;
+  hole.feature_placement = shop.at("HOLE D30", 40, 40, 30);
+  hole.depth = shop.depth("HOLE D30 DEPTH", 20);
+  hole.diameter = shop.size(30);
+  hole.bottom_condition = &m.create<ms::flat_hole_bottom>();
+
+  auto* mill_12 = shop.end_mill("ENDMILL 12MM", 12, 3, 80);
+  const auto [rough, finish] = shop.rough_and_finish("ROUGH HOLE D30", "FINISH HOLE D30", mill_12, 5, 6, 10);
+  hole.its_operations = {rough, finish};
+  shop.main_workplan("HOLE MILLED WITH A SMALLER END MILL", {{&hole, rough}, {&hole, finish}});
+}
+
+stepnc::meta::FileHeader hole_milling_header() {
+  return header("hole_milling.stp", "STEPNC SAMPLE: A 30 MM HOLE MILLED WITH A 12 MM END MILL",
+                "ROUND_HOLE, BOTTOM_AND_SIDE ROUGH AND FINISH MILLING, CONTOUR_PARALLEL");
+}
+
+}  // namespace stepnc_samples

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: Apache-2.0
+// Everyday milling features built in code: an L-shaped closed pocket with
+// an island (its_boss), machined contour-parallel, and a round hole milled
+// with an end mill smaller than the hole (rough and finish).
+#pragma once
+
+#include "stepnc/meta/io.h"
+#include "stepnc/meta/model.h"
+
+namespace stepnc_samples {
+
+// samples/milling/l_pocket_island.stp
+void build_l_pocket_island(stepnc::meta::Model& model);
+stepnc::meta::FileHeader l_pocket_island_header();
+
+// samples/milling/hole_milling.stp
+void build_hole_milling(stepnc::meta::Model& model);
+stepnc::meta::FileHeader hole_milling_header();
+
+}  // namespace stepnc_samples
