@@ -30,7 +30,9 @@ const exchange::ModelFile* keep_until_exit(std::unique_ptr<exchange::ModelFile> 
 
 LoadedFile read_and_report(const std::filesystem::path& path, const exchange::ModelReadOptions& options,
                            bool print) {
-  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), options);
+  exchange::ModelReadOptions with_jobs = options;
+  with_jobs.jobs = read_jobs();
+  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), with_jobs);
   if (print) print_diagnostics(result.diagnostics, path.string());
   if (print && result.file && verbosity() == Verbosity::verbose) {
     fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), result.file->model.size(),

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <span>
+#include <thread>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -16,37 +17,15 @@
 #include "stepnc/p21/parameters.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/writer.h"
+#include "entity_lookup.h"
+#include "parallel_read.h"
 
 namespace stepnc::exchange {
 namespace {
 
 // ------------------------------------------------------------ streaming
 
-// The typed entity of a record, for both readers below. Entity names
-// repeat across a file and are numbered in order of first appearance, so
-// each is looked up in the registry once.
-class EntityLookup {
- public:
-  explicit EntityLookup(const meta::Registry& registry) : registry_(registry) {}
-
-  // A simple record, by its name number; null when no schema defines it.
-  const meta::EntityInfo* simple(std::uint32_t name_index, std::span<const std::string_view> names) {
-    while (entities_.size() <= name_index) entities_.push_back(registry_.find_entity(names[entities_.size()]));
-    return entities_[name_index];
-  }
-
-  // A complex record, by the parts of its parsed parameters (left in
-  // `parts`); null when no schema defines the combination.
-  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
-    parts.clear();
-    for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
-    return registry_.find_complex(parts);
-  }
-
- private:
-  const meta::Registry& registry_;
-  std::vector<const meta::EntityInfo*> entities_;  // by name number
-};
+using detail::EntityLookup;
 
 // Part 21 ids to the instances created for them. Ids are usually dense
 // (1..n, a few gaps), so a vector indexed by id serves them; an id far
@@ -166,7 +145,8 @@ constexpr std::size_t kChunkSize = std::size_t{256} << 10;
 // Streams `input` into a new ModelFile; null when the file has a problem
 // (or cannot be read) and needs the indexed read.
 std::unique_ptr<ModelFile> stream_model(std::FILE* input, std::string file_name, std::size_t size,
-                                        const meta::Registry& registry) {
+                                        const meta::Registry& registry, unsigned jobs) {
+  if (jobs > 1) return detail::stream_model_parallel(input, std::move(file_name), size, registry, jobs);
   // Typical records are 40-80 bytes; reserving from the size keeps the
   // tables from regrowing (untouched capacity costs no memory).
   auto file = std::make_unique<ModelFile>();
@@ -177,6 +157,14 @@ std::unique_ptr<ModelFile> stream_model(std::FILE* input, std::string file_name,
       p21::stream(input, std::move(file_name), stop_at_first_problem, builder, kChunkSize);
   if (!diagnostics.items().empty() || !builder.finish()) return nullptr;
   return file;
+}
+
+// The threads a read of `size` bytes uses (ModelReadOptions::jobs).
+unsigned read_jobs(const ModelReadOptions& options, std::size_t size) {
+  if (options.jobs != 0) return options.jobs;
+  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;  // below, starting threads costs more than it saves
+  if (size < kParallelFrom) return 1;
+  return std::max(1u, std::thread::hardware_concurrency());
 }
 
 // -------------------------------------------------------------- indexed
@@ -357,7 +345,8 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
   std::error_code size_error;
   const std::uintmax_t size = std::filesystem::file_size(path, size_error);
   if (std::FILE* input = size_error ? nullptr : std::fopen(path.c_str(), "rb")) {
-    std::unique_ptr<ModelFile> file = stream_model(input, path.string(), static_cast<std::size_t>(size), registry);
+    std::unique_ptr<ModelFile> file = stream_model(input, path.string(), static_cast<std::size_t>(size), registry,
+                                                   read_jobs(options, static_cast<std::size_t>(size)));
     std::fclose(input);
     if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   }
@@ -367,7 +356,8 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
 ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
                                 const ModelReadOptions& options) {
   if (std::FILE* input = text.empty() ? nullptr : ::fmemopen(text.data(), text.size(), "rb")) {
-    std::unique_ptr<ModelFile> file = stream_model(input, file_name, text.size(), registry);
+    std::unique_ptr<ModelFile> file =
+        stream_model(input, file_name, text.size(), registry, read_jobs(options, text.size()));
     std::fclose(input);
     if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   }
