@@ -28,7 +28,7 @@
 #include <thread>
 #include <vector>
 
-#include "entity_lookup.h"
+#include "read_support.h"
 #include "stepnc/meta/io.h"
 #include "stepnc/p21/stream.h"
 
@@ -203,12 +203,12 @@ class Producer final : public p21::RecordHandler {
  public:
   Producer(ModelFile& file, const meta::Registry& registry, SharedIdTable& ids, BatchQueue& queue, Filler& own,
            std::atomic<bool>& failed, std::size_t batch_bytes)
-      : file_(file), entities_(registry), ids_(ids), queue_(queue), own_(own), failed_(failed),
+      : file_(file), registry_(registry), entities_(registry), ids_(ids), queue_(queue), own_(own), failed_(failed),
         batch_bytes_(batch_bytes), batch_(queue.fresh()) {}
 
   bool on_header(const p21::Header& header, p21::StreamContext& /*context*/) override {
     file_.header = header;
-    return true;
+    return check_file_schema(header, registry_).empty() || give_up();
   }
 
   bool on_record(const p21::RecordView& record, p21::StreamContext& context) override {
@@ -255,6 +255,7 @@ class Producer final : public p21::RecordHandler {
   }
 
   ModelFile& file_;
+  const meta::Registry& registry_;
   EntityLookup entities_;
   SharedIdTable& ids_;
   BatchQueue& queue_;

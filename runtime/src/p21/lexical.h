@@ -19,7 +19,7 @@ enum CharClass : std::uint8_t {
   kSpace = 1,          // space, tab, CR, LF
   kDigit = 2,          // 0-9
   kKeywordStart = 4,   // A-Z a-z _ ! (keywords are upper case in the standard;
-                       // lower case is accepted and kept)
+                       // lower case is read, reported and written back upper case)
   kKeywordChar = 8,    // A-Z a-z _ 0-9
   kHexDigit = 16,      // 0-9 A-F a-f
   kSkipStart = 32,     // space or '/': what may start whitespace or a comment

@@ -317,7 +317,14 @@ void append_normalised(std::string_view text, std::string& out) {
     }
     const char* run = p;
     while (p < end && *p != '\'' && !detail::is_space(*p) && !(*p == '/' && p + 1 < end && p[1] == '*')) ++p;
+    // Keywords, enumeration items, exponents and hex digits are capitals
+    // (ISO 10303-21 6.3, 6.4): a lower-case spelling a lenient read let
+    // through is written back upper case. Resource URIs (`<...>`) keep theirs.
+    const std::size_t at = out.size();
     out.append(run, p);
+    if (std::memchr(run, '<', static_cast<std::size_t>(p - run)) == nullptr)
+      for (std::size_t i = at; i < out.size(); ++i)
+        if (out[i] >= 'a' && out[i] <= 'z') out[i] = static_cast<char>(out[i] - 'a' + 'A');
   }
 }
 
@@ -327,7 +334,12 @@ void write_document(const Document& document, Writer& writer) {
   writer.end_header();
   std::string line;
   const std::span<const RecordEntry> records = document.records();
+  bool ended = false;
   for (const Section& section : document.sections()) {
+    if (section.after_end && !ended) {
+      writer.end_file();
+      ended = true;
+    }
     if (section.kind != SectionKind::data) {
       writer.section(section.kind, section.text);
       continue;
@@ -340,7 +352,7 @@ void write_document(const Document& document, Writer& writer) {
     }
     writer.end_data();
   }
-  writer.end_file();
+  if (!ended) writer.end_file();
 }
 
 std::string to_text(const Document& document) {

@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-// The typed entity of a record, shared by the readers of model_file.cpp
-// and parallel_read.cpp (internal header).
+// What the readers of model_file.cpp and parallel_read.cpp share
+// (internal header): the typed entity of a record, the header's check.
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "stepnc/meta/registry.h"
+#include "stepnc/p21/diagnostic.h"
+#include "stepnc/p21/document.h"
 #include "stepnc/p21/parameters.h"
 
 namespace stepnc::exchange::detail {
@@ -36,5 +40,18 @@ class EntityLookup {
   const meta::Registry& registry_;
   std::vector<const meta::EntityInfo*> entities_;  // by name number
 };
+
+// A problem of the header's FILE_SCHEMA against the registry, to report at
+// `offset` (that of FILE_SCHEMA, or 0).
+struct HeaderProblem {
+  p21::Severity severity;
+  std::uint64_t offset;
+  std::string message;
+};
+
+// FILE_SCHEMA names the schemas governing the data (ISO 10303-21 8.2.3):
+// a file none of whose schemas the registry knows is of another schema,
+// an error; an unknown one beside known ones, or none named, a warning.
+std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const meta::Registry& registry);
 
 }  // namespace stepnc::exchange::detail
