@@ -427,8 +427,11 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
     ++p;
     while (p < end && is_keyword_char(*p)) ++p;
     record.entity_name = std::string_view(name, static_cast<std::size_t>(p - name));
-    if (!check_keyword_case(record.entity_name, offset_of(name), id)) return false;
+    const std::size_t names_before = names_.size();
     record.entity = intern(record.entity_name);
+    // Checked once per distinct name, at its first record: one warning
+    // for a file full of lower-case names, and no cost per record.
+    if (names_.size() != names_before && !check_keyword_case(record.entity_name, offset_of(name), id)) return false;
   }
   return handler.on_record(record, *this);
 }
