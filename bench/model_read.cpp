@@ -7,7 +7,9 @@
 //
 // Figures are printed with their ratio to a trivial scan (read the file
 // and count newlines) measured in the same run.
+#include <algorithm>
 #include <filesystem>
+#include <thread>
 
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
@@ -26,7 +28,9 @@ int main(int argc, char** argv) {
   // Peak memory of one typed read, from the process's state before it.
   reset_peak_rss();
   const std::size_t rss_before = peak_rss();
-  exchange::ModelReadResult result = exchange::read_model_file(path, registry);
+  exchange::ModelReadOptions sequential;
+  sequential.jobs = 1;  // the figures below are CPU time of one thread
+  exchange::ModelReadResult result = exchange::read_model_file(path, registry, sequential);
   if (!result.ok()) {
     fmt::print(stderr, "{}", result.diagnostics.to_string());
     return 1;
@@ -36,8 +40,20 @@ int main(int argc, char** argv) {
 
   const double baseline = newline_scan_seconds(path, runs);
   const double read = best_time(runs, [&] {
-    auto again = exchange::read_model_file(path, registry);
+    auto again = exchange::read_model_file(path, registry, sequential);
     if (!again.ok()) std::abort();
+  });
+  // The parallel read, against the sequential one, both in wall time
+  // (CPU time adds up the threads); on a busy machine the threads wait
+  // for cores, so the ratio only shows what free cores give.
+  const unsigned threads = std::max(2u, std::thread::hardware_concurrency());
+  exchange::ModelReadOptions parallel;
+  parallel.jobs = threads;
+  const double sequential_wall = best_wall_time(runs, [&] {
+    if (!exchange::read_model_file(path, registry, sequential).ok()) std::abort();
+  });
+  const double parallel_wall = best_wall_time(runs, [&] {
+    if (!exchange::read_model_file(path, registry, parallel).ok()) std::abort();
   });
   // Writing to a file is what `stepnc format` does: the writer streams
   // through a fixed buffer. Writing to memory also pays for growing one
@@ -55,6 +71,8 @@ int main(int argc, char** argv) {
   fmt::print("baseline newline scan : {:8.1f} MB/s\n", megabytes / baseline);
   fmt::print("typed read            : {:8.1f} MB/s  {:6.2f} M instances/s  {:5.2f}x baseline time\n",
              megabytes / read, static_cast<double>(instances) / read / 1e6, read / baseline);
+  fmt::print("parallel read, {} thr : {:8.1f} MB/s wall  {:5.2f}x the sequential read's wall time ({:.1f} MB/s)\n",
+             threads, megabytes / parallel_wall, parallel_wall / sequential_wall, megabytes / sequential_wall);
   fmt::print("typed read peak RSS   : {:8.1f} MB  = {:.2f}x file size, {:.0f} bytes/instance\n", rss_read / 1e6,
              static_cast<double>(rss_read) / (megabytes * 1e6), static_cast<double>(rss_read) / instances);
   // Where the peak goes (what is left is aggregates on the heap, the id

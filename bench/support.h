@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <memory>
 #include <string_view>
@@ -19,13 +20,25 @@ namespace stepnc_bench {
 
 // Best of `runs` times, in seconds of this process's CPU time: on a shared
 // machine wall time also counts the time other processes hold the core.
-// (Every benchmark here is single-threaded.)
+// (Parallel work is timed with best_wall_time.)
 inline double best_time(int runs, const std::function<void()>& body) {
   double best = 1e300;
   for (int i = 0; i < runs; ++i) {
     const std::clock_t start = std::clock();
     body();
     best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+  }
+  return best;
+}
+
+// Best of `runs` times, in seconds of wall time: for work on several
+// threads, whose CPU times add up.
+inline double best_wall_time(int runs, const std::function<void()>& body) {
+  double best = 1e300;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    body();
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return best;
 }

@@ -26,6 +26,10 @@ enum class Verbosity { quiet, normal, verbose };
 Verbosity verbosity();
 void set_verbosity(Verbosity level);
 
+// --jobs: threads that read a file (exchange::ModelReadOptions::jobs).
+unsigned read_jobs();
+void set_read_jobs(unsigned jobs);
+
 // The action chosen on the command line, run after parsing succeeds.
 using Action = std::function<int()>;
 

@@ -9,11 +9,14 @@ namespace stepnc::cli {
 namespace {
 
 Verbosity current_verbosity = Verbosity::normal;
+unsigned current_read_jobs = 0;
 
 }  // namespace
 
 Verbosity verbosity() { return current_verbosity; }
 void set_verbosity(Verbosity level) { current_verbosity = level; }
+unsigned read_jobs() { return current_read_jobs; }
+void set_read_jobs(unsigned jobs) { current_read_jobs = jobs; }
 
 CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::string& description) {
   const CLI::Validator existing_or_stdin(

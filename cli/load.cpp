@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "load.h"
 
+#include <memory>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "command.h"
@@ -13,21 +16,34 @@ const meta::Registry& iso14649_registry() {
   return registry;
 }
 
-exchange::ModelReadResult read_and_report(const std::filesystem::path& path,
-                                          const exchange::ModelReadOptions& options) {
-  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), options);
-  print_diagnostics(result.diagnostics, path.string());
-  if (result.file && verbosity() == Verbosity::verbose) {
+namespace {
+
+// Never destroyed on purpose (see LoadedFile); reachable, so leak checkers
+// do not count it.
+const exchange::ModelFile* keep_until_exit(std::unique_ptr<exchange::ModelFile> file) {
+  static auto* const kept = new std::vector<std::unique_ptr<exchange::ModelFile>>();
+  if (file == nullptr) return nullptr;
+  return kept->emplace_back(std::move(file)).get();
+}
+
+}  // namespace
+
+LoadedFile read_and_report(const std::filesystem::path& path, const exchange::ModelReadOptions& options,
+                           bool print) {
+  exchange::ModelReadOptions with_jobs = options;
+  with_jobs.jobs = read_jobs();
+  exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), with_jobs);
+  if (print) print_diagnostics(result.diagnostics, path.string());
+  if (print && result.file && verbosity() == Verbosity::verbose) {
     fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), result.file->model.size(),
                result.file->generic_records.size());
   }
-  return result;
+  return LoadedFile{keep_until_exit(std::move(result.file)), std::move(result.diagnostics)};
 }
 
-std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path) {
-  exchange::ModelReadResult result = read_and_report(path);
-  if (!result.ok()) return nullptr;
-  return std::move(result.file);
+const exchange::ModelFile* load(const std::filesystem::path& path) {
+  LoadedFile loaded = read_and_report(path);
+  return loaded.ok() ? loaded.file : nullptr;
 }
 
 }  // namespace stepnc::cli

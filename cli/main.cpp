@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
   bool quiet = false, verbose = false;
   app.add_flag("-q,--quiet", quiet, "Print errors only: no warnings, no summaries");
   app.add_flag("-v,--verbose", verbose, "Also print what was read and written");
+  unsigned jobs = 0;
+  app.add_option("-j,--jobs", jobs, "Threads that read a file: 0, the default, is the core count; 1 reads sequentially")
+      ->option_text("N");
 
   Action action;
   add_info_command(app, action);
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
     return exit_usage;
   }
   set_verbosity(quiet ? Verbosity::quiet : verbose ? Verbosity::verbose : Verbosity::normal);
+  set_read_jobs(jobs);
   try {
     return finish_stdout(action());
   } catch (const std::exception& e) {  // output errors of stdio (fmt), JSON encoding

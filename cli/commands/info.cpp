@@ -101,8 +101,8 @@ void print_json(const InfoOptions& options, const exchange::ModelFile& file, con
 int run_info(const InfoOptions& options) {
   exchange::ModelReadOptions read_options;
   read_options.strict = false;  // summarise what can be read; every error is printed
-  const exchange::ModelReadResult result = read_and_report(options.file, read_options);
-  const exchange::ModelFile* file = result.file.get();
+  const LoadedFile result = read_and_report(options.file, read_options);
+  const exchange::ModelFile* file = result.file;
   // Text that is not Part 21 yields no header and no record: nothing to summarise.
   if (file == nullptr || (result.diagnostics.has_errors() && file->header.entities.empty() && file->record_count == 0)) {
     fmt::print(stderr, "{}: not a readable Part 21 file\n", options.file);

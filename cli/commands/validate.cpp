@@ -32,15 +32,13 @@ int run_validate(const ValidateOptions& options) {
   exchange::ModelReadOptions read_options;
   read_options.strict = false;  // read everything, to report every problem
   read_options.error_limit = options.error_limit;
-  const exchange::ModelReadResult result =
-      options.json ? exchange::read_model_file(options.file, iso14649_registry(), read_options)
-                   : read_and_report(options.file, read_options);
+  const LoadedFile result = read_and_report(options.file, read_options, !options.json);
   std::size_t warnings = 0;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
     if (diagnostic.severity == p21::Severity::warning) ++warnings;
   }
   const std::size_t errors = result.diagnostics.error_count();
-  const std::size_t instances = result.file ? result.file->model.size() : 0;
+  const std::size_t instances = result.file != nullptr ? result.file->model.size() : 0;
   const bool failed = errors > 0 || (options.strict && warnings > 0);
   if (options.json) {
     nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();

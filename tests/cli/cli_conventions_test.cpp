@@ -300,7 +300,7 @@ TEST_CASE("the bash completion script is generated from the command line definit
   CHECK(complete("stepnc post x.stp --dia") == "--dialect\n");
   CHECK(complete("stepnc post x.stp -d si") == "siemens840d\n");
   CHECK(complete("stepnc validate --st") == "--strict\n");
-  CHECK(complete("stepnc info --j") == "--json\n");
+  CHECK(complete("stepnc info --j") == "--jobs --json\n");  // --jobs: the global option
   fs::remove_all(dir);
 }
 

@@ -253,3 +253,46 @@ TEST_CASE("a file large enough to be mapped reads exactly like the same text in 
   CHECK(stepnc_test::dump_all(mapped.file->model) == stepnc_test::dump_all(in_memory.file->model));
   std::filesystem::remove(path);
 }
+
+TEST_CASE("a reference to a generic record says what the record is", "[exchange]") {
+  auto result = read_model_text(file_with("#1=AXIS2_PLACEMENT_3D('',#2,$,$);\n#2=VENDOR_POINT(1.,2.,3.);\n"),
+                                "generic_ref.stp", registry(), {.strict = false});
+  CHECK(messages(result.diagnostics) ==
+        std::vector<std::string>{
+            "generic_ref.stp:8:26: error: #1: attribute 'location' of placement: #2 is a VENDOR_POINT, which no "
+            "schema defines, kept as a generic record: no typed attribute can refer to it",
+            "generic_ref.stp:9:1: warning: #2: unknown entity VENDOR_POINT; kept as a generic record"});
+}
+
+TEST_CASE("FILE_SCHEMA is compared with the schemas the reader knows", "[exchange]") {
+  const auto with_schemas = [](const std::string& schemas) {
+    return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('t','',(''),(''),'','','');\n" +
+           schemas + "ENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n";
+  };
+  SECTION("a file of another schema is not valid") {
+    auto result = read_model_text(with_schemas("FILE_SCHEMA(('CONFIG_CONTROL_DESIGN'));\n"), "ap203.stp", registry(),
+                                  {.strict = false});
+    CHECK_FALSE(result.ok());
+    REQUIRE_FALSE(result.diagnostics.items().empty());
+    CHECK_THAT(result.diagnostics.items()[0].to_string(),
+               Catch::StartsWith("ap203.stp:5:1: error: the file is of schema CONFIG_CONTROL_DESIGN, which this "
+                                 "reader does not know (it knows machining_schema"));
+  }
+  SECTION("an unknown schema beside known ones, or none named, is a warning") {
+    auto extra = read_model_text(with_schemas("FILE_SCHEMA(('MACHINING_SCHEMA','VENDOR_SCHEMA'));\n"), "extra.stp",
+                                 registry(), {.strict = false});
+    CHECK(extra.ok());
+    CHECK(messages(extra.diagnostics) ==
+          std::vector<std::string>{"extra.stp:5:1: warning: FILE_SCHEMA names unknown schema VENDOR_SCHEMA"});
+    auto none = read_model_text(with_schemas(""), "none.stp", registry(), {.strict = false});
+    CHECK(none.ok());
+    CHECK(messages(none.diagnostics) ==
+          std::vector<std::string>{"none.stp: warning: the header names no schema (FILE_SCHEMA)"});
+  }
+  SECTION("names are compared without case and object identifier") {
+    auto result = read_model_text(with_schemas("FILE_SCHEMA(('machining_schema { 1 0 10303 238 1 0 1 }'));\n"),
+                                  "oid.stp", registry());
+    CHECK(result.ok());
+    CHECK(result.diagnostics.items().empty());
+  }
+}

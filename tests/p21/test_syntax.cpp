@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "stepnc/p21/document.h"
+#include "stepnc/p21/writer.h"
 #include "test_helpers.h"
 
 using namespace stepnc::p21;
@@ -204,14 +205,33 @@ TEST_CASE("a very long line: one list of 200000 references", "[p21][syntax]") {
   CHECK(result.document->records().size() == 200001);
 }
 
-TEST_CASE("lower-case keywords and user-defined entity names are accepted", "[p21][syntax]") {
-  ReadResult result = read_data("#1=!USER_DEFINED(1);#2=lower_case(.item.);");
-  INFO(result.diagnostics.to_string());
+TEST_CASE("lower-case keywords: an error when strict, a warning otherwise, written back in capitals",
+          "[p21][syntax]") {
+  // ISO 10303-21 6.3: keywords are capital letters, digits and low lines.
+  const std::string text = p21_test::wrap("#1=!USER_DEFINED(1);#2=lower_case(.item.,'text');");
+  ReadResult strict = read_text(text, "t.stp");
+  CHECK_FALSE(strict.ok());
+  CHECK(strict.diagnostics.to_string() ==
+        "t.stp:8:24: error: #2: keyword 'lower_case' is not in capitals (ISO 10303-21 6.3); read as LOWER_CASE\n");
+
+  ReadOptions lenient;
+  lenient.strict = false;
+  ReadResult result = read_text(text, "t.stp", lenient);
   REQUIRE(result.ok());
+  REQUIRE(result.diagnostics.items().size() == 1);
+  CHECK(result.diagnostics.items()[0].severity == Severity::warning);
   CHECK(result.document->entity_name(result.document->records()[0]) == "!USER_DEFINED");
   ParamTree tree;
   REQUIRE_FALSE(result.document->parse(result.document->records()[1], tree));
   CHECK(tree.parts()[0].attributes().at(0)->text() == "item");
+  const std::string written = to_text(*result.document);
+  CHECK(written.find("#2=LOWER_CASE(.ITEM.,'text');") != std::string::npos);  // strings keep their case
+
+  ReadResult header = read_text("ISO-10303-21;HEADER;file_description((''),'2;1');ENDSEC;END-ISO-10303-21;", "h.stp",
+                                lenient);
+  REQUIRE(header.ok());
+  CHECK(header.diagnostics.items().size() == 1);
+  CHECK(to_text(*header.document).find("FILE_DESCRIPTION(") != std::string::npos);
 }
 
 TEST_CASE("records can be indexed without parsing their parameters", "[p21][syntax]") {
@@ -241,4 +261,47 @@ TEST_CASE("Value::size gives the element count of lists and typed parameters", "
   CHECK(sizes == counted);
   CHECK(sizes == std::vector<std::size_t>{0, 1, 4, 1, 1, 0, 2});
   CHECK(list.children().at(2)->children().at(1)->size() == 2);  // (2,3)
+}
+
+TEST_CASE("SIGNATURE sections: base64 text, after END-ISO-10303-21; or between sections, written back in place",
+          "[p21][syntax]") {
+  // ISO 10303-21:2016 clause 14: each signature signs what precedes it.
+  const std::string signed_file = p21_test::wrap("#1=A(1);") +
+                                  "SIGNATURE;\nMIIGpgYJKoZIhvcNAQcCoIIGlzCCBpMCAQExCzAJBgUrDgMCGgUAMAsGCSqGSIb3\n"
+                                  "  DQEHAaCCA9cw/+==\nENDSEC;\nSIGNATURE;\nQUJD\nENDSEC;\n";
+  ReadResult result = read_text(signed_file, "s.stp");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  const auto sections = result.document->sections();
+  REQUIRE(sections.size() == 3);
+  CHECK(sections[1].kind == SectionKind::signature);
+  CHECK(sections[1].after_end);
+  CHECK(sections[1].text == "MIIGpgYJKoZIhvcNAQcCoIIGlzCCBpMCAQExCzAJBgUrDgMCGgUAMAsGCSqGSIb3\nDQEHAaCCA9cw/+==");
+  CHECK(sections[2].text == "QUJD");
+  const std::string written = to_text(*result.document);
+  CHECK(written.ends_with("END-ISO-10303-21;\nSIGNATURE;\nMIIGpgYJKoZIhvcNAQcCoIIGlzCCBpMCAQExCzAJBgUrDgMCGgUAMAsGCSqG"
+                          "SIb3\nDQEHAaCCA9cw/+==\nENDSEC;\nSIGNATURE;\nQUJD\nENDSEC;\n"));
+  ReadResult again = read_text(written, "again.stp");
+  REQUIRE(again.ok());
+  CHECK(to_text(*again.document) == written);
+
+  // Between sections (as files written by earlier tools have it): kept there.
+  std::string inside = p21_test::wrap("#1=A(1);");
+  inside.insert(inside.find("END-ISO-10303-21;"), "SIGNATURE;\nQUJD\nENDSEC;\n");
+  ReadResult between = read_text(inside, "b.stp");
+  REQUIRE(between.ok());
+  CHECK_FALSE(between.document->sections().back().after_end);
+  CHECK(to_text(*between.document).ends_with("SIGNATURE;\nQUJD\nENDSEC;\nEND-ISO-10303-21;\n"));
+
+  const auto first_error = [](const std::string& text) {
+    ReadResult bad = read_text(text, "bad.stp");
+    return bad.diagnostics.items().empty() ? std::string() : bad.diagnostics.items()[0].to_string();
+  };
+  const std::string end = p21_test::wrap("#1=A(1);");
+  CHECK(first_error(end + "SIGNATURE;\nQU*D\nENDSEC;\n").ends_with(
+      "error: '*' is not base64: a signature is base64 text (ISO 10303-21:2016 14.1)"));
+  CHECK(first_error(end + "SIGNATURE;\nENDSEC;\n").ends_with("error: the SIGNATURE section holds no signature"));
+  CHECK(first_error(end + "SIGNATURE;\nQUJD\n").ends_with(
+      "error: unexpected end of file: statement not terminated by ';'"));
+  CHECK(first_error(end + "DATA;\nENDSEC;\n").ends_with("error: unexpected 'DATA' after END-ISO-10303-21;"));
 }

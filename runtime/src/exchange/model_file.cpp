@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <span>
+#include <thread>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -16,37 +17,50 @@
 #include "stepnc/p21/parameters.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/writer.h"
+#include "read_support.h"
+#include "parallel_read.h"
 
 namespace stepnc::exchange {
+
+namespace detail {
+
+std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const meta::Registry& registry) {
+  std::vector<HeaderProblem> problems;
+  const p21::HeaderEntity* entity = header.find("FILE_SCHEMA");
+  const std::uint64_t offset = entity != nullptr ? entity->offset : 0;
+  const std::vector<std::string> names = header.schema_names();
+  if (names.empty()) {
+    problems.push_back({p21::Severity::warning, offset, "the header names no schema (FILE_SCHEMA)"});
+    return problems;
+  }
+  std::vector<std::string> unknown;
+  for (const std::string& written : names) {
+    // A name may carry its object identifier: 'NAME { 1 0 10303 ... }'.
+    std::string_view name = std::string_view(written).substr(0, written.find('{'));
+    while (!name.empty() && name.back() == ' ') name.remove_suffix(1);
+    if (registry.find_schema(name) == nullptr) unknown.push_back(written);
+  }
+  if (unknown.empty()) return problems;
+  std::vector<std::string_view> known;
+  for (const meta::SchemaInfo* schema : registry.schemas()) known.push_back(schema->name);
+  if (unknown.size() == names.size()) {
+    problems.push_back({p21::Severity::error, offset,
+                        fmt::format("the file is of schema {}, which this reader does not know (it knows {})",
+                                    fmt::join(unknown, ", "), fmt::join(known, ", "))});
+  } else {
+    for (const std::string& name : unknown)
+      problems.push_back({p21::Severity::warning, offset, fmt::format("FILE_SCHEMA names unknown schema {}", name)});
+  }
+  return problems;
+}
+
+}  // namespace detail
+
 namespace {
 
 // ------------------------------------------------------------ streaming
 
-// The typed entity of a record, for both readers below. Entity names
-// repeat across a file and are numbered in order of first appearance, so
-// each is looked up in the registry once.
-class EntityLookup {
- public:
-  explicit EntityLookup(const meta::Registry& registry) : registry_(registry) {}
-
-  // A simple record, by its name number; null when no schema defines it.
-  const meta::EntityInfo* simple(std::uint32_t name_index, std::span<const std::string_view> names) {
-    while (entities_.size() <= name_index) entities_.push_back(registry_.find_entity(names[entities_.size()]));
-    return entities_[name_index];
-  }
-
-  // A complex record, by the parts of its parsed parameters (left in
-  // `parts`); null when no schema defines the combination.
-  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
-    parts.clear();
-    for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
-    return registry_.find_complex(parts);
-  }
-
- private:
-  const meta::Registry& registry_;
-  std::vector<const meta::EntityInfo*> entities_;  // by name number
-};
+using detail::EntityLookup;
 
 // Part 21 ids to the instances created for them. Ids are usually dense
 // (1..n, a few gaps), so a vector indexed by id serves them; an id far
@@ -96,13 +110,13 @@ class InstanceTable {
 class StreamingBuilder final : public p21::RecordHandler, public meta::FillContext {
  public:
   StreamingBuilder(ModelFile& file, const meta::Registry& registry, std::size_t expected_records)
-      : file_(file), entities_(registry), instances_(expected_records) {
+      : file_(file), registry_(registry), entities_(registry), instances_(expected_records) {
     file_.model.reserve(expected_records);
   }
 
   bool on_header(const p21::Header& header, p21::StreamContext& /*context*/) override {
     file_.header = header;
-    return true;
+    return detail::check_file_schema(header, registry_).empty() || give_up();
   }
 
   bool on_record(const p21::RecordView& record, p21::StreamContext& context) override {
@@ -150,6 +164,7 @@ class StreamingBuilder final : public p21::RecordHandler, public meta::FillConte
   }
 
   ModelFile& file_;
+  const meta::Registry& registry_;
   EntityLookup entities_;
   InstanceTable instances_;
   std::vector<std::string_view> parts_;  // of a complex instance
@@ -166,7 +181,8 @@ constexpr std::size_t kChunkSize = std::size_t{256} << 10;
 // Streams `input` into a new ModelFile; null when the file has a problem
 // (or cannot be read) and needs the indexed read.
 std::unique_ptr<ModelFile> stream_model(std::FILE* input, std::string file_name, std::size_t size,
-                                        const meta::Registry& registry) {
+                                        const meta::Registry& registry, unsigned jobs) {
+  if (jobs > 1) return detail::stream_model_parallel(input, std::move(file_name), size, registry, jobs);
   // Typical records are 40-80 bytes; reserving from the size keeps the
   // tables from regrowing (untouched capacity costs no memory).
   auto file = std::make_unique<ModelFile>();
@@ -179,6 +195,14 @@ std::unique_ptr<ModelFile> stream_model(std::FILE* input, std::string file_name,
   return file;
 }
 
+// The threads a read of `size` bytes uses (ModelReadOptions::jobs).
+unsigned read_jobs(const ModelReadOptions& options, std::size_t size) {
+  if (options.jobs != 0) return options.jobs;
+  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;  // below, starting threads costs more than it saves
+  if (size < kParallelFrom) return 1;
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
 // -------------------------------------------------------------- indexed
 
 // Reads the records of one document into typed instances, reporting every
@@ -187,10 +211,12 @@ class ModelBuilder final : public meta::FillContext {
  public:
   ModelBuilder(const p21::Document& document, ModelFile& file, const meta::Registry& registry,
                p21::Diagnostics& diagnostics)
-      : document_(document), file_(file), diagnostics_(diagnostics), entities_(registry) {}
+      : document_(document), file_(file), diagnostics_(diagnostics), registry_(registry), entities_(registry) {}
 
   void run() {
     file_.header = document_.header();
+    for (detail::HeaderProblem& problem : detail::check_file_schema(file_.header, registry_))
+      report(problem.severity, problem.offset, 0, std::move(problem.message));
     const auto records = document_.records();
     file_.record_count = records.size();
     file_.model.reserve(records.size());
@@ -217,6 +243,21 @@ class ModelBuilder final : public meta::FillContext {
 
   void error(std::uint64_t offset, std::string message) override {
     report(p21::Severity::error, offset, current_id_, std::move(message));
+  }
+
+  std::string describe_missing(std::uint64_t id) override {
+    const p21::RecordEntry* record = document_.find(id);
+    if (record == nullptr) return meta::FillContext::describe_missing(id);
+    if (record->entity == p21::RecordEntry::complex_entity) {
+      if (std::any_of(file_.generic_records.begin(), file_.generic_records.end(),
+                      [&](const GenericRecord& generic) { return generic.id == id; }))
+        return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
+                           "attribute can refer to it", id);
+    } else if (entities_.simple(record->entity, document_.entity_names()) == nullptr) {
+      return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
+                         "refer to it", id, document_.entity_name(*record));
+    }
+    return fmt::format("#{} could not be read (see its own error)", id);
   }
 
  private:
@@ -308,13 +349,16 @@ class ModelBuilder final : public meta::FillContext {
   }
 
   void report(p21::Severity severity, std::uint64_t offset, std::uint64_t id, std::string message) {
-    diagnostics_.add(p21::Diagnostic{severity, document_.file_name(), document_.location(offset), id,
+    // Offset 0 with no instance: a problem of the file as a whole, no position.
+    const p21::SourceLocation location = offset == 0 && id == 0 ? p21::SourceLocation{} : document_.location(offset);
+    diagnostics_.add(p21::Diagnostic{severity, document_.file_name(), location, id,
                                      std::move(message)});
   }
 
   const p21::Document& document_;
   ModelFile& file_;
   p21::Diagnostics& diagnostics_;
+  const meta::Registry& registry_;
   EntityLookup entities_;
   std::size_t created_ = 0;                        // records [0, created_) went through create()
   std::vector<std::size_t> skipped_;               // records without an instance, ascending
@@ -357,7 +401,8 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
   std::error_code size_error;
   const std::uintmax_t size = std::filesystem::file_size(path, size_error);
   if (std::FILE* input = size_error ? nullptr : std::fopen(path.c_str(), "rb")) {
-    std::unique_ptr<ModelFile> file = stream_model(input, path.string(), static_cast<std::size_t>(size), registry);
+    std::unique_ptr<ModelFile> file = stream_model(input, path.string(), static_cast<std::size_t>(size), registry,
+                                                   read_jobs(options, static_cast<std::size_t>(size)));
     std::fclose(input);
     if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   }
@@ -367,7 +412,8 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
 ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
                                 const ModelReadOptions& options) {
   if (std::FILE* input = text.empty() ? nullptr : ::fmemopen(text.data(), text.size(), "rb")) {
-    std::unique_ptr<ModelFile> file = stream_model(input, file_name, text.size(), registry);
+    std::unique_ptr<ModelFile> file =
+        stream_model(input, file_name, text.size(), registry, read_jobs(options, text.size()));
     std::fclose(input);
     if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   }

@@ -337,8 +337,10 @@ class Filler {
   // `target` is an entity or a SELECT slot.
   void read_reference(const ValueRef& target, const p21::Value& v) {
     Instance* instance = context_.resolve(v.reference());
-    if (instance == nullptr && context_.defer(PendingReference{target, &attribute_, v.reference(), v.offset()}))
-      return;
+    if (instance == nullptr) {
+      if (context_.defer(PendingReference{target, &attribute_, v.reference(), v.offset()})) return;
+      return fail(v, context_.describe_missing(v.reference()));
+    }
     if (auto problem = bind(target, v.reference(), instance)) fail(v, *problem);
   }
 
@@ -492,6 +494,8 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
   }
   return problems;
 }
+
+std::string FillContext::describe_missing(std::uint64_t id) { return fmt::format("#{} does not exist", id); }
 
 std::optional<std::string> bind_reference(const PendingReference& reference, Instance* instance) {
   if (auto problem = bind(reference.target, reference.id, instance)) {

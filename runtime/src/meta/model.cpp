@@ -2,16 +2,34 @@
 #include "stepnc/meta/model.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <utility>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace stepnc::meta {
 
 namespace {
-// Blocks grow geometrically up to 1 MiB, so small models stay small and
-// large ones need few blocks.
+// Blocks grow geometrically up to 2 MiB, so small models stay small and
+// large ones need few blocks. Blocks of the largest size are aligned to it
+// and asked to be backed by transparent huge pages: one page fault per
+// block instead of 512 (a million-instance read took 16,000 faults).
 constexpr std::size_t kFirstBlock = 4096;
-constexpr std::size_t kLargestBlock = std::size_t{1} << 20;
+constexpr std::size_t kLargestBlock = std::size_t{2} << 20;
+
+std::byte* allocate_block(std::size_t size) {
+  if (size != kLargestBlock) return static_cast<std::byte*>(std::malloc(size));
+  void* bytes = std::aligned_alloc(kLargestBlock, size);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (bytes != nullptr) ::madvise(bytes, size, MADV_HUGEPAGE);
+#endif
+  return static_cast<std::byte*>(bytes);
+}
 }  // namespace
+
+void Model::FreeBytes::operator()(std::byte* bytes) const noexcept { std::free(bytes); }
 
 Model::Model(Model&& other) noexcept
     : blocks_(std::move(other.blocks_)),
@@ -57,7 +75,9 @@ void* Model::allocate(std::size_t size, std::size_t alignment) {
     const std::size_t previous = blocks_.empty() ? kFirstBlock / 2 : blocks_.back().size;
     const std::size_t block_size = std::max(std::min(previous * 2, kLargestBlock), size + alignment);
     // Not zeroed: every instance is constructed in place before use.
-    blocks_.push_back({std::make_unique_for_overwrite<std::byte[]>(block_size), block_size});
+    std::byte* bytes = allocate_block(block_size);
+    if (bytes == nullptr) throw std::bad_alloc();
+    blocks_.push_back({std::unique_ptr<std::byte, FreeBytes>(bytes), block_size});
     cursor_ = blocks_.back().bytes.get();
     remaining_ = block_size;
     arena_bytes_ += block_size;

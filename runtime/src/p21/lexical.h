@@ -19,7 +19,7 @@ enum CharClass : std::uint8_t {
   kSpace = 1,          // space, tab, CR, LF
   kDigit = 2,          // 0-9
   kKeywordStart = 4,   // A-Z a-z _ ! (keywords are upper case in the standard;
-                       // lower case is accepted and kept)
+                       // lower case is read, reported and written back upper case)
   kKeywordChar = 8,    // A-Z a-z _ 0-9
   kHexDigit = 16,      // 0-9 A-F a-f
   kSkipStart = 32,     // space or '/': what may start whitespace or a comment
@@ -72,6 +72,31 @@ inline const char* find_statement_stop(const char* p, const char* end) {
   }
 #endif
   while (p < end && *p != ';' && *p != '\'' && *p != '/') ++p;
+  return p;
+}
+
+// Returns the first byte in [p, end) that ends a run of tokens for the
+// normaliser, or may need changing in it: a quote, whitespace, '/', '<'
+// or a lower-case letter; end if none. 16 bytes at a time on x86-64.
+inline const char* find_normalise_stop(const char* p, const char* end) {
+  const auto stops = [](unsigned char c) {
+    return c == '\'' || c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '/' || c == '<' ||
+           (c >= 'a' && c <= 'z');
+  };
+#if defined(__SSE2__)
+  const __m128i bias = _mm_set1_epi8(static_cast<char>(0x80 - 'a'));  // 'a'..'z' -> -128..-103
+  const __m128i lower_limit = _mm_set1_epi8(static_cast<char>(-128 + 26));
+  while (end - p >= 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    __m128i hits = _mm_cmplt_epi8(_mm_add_epi8(bytes, bias), lower_limit);
+    for (const char c : {'\'', ' ', '\t', '\r', '\n', '/', '<'})
+      hits = _mm_or_si128(hits, _mm_cmpeq_epi8(bytes, _mm_set1_epi8(c)));
+    const int mask = _mm_movemask_epi8(hits);
+    if (mask != 0) return p + __builtin_ctz(static_cast<unsigned>(mask));
+    p += 16;
+  }
+#endif
+  while (p < end && !stops(static_cast<unsigned char>(*p))) ++p;
   return p;
 }
 

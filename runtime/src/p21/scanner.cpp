@@ -243,20 +243,22 @@ bool Scanner::run(RecordHandler& handler) {
       return false;
     }
     if (statement.kind == StatementKind::keyword && keyword == "END-ISO-10303-21") {
-      if (!next_statement(statement, true)) return false;
-      if (statement.kind != StatementKind::end_of_file)
-        return fail_at(statement.offset, fmt::format("unexpected {} after END-ISO-10303-21;", describe(statement)));
-      return true;
+      // Only signature sections may follow (ISO 10303-21:2016 Table 3).
+      for (;;) {
+        if (!next_statement(statement, true)) return false;
+        if (statement.kind == StatementKind::end_of_file) return true;
+        if (statement.kind != StatementKind::keyword || statement.keyword != "SIGNATURE")
+          return fail_at(statement.offset, fmt::format("unexpected {} after END-ISO-10303-21;", describe(statement)));
+        if (!read_signature_section(true, handler)) return false;
+      }
     }
     bool more = true;
     if (keyword == "DATA" && statement.kind != StatementKind::record) {
       more = read_data_section(statement, handler);
-    } else if (statement.kind == StatementKind::keyword &&
-               (keyword == "ANCHOR" || keyword == "REFERENCE" || keyword == "SIGNATURE")) {
-      const SectionKind kind = keyword == "ANCHOR"      ? SectionKind::anchor
-                               : keyword == "REFERENCE" ? SectionKind::reference
-                                                        : SectionKind::signature;
-      more = read_verbatim_section(kind, handler);
+    } else if (statement.kind == StatementKind::keyword && keyword == "SIGNATURE") {
+      more = read_signature_section(false, handler);
+    } else if (statement.kind == StatementKind::keyword && (keyword == "ANCHOR" || keyword == "REFERENCE")) {
+      more = read_verbatim_section(keyword == "ANCHOR" ? SectionKind::anchor : SectionKind::reference, handler);
     } else {
       more = fail_at(statement.offset,
                      fmt::format("expected DATA, ANCHOR, REFERENCE, SIGNATURE or END-ISO-10303-21, found {}",
@@ -292,7 +294,8 @@ bool Scanner::read_header() {
       if (!fail_at(statement.offset, "a header entity cannot be a complex instance")) return false;
       continue;
     }
-    HeaderEntity entity{std::string(statement.keyword), {}, statement.offset};
+    if (!check_keyword_case(statement.keyword, statement.offset)) return false;
+    HeaderEntity entity{upper_case(statement.keyword), {}, statement.offset};
     append_normalised(statement.text, entity.text);
     header_.entities.push_back(std::move(entity));
   }
@@ -358,6 +361,47 @@ bool Scanner::read_verbatim_section(SectionKind kind, RecordHandler& handler) {
   return handler.on_section(section, *this);
 }
 
+// A signature is base64 text (ISO 10303-21:2016 clause 14), which has no
+// ';', quote or comment, so the statement after SIGNATURE; is the whole
+// signature followed by ENDSEC;. Kept as its lines, spaces trimmed.
+bool Scanner::read_signature_section(bool after_end, RecordHandler& handler) {
+  Statement statement;
+  if (!next_statement(statement, true)) return false;
+  if (statement.kind == StatementKind::end_of_file) {
+    fail_at(statement.offset, "unexpected end of file: SIGNATURE section without ENDSEC;");
+    return false;
+  }
+  std::string_view body = statement.text.substr(0, statement.text.size() - 1);  // without ';'
+  while (!body.empty() && is_space(body.back())) body.remove_suffix(1);
+  constexpr std::string_view endsec = "ENDSEC";
+  const bool ends = body.ends_with(endsec) &&
+                    (body.size() == endsec.size() || is_space(body[body.size() - endsec.size() - 1]));
+  if (!ends) return fail_at(statement.offset, "expected base64 signature lines and ENDSEC; in the SIGNATURE section");
+  body.remove_suffix(endsec.size());
+  Section section;
+  section.kind = SectionKind::signature;
+  section.after_end = after_end;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i <= body.size(); ++i) {
+    if (i < body.size() && !is_space(body[i])) {
+      const char c = body[i];
+      const bool base64 = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' ||
+                          c == '/' || c == '=';
+      if (!base64)
+        return fail_at(statement.offset + i, fmt::format("'{}' is not base64: a signature is base64 text "
+                                                         "(ISO 10303-21:2016 14.1)", c));
+      continue;
+    }
+    if (i > line_start) {
+      if (!section.text.empty()) section.text += '\n';
+      section.text += body.substr(line_start, i - line_start);
+    }
+    line_start = i + 1;
+  }
+  if (section.text.empty()) return fail_at(statement.offset, "the SIGNATURE section holds no signature");
+  return handler.on_section(section, *this);
+}
+
 bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
   const std::string_view text = statement.text;
   const char* const begin = text.data();
@@ -383,9 +427,30 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
     ++p;
     while (p < end && is_keyword_char(*p)) ++p;
     record.entity_name = std::string_view(name, static_cast<std::size_t>(p - name));
+    const std::size_t names_before = names_.size();
     record.entity = intern(record.entity_name);
+    // Checked once per distinct name, at its first record: one warning
+    // for a file full of lower-case names, and no cost per record.
+    if (names_.size() != names_before && !check_keyword_case(record.entity_name, offset_of(name), id)) return false;
   }
   return handler.on_record(record, *this);
+}
+
+// Keywords are capital letters, digits and low lines (ISO 10303-21 6.3).
+// Lower case is read, as real files have it, but is an error in a strict
+// read and a warning otherwise; the writer puts it back in capitals.
+bool Scanner::check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id) {
+  if (std::none_of(keyword.begin(), keyword.end(), [](char c) { return c >= 'a' && c <= 'z'; })) return true;
+  return report(Diagnostic{options_.strict ? Severity::error : Severity::warning, file_name_, location(offset), id,
+                           fmt::format("keyword '{}' is not in capitals (ISO 10303-21 6.3); read as {}", keyword,
+                                       upper_case(keyword))});
+}
+
+std::string Scanner::upper_case(std::string_view keyword) {
+  std::string upper(keyword);
+  for (char& c : upper)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return upper;
 }
 
 std::uint32_t Scanner::intern(std::string_view name) {

@@ -66,8 +66,11 @@ class Scanner final : public StreamContext {
   bool read_header();
   bool read_data_section(const Statement& opening, RecordHandler& handler);
   bool read_verbatim_section(SectionKind kind, RecordHandler& handler);
+  bool read_signature_section(bool after_end, RecordHandler& handler);
   bool read_record(const Statement& statement, RecordHandler& handler);
   std::uint32_t intern(std::string_view name);
+  bool check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id = 0);
+  static std::string upper_case(std::string_view keyword);
   std::string describe(const Statement& statement) const;
   static std::uint64_t leading_instance_id(std::string_view text);
 

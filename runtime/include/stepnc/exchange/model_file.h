@@ -74,6 +74,11 @@ struct ModelFile {
 struct ModelReadOptions {
   bool strict = true;  ///< fail on any error (no model is returned)
   std::size_t error_limit = 100;  ///< stop after this many errors
+  /// Threads of the read: 0 takes the core count (files under 1 MiB are
+  /// read on one); 1 is the sequential read; more parse and fill records
+  /// in parallel while one thread streams the file. The model and the
+  /// diagnostics are the same whatever the number.
+  unsigned jobs = 0;
 };
 
 /// A model file, and every problem found reading it.

@@ -90,6 +90,9 @@ class FillContext {
   virtual bool defer(const PendingReference& /*reference*/) { return false; }
   /// A problem with the value at absolute file offset `offset`.
   virtual void error(std::uint64_t offset, std::string message) = 0;
+  /// Why `#id` has no instance, for the message of a reference to it (a
+  /// reader knows when the file has the record but kept it untyped).
+  virtual std::string describe_missing(std::uint64_t id);
 };
 
 /// Sets the explicit attributes of `instance` from a parsed record (`record`

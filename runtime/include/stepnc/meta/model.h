@@ -68,8 +68,11 @@ class Model {
   void adopt(Instance& instance, std::uint32_t id);  ///< registers a new instance under `id` (0: the next free one)
 
  private:
+  struct FreeBytes {
+    void operator()(std::byte* bytes) const noexcept;
+  };
   struct Block {
-    std::unique_ptr<std::byte[]> bytes;
+    std::unique_ptr<std::byte, FreeBytes> bytes;
     std::size_t size = 0;
   };
   std::vector<Block> blocks_;

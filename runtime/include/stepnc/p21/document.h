@@ -77,8 +77,13 @@ enum class SectionKind : std::uint8_t { anchor, reference, data, signature };
 struct Section {
   SectionKind kind = SectionKind::data;  ///< which section
   /// DATA: the optional `('name',('SCHEMA'))` parameter text, normalised;
-  /// empty for a plain `DATA;`. Others: their body verbatim, kept as is.
+  /// empty for a plain `DATA;`. SIGNATURE: the base64 lines of the
+  /// signature. Others: their body verbatim, kept as is.
   std::string text;
+  /// True for a SIGNATURE section after END-ISO-10303-21; (where ISO
+  /// 10303-21:2016 clause 14 and Table 3 put them: each signs everything
+  /// before it); written back there.
+  bool after_end = false;
   std::uint32_t first_record = 0;  ///< DATA: index into Document::records()
   std::uint32_t record_count = 0;  ///< DATA: how many records it has
 };

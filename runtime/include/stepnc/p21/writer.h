@@ -24,6 +24,10 @@
 ///  * Whitespace and line breaks outside strings are normalised to the
 ///    canonical form above (CRLF becomes LF, a record split over several
 ///    lines is joined).
+///  * Letters outside strings are written in capitals, as ISO 10303-21
+///    6.3 and 6.4 spell keywords, enumeration items, exponents and hex
+///    digits: a lower-case `cartesian_point` or `1.e5` a lenient read let
+///    through comes back as `CARTESIAN_POINT`, `1.E5`.
 ///  * Comments are dropped. They carry no data in Part 21, and keeping them
 ///    attached to the right record through edits has no well-defined meaning.
 ///  * Header entities, DATA sections with their parameters, and ANCHOR /

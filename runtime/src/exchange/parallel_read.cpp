@@ -1,0 +1,324 @@
+// SPDX-License-Identifier: Apache-2.0
+// The typed read on several threads.
+//
+// One thread streams the file through the one Part 21 scanner, so records
+// are split exactly where the sequential read splits them (strings holding
+// ';' or quotes and comments included), creates each record's instance in
+// file order (the model's arena and instance list stay single-threaded),
+// enters it in the id table, and hands the record texts over in batches.
+// The other threads, and the streaming one whenever the queue is full,
+// parse the batches and fill their instances. A reference resolves to an
+// instance already created, else it is deferred and bound at the end, as
+// in the sequential read, so both reads build the same model: the same
+// instances in the same order with the same values and references.
+//
+// Like the sequential streaming read, this one gives up at the first
+// problem of any kind, and the caller reads the file again through the
+// indexed read, the one source of diagnostics; so diagnostics are the same
+// whatever the number of threads.
+#include "parallel_read.h"
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstdlib>
+#include <deque>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "read_support.h"
+#include "stepnc/meta/io.h"
+#include "stepnc/p21/stream.h"
+
+namespace stepnc::exchange::detail {
+namespace {
+
+// Ids to instances, read by every thread while the streaming thread adds
+// to it. Ids up to 2^32 (the typed model's limit) map to segments of 4096
+// slots, allocated as ids arrive; a segment never moves, so readers need
+// no lock, and each slot is written once (release) before any batch that
+// may refer to it is handed over. Sparse ids would cost a segment each, so
+// a table with far more slots than instances refuses further ids: the
+// read gives up, and the sequential read (which hashes sparse ids) takes it.
+class SharedIdTable {
+ public:
+  SharedIdTable() : directory_(static_cast<meta::Instance***>(std::calloc(kSegments, sizeof(meta::Instance**)))) {}
+  SharedIdTable(const SharedIdTable&) = delete;
+  SharedIdTable& operator=(const SharedIdTable&) = delete;
+  ~SharedIdTable() {
+    if (directory_ == nullptr) return;
+    for (meta::Instance** segment : allocated_) std::free(segment);
+    std::free(directory_);
+  }
+
+  meta::Instance* find(std::uint64_t id) const {
+    if (id >= kLimit) return nullptr;
+    meta::Instance** segment = std::atomic_ref(directory_[id >> kSegmentBits]).load(std::memory_order_acquire);
+    if (segment == nullptr) return nullptr;
+    return std::atomic_ref(segment[id & kSegmentMask]).load(std::memory_order_acquire);
+  }
+
+  // False when the id is taken, out of range, or too sparse (see above).
+  // Only the streaming thread inserts.
+  bool insert(std::uint64_t id, meta::Instance& instance) {
+    if (directory_ == nullptr || id >= kLimit) return false;
+    meta::Instance**& segment = directory_[id >> kSegmentBits];
+    if (segment == nullptr) {
+      if ((allocated_.size() + 1) * kSegmentSize > 4 * count_ + kSlack) return false;
+      auto* fresh = static_cast<meta::Instance**>(std::calloc(kSegmentSize, sizeof(meta::Instance*)));
+      if (fresh == nullptr) return false;
+      allocated_.push_back(fresh);
+      std::atomic_ref(segment).store(fresh, std::memory_order_release);
+    }
+    meta::Instance*& slot = segment[id & kSegmentMask];
+    if (slot != nullptr) return false;
+    std::atomic_ref(slot).store(&instance, std::memory_order_release);
+    ++count_;
+    return true;
+  }
+
+ private:
+  static constexpr unsigned kSegmentBits = 12;
+  static constexpr std::size_t kSegmentSize = std::size_t{1} << kSegmentBits;
+  static constexpr std::uint64_t kSegmentMask = kSegmentSize - 1;
+  static constexpr std::uint64_t kLimit = std::uint64_t{1} << 32;
+  static constexpr std::size_t kSegments = kLimit >> kSegmentBits;  // 8 MiB of address space, touched as used
+  static constexpr std::size_t kSlack = std::size_t{1} << 16;
+
+  meta::Instance*** directory_;
+  std::vector<meta::Instance**> allocated_;
+  std::size_t count_ = 0;
+};
+
+// Records handed from the streaming thread to the filling threads.
+struct Batch {
+  struct Entry {
+    std::uint64_t offset;  // of the record in the file
+    std::uint32_t begin;   // of its text in `text`
+    std::uint32_t length;
+    meta::Instance* instance;
+  };
+  std::string text;
+  std::vector<Entry> entries;
+};
+
+// Parses and fills the instances of batches; one per thread.
+class Filler final : public meta::FillContext {
+ public:
+  Filler(const SharedIdTable& ids, std::atomic<bool>& failed) : ids_(ids), failed_(failed) {}
+
+  void fill(const Batch& batch) {
+    for (const Batch::Entry& entry : batch.entries) {
+      if (failed_.load(std::memory_order_relaxed)) return;
+      if (tree_.parse(std::string_view(batch.text).substr(entry.begin, entry.length), entry.offset)) {
+        fail();
+        return;
+      }
+      meta::fill_instance(*entry.instance, tree_, *this);
+    }
+  }
+
+  meta::Instance* resolve(std::uint64_t id) override { return ids_.find(id); }
+  bool defer(const meta::PendingReference& reference) override {
+    pending_.push_back(reference);
+    return true;
+  }
+  void error(std::uint64_t /*offset*/, std::string /*message*/) override { fail(); }
+
+  std::vector<meta::PendingReference>& pending() { return pending_; }
+
+ private:
+  void fail() { failed_.store(true, std::memory_order_relaxed); }
+
+  const SharedIdTable& ids_;
+  std::atomic<bool>& failed_;
+  p21::ParamTree tree_;
+  std::vector<meta::PendingReference> pending_;
+};
+
+// Batches waiting to be filled, and spare ones to reuse.
+class BatchQueue {
+ public:
+  explicit BatchQueue(std::size_t capacity) : capacity_(capacity) {}
+
+  // A batch to fill, or null when none is waiting and none will come.
+  std::unique_ptr<Batch> pop() {
+    std::unique_lock lock(mutex_);
+    ready_.wait(lock, [&] { return !waiting_.empty() || closed_; });
+    return take_locked();
+  }
+  // A waiting batch, or null at once.
+  std::unique_ptr<Batch> try_pop() {
+    std::lock_guard lock(mutex_);
+    return take_locked();
+  }
+  // False when the queue is full: the caller fills a batch itself first.
+  bool push(std::unique_ptr<Batch>& batch) {
+    std::lock_guard lock(mutex_);
+    if (waiting_.size() >= capacity_) return false;
+    waiting_.push_back(std::move(batch));
+    ready_.notify_one();
+    return true;
+  }
+  void recycle(std::unique_ptr<Batch> batch) {
+    batch->text.clear();
+    batch->entries.clear();
+    std::lock_guard lock(mutex_);
+    spare_.push_back(std::move(batch));
+  }
+  std::unique_ptr<Batch> fresh() {
+    std::lock_guard lock(mutex_);
+    if (spare_.empty()) return std::make_unique<Batch>();
+    std::unique_ptr<Batch> batch = std::move(spare_.back());
+    spare_.pop_back();
+    return batch;
+  }
+  void close() {
+    std::lock_guard lock(mutex_);
+    closed_ = true;
+    ready_.notify_all();
+  }
+
+ private:
+  std::unique_ptr<Batch> take_locked() {
+    if (waiting_.empty()) return nullptr;
+    std::unique_ptr<Batch> batch = std::move(waiting_.front());
+    waiting_.pop_front();
+    return batch;
+  }
+
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<std::unique_ptr<Batch>> waiting_;
+  std::vector<std::unique_ptr<Batch>> spare_;
+  std::size_t capacity_;
+  bool closed_ = false;
+};
+
+// The streaming thread's side: creates instances in file order, batches
+// the records.
+class Producer final : public p21::RecordHandler {
+ public:
+  Producer(ModelFile& file, const meta::Registry& registry, SharedIdTable& ids, BatchQueue& queue, Filler& own,
+           std::atomic<bool>& failed, std::size_t batch_bytes)
+      : file_(file), registry_(registry), entities_(registry), ids_(ids), queue_(queue), own_(own), failed_(failed),
+        batch_bytes_(batch_bytes), batch_(queue.fresh()) {}
+
+  bool on_header(const p21::Header& header, p21::StreamContext& /*context*/) override {
+    file_.header = header;
+    return check_file_schema(header, registry_).empty() || give_up();
+  }
+
+  bool on_record(const p21::RecordView& record, p21::StreamContext& context) override {
+    if (failed_.load(std::memory_order_relaxed)) return false;
+    const meta::EntityInfo* entity = nullptr;
+    if (record.entity == p21::RecordEntry::complex_entity) {
+      if (tree_.parse(record.text, record.offset)) return give_up();
+      entity = entities_.complex(tree_, parts_);
+    } else {
+      entity = entities_.simple(record.entity, context.entity_names());
+    }
+    if (entity == nullptr || entity->abstract || record.id > std::numeric_limits<std::uint32_t>::max() ||
+        record.text.size() > std::numeric_limits<std::uint32_t>::max()) {
+      return give_up();
+    }
+    meta::Instance* instance = file_.model.create(*entity, static_cast<std::uint32_t>(record.id));
+    if (instance == nullptr || !ids_.insert(record.id, *instance)) return give_up();
+    ++file_.record_count;
+    const auto begin = static_cast<std::uint32_t>(batch_->text.size());
+    if (batch_->text.size() + record.text.size() > std::numeric_limits<std::uint32_t>::max()) submit();
+    batch_->text.append(record.text);
+    batch_->entries.push_back({record.offset, begin, static_cast<std::uint32_t>(record.text.size()), instance});
+    if (batch_->text.size() >= batch_bytes_) submit();
+    return true;
+  }
+
+  // Hands the current batch over; when the queue is full, fills the oldest
+  // waiting batch here instead of waiting.
+  void submit() {
+    if (batch_->entries.empty()) return;
+    while (!queue_.push(batch_)) {
+      if (std::unique_ptr<Batch> waiting = queue_.try_pop()) {
+        own_.fill(*waiting);
+        queue_.recycle(std::move(waiting));
+      }
+    }
+    batch_ = queue_.fresh();
+  }
+
+ private:
+  bool give_up() {
+    failed_.store(true, std::memory_order_relaxed);
+    return false;
+  }
+
+  ModelFile& file_;
+  const meta::Registry& registry_;
+  EntityLookup entities_;
+  SharedIdTable& ids_;
+  BatchQueue& queue_;
+  Filler& own_;
+  std::atomic<bool>& failed_;
+  std::size_t batch_bytes_;
+  std::unique_ptr<Batch> batch_;
+  p21::ParamTree tree_;                  // complex records only
+  std::vector<std::string_view> parts_;  // of a complex record
+};
+
+// Read ahead by the streaming thread: chunks as large as the sequential
+// read's, batches small enough that the filling threads share the work
+// evenly and a few in flight stay in the cache.
+constexpr std::size_t kChunkSize = std::size_t{256} << 10;
+constexpr std::size_t kLargestBatch = std::size_t{128} << 10;
+
+}  // namespace
+
+std::unique_ptr<ModelFile> stream_model_parallel(std::FILE* input, std::string file_name, std::size_t size,
+                                                 const meta::Registry& registry, unsigned jobs) {
+  auto file = std::make_unique<ModelFile>();
+  file->model.reserve(size / 48);  // typical records are 40-80 bytes
+  SharedIdTable ids;
+  std::atomic<bool> failed{false};
+  BatchQueue queue(2 * std::size_t{jobs});
+  std::vector<Filler> fillers;
+  fillers.reserve(jobs);
+  for (unsigned i = 0; i < jobs; ++i) fillers.emplace_back(ids, failed);
+
+  std::vector<std::thread> threads;
+  for (unsigned i = 1; i < jobs; ++i) {
+    threads.emplace_back([&queue, &filler = fillers[i]] {
+      while (std::unique_ptr<Batch> batch = queue.pop()) {
+        filler.fill(*batch);
+        queue.recycle(std::move(batch));
+      }
+    });
+  }
+  // Small files get small batches, so that every thread has some.
+  const std::size_t batch_bytes = std::clamp<std::size_t>(size / (8 * std::size_t{jobs}), 1, kLargestBatch);
+  Producer producer(*file, registry, ids, queue, fillers[0], failed, batch_bytes);
+  p21::ReadOptions stop_at_first_problem;
+  stop_at_first_problem.error_limit = 1;
+  const p21::Diagnostics diagnostics =
+      p21::stream(input, std::move(file_name), stop_at_first_problem, producer, kChunkSize);
+  if (!diagnostics.items().empty()) failed = true;
+  producer.submit();
+  queue.close();
+  while (std::unique_ptr<Batch> batch = queue.try_pop()) {
+    fillers[0].fill(*batch);
+    queue.recycle(std::move(batch));
+  }
+  for (std::thread& thread : threads) thread.join();
+  if (failed) return nullptr;
+
+  // Every instance exists now: bind what was deferred.
+  for (Filler& filler : fillers) {
+    for (const meta::PendingReference& reference : filler.pending()) {
+      if (meta::bind_reference(reference, ids.find(reference.id))) return nullptr;
+    }
+  }
+  return file;
+}
+
+}  // namespace stepnc::exchange::detail

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// What the readers of model_file.cpp and parallel_read.cpp share
+// (internal header): the typed entity of a record, the header's check.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepnc/meta/registry.h"
+#include "stepnc/p21/diagnostic.h"
+#include "stepnc/p21/document.h"
+#include "stepnc/p21/parameters.h"
+
+namespace stepnc::exchange::detail {
+
+// Entity names repeat across a file and are numbered in order of first
+// appearance, so each is looked up in the registry once.
+class EntityLookup {
+ public:
+  explicit EntityLookup(const meta::Registry& registry) : registry_(registry) {}
+
+  // A simple record, by its name number; null when no schema defines it.
+  const meta::EntityInfo* simple(std::uint32_t name_index, std::span<const std::string_view> names) {
+    while (entities_.size() <= name_index) entities_.push_back(registry_.find_entity(names[entities_.size()]));
+    return entities_[name_index];
+  }
+
+  // A complex record, by the parts of its parsed parameters (left in
+  // `parts`); null when no schema defines the combination.
+  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
+    parts.clear();
+    for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
+    return registry_.find_complex(parts);
+  }
+
+ private:
+  const meta::Registry& registry_;
+  std::vector<const meta::EntityInfo*> entities_;  // by name number
+};
+
+// A problem of the header's FILE_SCHEMA against the registry, to report at
+// `offset` (that of FILE_SCHEMA, or 0).
+struct HeaderProblem {
+  p21::Severity severity;
+  std::uint64_t offset;
+  std::string message;
+};
+
+// FILE_SCHEMA names the schemas governing the data (ISO 10303-21 8.2.3):
+// a file none of whose schemas the registry knows is of another schema,
+// an error; an unknown one beside known ones, or none named, a warning.
+std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const meta::Registry& registry);
+
+}  // namespace stepnc::exchange::detail
