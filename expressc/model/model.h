@@ -179,6 +179,7 @@ struct Entity {
   std::vector<const Entity*> supertypes;  // SUBTYPE OF, in written order
   std::vector<const Entity*> subtypes;    // every entity naming this one in SUBTYPE OF, sorted by name
   std::unique_ptr<SupertypeExpression> supertype_constraint;  // SUPERTYPE OF (...), if written
+  std::vector<const struct SubtypeConstraint*> subtype_constraints;  // SUBTYPE_CONSTRAINTs FOR this entity
 
   // Attributes this entity declares, in written order (explicit, then
   // derived, then inverse), redeclarations included.

@@ -455,7 +455,10 @@ class Resolver {
     }
 
     for (auto& [constraint, syntax] : work.constraints) {
-      constraint->entity = resolve_entity(work, syntax->entity, "entity");
+      if (Entity* entity = resolve_entity(work, syntax->entity, "entity")) {
+        constraint->entity = entity;
+        entity->subtype_constraints.push_back(constraint);
+      }
       for (const ast::Name& name : syntax->total_over)
         if (Entity* entity = resolve_entity(work, name, "entity")) constraint->total_over.push_back(entity);
       if (syntax->expression) {
