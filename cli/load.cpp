@@ -16,12 +16,16 @@ const meta::Registry& iso14649_registry() {
 exchange::ModelReadResult read_and_report(const std::filesystem::path& path,
                                           const exchange::ModelReadOptions& options) {
   exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), options);
+  report_read(result, path);
+  return result;
+}
+
+void report_read(const exchange::ModelReadResult& result, const std::filesystem::path& path) {
   print_diagnostics(result.diagnostics, path.string());
   if (result.file && verbosity() == Verbosity::verbose) {
     fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), result.file->model.size(),
                result.file->generic_records.size());
   }
-  return result;
 }
 
 std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path) {

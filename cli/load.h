@@ -17,6 +17,8 @@ const meta::Registry& iso14649_registry();
 // Reads `path` (`-`: standard input) and prints its diagnostics.
 exchange::ModelReadResult read_and_report(const std::filesystem::path& path,
                                           const exchange::ModelReadOptions& options = {});
+// Prints the diagnostics of a read (and, verbose, what was read).
+void report_read(const exchange::ModelReadResult& result, const std::filesystem::path& path);
 
 // The file, strictly read, or null after printing why it could not be read.
 std::unique_ptr<exchange::ModelFile> load(const std::filesystem::path& path);

@@ -215,6 +215,7 @@ struct Algorithm {  // FUNCTION, PROCEDURE or RULE: kept as checked syntax
   enum class Kind : uint8_t { Function, Procedure, Rule };
   Kind kind = Kind::Function;
   std::string name;
+  const Schema* schema = nullptr;
   SourceLocation location;
   std::vector<Parameter> parameters;  // FUNCTION and PROCEDURE
   TypeRef result;                     // FUNCTION only

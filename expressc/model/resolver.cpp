@@ -189,6 +189,7 @@ class Resolver {
                            auto algorithm = std::make_unique<Algorithm>();
                            algorithm->kind = kind;
                            algorithm->name = name_ptr->text;
+                           algorithm->schema = work.schema;
                            algorithm->location = location(work, name_ptr->position);
                            if (!enter(work, *name_ptr, {.kind = symbol_kind, .algorithm = algorithm.get()})) return;
                            on_declared(*algorithm);
