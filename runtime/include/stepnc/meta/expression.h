@@ -65,28 +65,76 @@ enum class NodeKind : std::uint8_t {
 
 /// EXPRESS operators (ISO 10303-11 12).
 enum class Operator : std::uint8_t {
-  Plus, Minus, Not,
-  Less, Greater, LessEqual, GreaterEqual, NotEqual, Equal, InstanceNotEqual, InstanceEqual, In, Like,
-  Add, Subtract, Or, Xor,
-  Multiply, Divide, IntegerDivide, Modulo, And, ComplexConstruct,
-  Power,
+  Plus,  ///< `unary +`
+  Minus,  ///< `unary -`
+  Not,  ///< `NOT`
+  Less,  ///< `<`
+  Greater,  ///< `>`
+  LessEqual,  ///< `<=`
+  GreaterEqual,  ///< `>=`
+  NotEqual,  ///< `<>`
+  Equal,  ///< `=`
+  InstanceNotEqual,  ///< `:<>:`
+  InstanceEqual,  ///< `:=:`
+  In,  ///< `IN`
+  Like,  ///< `LIKE`
+  Add,  ///< `+`
+  Subtract,  ///< `-`
+  Or,  ///< `OR`
+  Xor,  ///< `XOR`
+  Multiply,  ///< `*`
+  Divide,  ///< `/`
+  IntegerDivide,  ///< `DIV`
+  Modulo,  ///< `MOD`
+  And,  ///< `AND`
+  ComplexConstruct,  ///< `||`
+  Power,  ///< `**`
 };
 
 /// The built-in functions, constants and procedures (ISO 10303-11 14, 15, 16).
 enum class Builtin : std::uint8_t {
-  None,
-  Abs, Acos, Asin, Atan, Blength, Cos, Exists, Exp, Format, Hibound, Hiindex, Length, Lobound, Log, Log2, Log10,
-  Loindex, Nvl, Odd, Rolesof, Sin, Sizeof, Sqrt, Tan, Typeof, Usedin, Value, Value_in, Value_unique,
-  Pi, Const_e,
-  Insert, Remove,
+  None,  ///< not a built-in
+  Abs,  ///< `ABS`
+  Acos,  ///< `ACOS`
+  Asin,  ///< `ASIN`
+  Atan,  ///< `ATAN`
+  Blength,  ///< `BLENGTH`
+  Cos,  ///< `COS`
+  Exists,  ///< `EXISTS`
+  Exp,  ///< `EXP`
+  Format,  ///< `FORMAT`
+  Hibound,  ///< `HIBOUND`
+  Hiindex,  ///< `HIINDEX`
+  Length,  ///< `LENGTH`
+  Lobound,  ///< `LOBOUND`
+  Log,  ///< `LOG`
+  Log2,  ///< `LOG2`
+  Log10,  ///< `LOG10`
+  Loindex,  ///< `LOINDEX`
+  Nvl,  ///< `NVL`
+  Odd,  ///< `ODD`
+  Rolesof,  ///< `ROLESOF`
+  Sin,  ///< `SIN`
+  Sizeof,  ///< `SIZEOF`
+  Sqrt,  ///< `SQRT`
+  Tan,  ///< `TAN`
+  Typeof,  ///< `TYPEOF`
+  Usedin,  ///< `USEDIN`
+  Value,  ///< `VALUE`
+  Value_in,  ///< `VALUE_IN`
+  Value_unique,  ///< `VALUE_UNIQUE`
+  Pi,  ///< `PI`
+  Const_e,  ///< `CONST_E`
+  Insert,  ///< `INSERT`
+  Remove,  ///< `REMOVE`
 };
 
 /// One node of an expression or statement tree.
 struct Node {
-  NodeKind kind = NodeKind::Null;
+  NodeKind kind = NodeKind::Null;  ///< what the node is
   Operator op = Operator::Plus;   ///< Unary, Operation, Interval (first comparison)
   Operator op2 = Operator::Plus;  ///< Interval: the second comparison
-  Builtin builtin = Builtin::None;
+  Builtin builtin = Builtin::None;  ///< Builtin, ProcedureCall: which built-in
   std::uint16_t count = 0;   ///< number of operands
   std::uint32_t first = 0;   ///< index of the first operand in the same array
   std::uint32_t slot = 0;    ///< Variable, Query, Alias, Loop: the frame slot; Case, CaseAction: see NodeKind
@@ -110,22 +158,23 @@ struct DomainRuleInfo {
   std::string_view label{};  ///< may be empty
   std::string_view text{};   ///< the expression in canonical EXPRESS
   std::uint32_t line = 0;    ///< where it is written in the schema
-  Tree expression{};
+  Tree expression{};         ///< the expression (SELF: the instance or value checked)
   std::uint32_t frame = 0;   ///< variable slots it needs (QUERY variables)
 };
 
 /// A UNIQUE clause: the named attributes' values are unique together among
 /// the instances of the entity.
 struct UniqueRuleInfo {
-  std::string_view label{};
-  std::span<const std::string_view> attributes{};
+  std::string_view label{};  ///< may be empty
+  std::span<const std::string_view> attributes{};  ///< the attributes whose values are unique together
 };
 
 /// A FUNCTION, PROCEDURE or global RULE.
 struct AlgorithmInfo {
+  /// FUNCTION, PROCEDURE or RULE
   enum class Kind : std::uint8_t { Function, Procedure, Rule };
-  Kind kind = Kind::Function;
-  std::string_view name{};
+  Kind kind = Kind::Function;  ///< which of the three
+  std::string_view name{};     ///< as declared
   std::uint32_t parameters = 0;  ///< slots 0..parameters-1 (a RULE: one population per entity)
   std::uint32_t frame = 0;       ///< slots in all
   Tree body{};                   ///< a Block: local initialisations, then the statements
