@@ -347,6 +347,7 @@ class Checker {
       case K::Call: {
         e.binding = lookup(e.text).binding;
         for (const auto& operand : e.operands) check(*operand);
+        check_arguments(e.position, e.text, e.binding, e.operands.size());
         switch (e.binding.kind) {
           case BindingKind::Function: return e.binding.algorithm ? shape_of(e.binding.algorithm->result) : Shape{};
           case BindingKind::BuiltinFunction: return {};
@@ -399,6 +400,42 @@ class Checker {
         for (const auto& operand : e.operands) check(*operand);
         return {};
     }
+  }
+
+  // The number of arguments of a call against the signature: a user
+  // algorithm's parameters, a built-in's (ISO 10303-11 15, 16), an entity
+  // constructor's own explicit attributes (ISO 10303-11 9.2.6).
+  void check_arguments(ast::Position at, const std::string& name, const Binding& binding, size_t count) {
+    size_t expected = 0;
+    const char* what = "function";
+    switch (binding.kind) {
+      case BindingKind::Function:
+      case BindingKind::Procedure:
+        if (!binding.algorithm) return;  // declared inside an algorithm
+        expected = binding.algorithm->parameters.size();
+        if (binding.kind == BindingKind::Procedure) what = "procedure";
+        break;
+      case BindingKind::BuiltinFunction:
+      case BindingKind::BuiltinProcedure: {
+        static const std::unordered_map<std::string, size_t> two = {
+            {"atan", 2}, {"nvl", 2}, {"usedin", 2}, {"value_in", 2}, {"format", 2}, {"remove", 2}, {"insert", 3}};
+        auto it = two.find(lowercase(name));
+        expected = it == two.end() ? 1 : it->second;
+        if (binding.kind == BindingKind::BuiltinProcedure) what = "procedure";
+        break;
+      }
+      case BindingKind::Entity:
+        if (!binding.entity) return;
+        // A partial entity value: the entity's own explicit attributes (its
+        // supertypes' come from other constructors joined with ||).
+        for (const auto& attribute : binding.entity->attributes)
+          if (attribute->kind == Attribute::Kind::Explicit && !attribute->redeclares) ++expected;
+        what = "entity constructor";
+        break;
+      default: return;
+    }
+    if (count != expected)
+      warning(at, fmt::format("{} '{}' takes {} argument{}, not {}", what, name, expected, expected == 1 ? "" : "s", count));
   }
 
   // `x.name` where `x` is known to be an entity or a select: some entity it
@@ -584,6 +621,7 @@ class Checker {
         else if (s.binding.kind != BindingKind::Procedure && s.binding.kind != BindingKind::BuiltinProcedure)
           warning(s.name.position, fmt::format("'{}' is not a procedure", s.name.text));
         for (const auto& argument : s.arguments) check(*argument);
+        check_arguments(s.name.position, s.name.text, s.binding, s.arguments.size());
         return;
       }
       case K::Repeat: {

@@ -18,7 +18,15 @@ const model::Model& standard_model() {
   static const std::unique_ptr<model::Model> model = [] {
     auto result = model::compile({{"iso14649-standard.exp", test::reference_standard_part()}});
     for (const auto& diagnostic : result.diagnostics) UNSCOPED_INFO(diagnostic.to_string());
-    REQUIRE(result.diagnostics.empty());
+    REQUIRE(result.ok());
+    // Its only warnings: entity constructors given one argument fewer than
+    // the entity's own attributes, because the reference moved `name` down
+    // from representation_item (its remark: the WZL parser had no multiple
+    // inheritance) while its functions still construct without it.
+    for (const auto& diagnostic : result.diagnostics) {
+      CHECK(diagnostic.severity == model::Diagnostic::Severity::Warning);
+      CHECK(diagnostic.message.rfind("entity constructor '", 0) == 0);
+    }
     return std::move(result.model);
   }();
   return *model;

@@ -447,9 +447,16 @@ class Interpreter {
       case NodeKind::Construct: {
         auto partial = std::make_shared<Partial>();
         partial->entities.push_back(n.entity);
-        const auto& attributes = n.entity->attributes;
-        for (std::uint32_t i = 0; i < n.count && i < attributes.size(); ++i)
-          partial->attributes.emplace_back(attributes[i].name, std::make_shared<Value>(operand(i)));
+        // The entity's own explicit attributes (ISO 10303-11 9.2.6). With
+        // fewer arguments than those, the last ones get them: transcriptions
+        // that moved an inherited `name` down (the ISO 14649 reference) keep
+        // the standard's constructor calls, which omit it.
+        std::vector<std::string_view> own;
+        for (const meta::AttributeInfo& a : n.entity->attributes)
+          if (a.owner == n.entity && a.kind == meta::AttributeKind::Explicit) own.push_back(a.name);
+        const std::size_t skip = own.size() > n.count ? own.size() - n.count : 0;
+        for (std::uint32_t i = 0; i < n.count && skip + i < own.size(); ++i)
+          partial->attributes.emplace_back(own[skip + i], std::make_shared<Value>(operand(i)));
         Value v;
         v.kind = Value::Kind::Partial;
         v.partial = std::move(partial);
@@ -815,6 +822,14 @@ class Interpreter {
         if (end == v.text.c_str()) return {};
         if (v.text.find_first_of(".eE") == std::string::npos) return Value::of_integer(static_cast<std::int64_t>(d));
         return Value::of_real(d);
+      }
+      case Builtin::Value_as_boolean: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::String) return {};
+        const std::string t = upper(v.text);
+        if (t == "TRUE" || t == ".T.") return Value::of_bool(true);
+        if (t == "FALSE" || t == ".F.") return Value::of_bool(false);
+        return {};
       }
       case Builtin::Value_in: return Value::of_truth(member(arg(1), arg(0)));
       case Builtin::Value_unique: {

@@ -121,6 +121,7 @@ enum class Builtin : std::uint8_t {
   Typeof,  ///< `TYPEOF`
   Usedin,  ///< `USEDIN`
   Value,  ///< `VALUE`
+  Value_as_boolean,  ///< `VALUE_AS_BOOLEAN`
   Value_in,  ///< `VALUE_IN`
   Value_unique,  ///< `VALUE_UNIQUE`
   Pi,  ///< `PI`
