@@ -64,8 +64,10 @@ TEST_CASE("stepnc validate evaluates the schemas' rules: a type's, an entity's Q
   CHECK(run.exit_code == 1);
   CHECK_THAT(run.out, Catch::Contains(file.string() + ":9:1: error: #2: direction.wr1 violated\n"));
   CHECK_THAT(run.out, Catch::Contains(file.string() + ":12:1: error: #5: positive_length_measure.wr1 violated (by radius)\n"));
+  // A zero axis: cross_product(axis, ref_direction) has magnitude 0.
+  CHECK_THAT(run.out, Catch::Contains(file.string() + ":11:1: error: #4: axis2_placement_3d.wr4 violated\n"));
   CHECK_THAT(run.out, Catch::Contains(file.string() + ": error: rule compatible_dimension.wr1 violated\n"));
-  CHECK_THAT(run.out, Catch::Contains("invalid (4 errors, 0 warnings, 7 instances)"));
+  CHECK_THAT(run.out, Catch::Contains("invalid (5 errors, 0 warnings, 7 instances)"));
   const Run verbose = stepnc("-v validate " + file.string());
   CHECK_THAT(verbose.out, Catch::Contains("#5: positive_length_measure.wr1 violated (by radius): (SELF > 0)\n"));
   const Run skipped = stepnc("validate --no-rules " + file.string());

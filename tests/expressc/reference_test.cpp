@@ -118,7 +118,10 @@ TEST_CASE("the whole reference file is rejected with exactly its three errors", 
   auto result = model::compile({{name, test::read_file(test::reference_schema())}});
   CHECK_FALSE(result.ok());
   std::vector<std::string> messages;
-  for (const auto& diagnostic : result.diagnostics) messages.push_back(diagnostic.to_string());
+  // (Besides the warnings at the constructors that omit the moved `name`,
+  // see standard_model() above.)
+  for (const auto& diagnostic : result.diagnostics)
+    if (diagnostic.severity == model::Diagnostic::Severity::Error) messages.push_back(diagnostic.to_string());
   CHECK(messages ==
         Names{name + ":5323:31: error: entity 'kinematic_pair' names unknown subtypes 'lower_pair', 'higher_pair' "
                      "and 'user_defined_pair' in SUPERTYPE OF",

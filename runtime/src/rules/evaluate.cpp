@@ -324,11 +324,20 @@ class Interpreter {
   int depth_ = 0;
   std::uint64_t steps_ = 0;
 
-  // Where an attribute name leads, per concrete entity.
-  struct Found {
-    const meta::AttributeInfo* attribute = nullptr;
+  // Where an attribute name leads, per concrete entity. Names come from
+  // the constant tables, so their address identifies them.
+  struct Key {
+    const meta::EntityInfo* entity;
+    const char* name;
+    std::size_t size;
+    bool operator==(const Key&) const = default;
   };
-  std::unordered_map<const meta::EntityInfo*, std::unordered_map<std::string, Found>> attribute_cache_;
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const noexcept {
+      return std::hash<const void*>()(k.entity) * 31 + std::hash<const void*>()(k.name) + k.size;
+    }
+  };
+  std::unordered_map<Key, const meta::AttributeInfo*, KeyHash> attribute_cache_;
 
   const query::ReferenceIndex& references() {
     if (!references_) references_ = std::make_unique<query::ReferenceIndex>(model_);
@@ -342,9 +351,8 @@ class Interpreter {
   // The most specific attribute of that name: a redeclaration as DERIVE in
   // a subtype wins over the inherited explicit one.
   const meta::AttributeInfo* find(const meta::EntityInfo& entity, std::string_view name) {
-    auto& cache = attribute_cache_[&entity];
-    const std::string key = upper(name);
-    if (auto it = cache.find(key); it != cache.end()) return it->second.attribute;
+    const Key key{&entity, name.data(), name.size()};
+    if (auto it = attribute_cache_.find(key); it != attribute_cache_.end()) return it->second;
     const meta::AttributeInfo* found = nullptr;
     for (const meta::AttributeInfo& a : entity.attributes)
       if (meta::equal_names(a.name, name)) found = &a;
@@ -358,7 +366,7 @@ class Interpreter {
       }
       if (derived) found = derived;
     }
-    cache.emplace(key, Found{found});
+    attribute_cache_.emplace(key, found);
     return found;
   }
 
@@ -560,6 +568,17 @@ class Interpreter {
       const Truth b = truth_of(eval(nodes, n.first + 1, frame));
       return Value::of_truth(n.op == Operator::And ? both(a, b) : either(a, b));
     }
+    // 'SCHEMA.ENTITY' IN TYPEOF(e), the commonest test in schemas, without
+    // building the set of names.
+    if (n.op == Operator::In && nodes[n.first + 1].kind == NodeKind::Builtin &&
+        nodes[n.first + 1].builtin == Builtin::Typeof && nodes[n.first + 1].count == 1) {
+      Value name = eval(nodes, n.first, frame);
+      Value subject = eval(nodes, nodes[n.first + 1].first, frame);
+      if (name.kind == Value::Kind::String && subject.kind == Value::Kind::Instance)
+        return Value::of_bool(has_type_name(subject.instance->entity_info(), name.text));
+      if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
+      return Value::of_truth(member(name, type_of(subject)));
+    }
     Value a = eval(nodes, n.first, frame), b = eval(nodes, n.first + 1, frame);
     using K = Value::Kind;
     switch (n.op) {
@@ -568,7 +587,7 @@ class Interpreter {
         if (x == Truth::Unknown || y == Truth::Unknown) return Value::of_truth(Truth::Unknown);
         return Value::of_bool(x != y);
       }
-      case Operator::In: return Value::of_truth(member(a, b));
+      case Operator::In: return Value::of_truth(member(a, b));  // (`x IN TYPEOF(e)` is answered above)
       case Operator::Like:
         if (a.kind != K::String || b.kind != K::String) return Value::of_truth(Truth::Unknown);
         return Value::of_bool(like(a.text, b.text));
@@ -671,6 +690,18 @@ class Interpreter {
   }
 
   // ------------------------------------------------------------ built-ins
+
+  // Is `name` ('SCHEMA.ENTITY', any case) one of TYPEOF's names for an instance of `entity`?
+  static bool has_type_name(const meta::EntityInfo& entity, std::string_view name) {
+    const auto dot = name.find('.');
+    if (dot == std::string_view::npos) return false;
+    const std::string_view schema = name.substr(0, dot), entity_name = name.substr(dot + 1);
+    for (const meta::Upcast& up : entity.upcasts)
+      if (!up.entity->name.empty() && meta::equal_names(up.entity->name, entity_name) &&
+          meta::equal_names(up.entity->schema->name, schema))
+        return true;
+    return false;
+  }
 
   void typeof_names(const meta::EntityInfo& entity, Elements& out) {
     for (const meta::Upcast& up : entity.upcasts) {

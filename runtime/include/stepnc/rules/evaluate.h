@@ -31,6 +31,7 @@ namespace stepnc::rules {
 
 /// A rule a model breaks, or one the evaluator could not finish.
 struct Violation {
+  /// Which kind of rule, or that it could not be evaluated.
   enum class Kind : std::uint8_t {
     Where,        ///< an entity's WHERE rule
     TypeWhere,    ///< a defined type's WHERE rule, on a value held by `attribute`
@@ -38,7 +39,7 @@ struct Violation {
     GlobalRule,   ///< a RULE's domain rule (`id` 0)
     Unevaluated,  ///< the rule could not be evaluated: `message` says why
   };
-  Kind kind = Kind::Where;
+  Kind kind = Kind::Where;       ///< which kind of rule
   std::uint32_t id = 0;         ///< the instance's `#id`; 0 for a global rule
   std::string_view owner;       ///< the entity, defined type or RULE declaring the rule
   std::string_view label;       ///< the rule's label (may be empty)
