@@ -13,6 +13,7 @@
 
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
+#include "stepnc/rules/evaluate.h"
 #include "support.h"
 
 namespace exchange = stepnc::exchange;
@@ -67,7 +68,13 @@ int main(int argc, char** argv) {
   std::string text;
   const double write_memory = best_time(runs, [&] { text = exchange::to_text(*result.file); });
 
+  // Every WHERE rule, UNIQUE clause and global RULE, no limit on violations.
+  std::size_t violations = 0;
+  const double rules = best_time(1, [&] { violations = stepnc::rules::check(result.file->model, SIZE_MAX).size(); });
+
   fmt::print("input: {} ({:.1f} MB, {} instances)\n", path, megabytes, instances);
+  fmt::print("all rules evaluated   : {:8.2f} s  {:5.2f}x the typed read time ({} violations)\n", rules, rules / read,
+             violations);
   fmt::print("baseline newline scan : {:8.1f} MB/s\n", megabytes / baseline);
   fmt::print("typed read            : {:8.1f} MB/s  {:6.2f} M instances/s  {:5.2f}x baseline time\n",
              megabytes / read, static_cast<double>(instances) / read / 1e6, read / baseline);

@@ -33,12 +33,17 @@ LoadedFile read_and_report(const std::filesystem::path& path, const exchange::Mo
   exchange::ModelReadOptions with_jobs = options;
   with_jobs.jobs = read_jobs();
   exchange::ModelReadResult result = exchange::read_model_file(path, iso14649_registry(), with_jobs);
-  if (print) print_diagnostics(result.diagnostics, path.string());
-  if (print && result.file && verbosity() == Verbosity::verbose) {
-    fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), result.file->model.size(),
-               result.file->generic_records.size());
+  LoadedFile loaded{keep_until_exit(std::move(result.file)), std::move(result.diagnostics)};
+  if (print) report_read(loaded, path);
+  return loaded;
+}
+
+void report_read(const LoadedFile& loaded, const std::filesystem::path& path) {
+  print_diagnostics(loaded.diagnostics, path.string());
+  if (loaded.file && verbosity() == Verbosity::verbose) {
+    fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), loaded.file->model.size(),
+               loaded.file->generic_records.size());
   }
-  return LoadedFile{keep_until_exit(std::move(result.file)), std::move(result.diagnostics)};
 }
 
 const exchange::ModelFile* load(const std::filesystem::path& path) {

@@ -24,9 +24,11 @@ struct LoadedFile {
 };
 
 // Reads `path` (`-`: standard input). `print` false leaves the diagnostics
-// to the caller (--json).
+// to the caller (report_read, or --json).
 LoadedFile read_and_report(const std::filesystem::path& path, const exchange::ModelReadOptions& options = {},
                            bool print = true);
+// Prints the diagnostics of a read (and, verbose, what was read).
+void report_read(const LoadedFile& loaded, const std::filesystem::path& path);
 
 // The file, strictly read, or null after printing why it could not be read.
 const exchange::ModelFile* load(const std::filesystem::path& path);

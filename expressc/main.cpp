@@ -3,8 +3,8 @@
 //
 //   expressc [--dump-json FILE|-] [--summary] [--<generator>-out DIR]... SCHEMA.exp...
 //
-// Exit status: 0 success, 1 schema errors (or a generator's), 2 usage,
-// 3 an output could not be written.
+// Exit status: 0 success, 1 schema errors (or a generator's; warnings too
+// with --werror), 2 usage, 3 an output could not be written.
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "expressc " STEPNC_VERSION);
   std::vector<std::filesystem::path> schemas;
   std::string dump_json;
-  bool summary = false;
+  bool summary = false, werror = false;
   const CLI::Validator existing_or_stdin(
       [](const std::string& value) { return stepnc::io::is_standard_stream(value) ? std::string() : CLI::ExistingFile(value); },
       "FILE|-");
@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
   app.add_option("--dump-json", dump_json, "write the resolved model as JSON to FILE ('-' for stdout)")
       ->option_text("FILE|-");
   app.add_flag("--summary", summary, "print per-schema counts");
+  app.add_flag("--werror,--strict", werror,
+               "fail (exit 1, nothing generated) on warnings too: defects inside WHERE rules, derivations and "
+               "algorithm bodies");
 
   const auto generators = expressc::emit::all_generators();
   std::map<std::string, std::filesystem::path> out_dirs;  // generator name -> directory
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
   const auto result = expressc::model::compile_files(schemas);
   for (const auto& diagnostic : result.diagnostics) std::cerr << diagnostic.to_string() << '\n';
   if (!result.ok()) return exit_errors;
+  if (werror && !result.diagnostics.empty()) return exit_errors;
   const expressc::model::Model& model = *result.model;
 
   if (summary) print_summary(model);

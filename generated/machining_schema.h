@@ -631,6 +631,51 @@ extern const stepnc::meta::TypeInfo ap_lift_path_angle;
 extern const stepnc::meta::TypeInfo ap_lift_path_tangent;
 }  // namespace type_info
 
+// The FUNCTIONs, PROCEDUREs and RULEs as trees for the rule evaluator (stepnc/rules/evaluate.h).
+namespace meta_algorithms {
+extern const stepnc::meta::AlgorithmInfo bag_to_set;
+extern const stepnc::meta::AlgorithmInfo compatible_dimension;
+extern const stepnc::meta::AlgorithmInfo build_axes;
+extern const stepnc::meta::AlgorithmInfo constraints_param_b_spline;
+extern const stepnc::meta::AlgorithmInfo cross_product;
+extern const stepnc::meta::AlgorithmInfo curve_weights_positive;
+extern const stepnc::meta::AlgorithmInfo dimension_of;
+extern const stepnc::meta::AlgorithmInfo dot_product;
+extern const stepnc::meta::AlgorithmInfo first_proj_axis;
+extern const stepnc::meta::AlgorithmInfo list_to_array;
+extern const stepnc::meta::AlgorithmInfo make_array_of_array;
+extern const stepnc::meta::AlgorithmInfo normalise;
+extern const stepnc::meta::AlgorithmInfo scalar_times_vector;
+extern const stepnc::meta::AlgorithmInfo surface_weights_positive;
+extern const stepnc::meta::AlgorithmInfo vector_difference;
+extern const stepnc::meta::AlgorithmInfo boolean_choose;
+extern const stepnc::meta::AlgorithmInfo closed_shell_reversed;
+extern const stepnc::meta::AlgorithmInfo conditional_reverse;
+extern const stepnc::meta::AlgorithmInfo face_bound_reversed;
+extern const stepnc::meta::AlgorithmInfo face_reversed;
+extern const stepnc::meta::AlgorithmInfo list_face_loops;
+extern const stepnc::meta::AlgorithmInfo edge_reversed;
+extern const stepnc::meta::AlgorithmInfo list_of_topology_reversed;
+extern const stepnc::meta::AlgorithmInfo list_to_set;
+extern const stepnc::meta::AlgorithmInfo mixed_loop_type_set;
+extern const stepnc::meta::AlgorithmInfo open_shell_reversed;
+extern const stepnc::meta::AlgorithmInfo path_head_to_tail;
+extern const stepnc::meta::AlgorithmInfo path_reversed;
+extern const stepnc::meta::AlgorithmInfo set_of_topology_reversed;
+extern const stepnc::meta::AlgorithmInfo shell_reversed;
+extern const stepnc::meta::AlgorithmInfo topology_reversed;
+extern const stepnc::meta::AlgorithmInfo acyclic_mapped_representation;
+extern const stepnc::meta::AlgorithmInfo item_in_context;
+extern const stepnc::meta::AlgorithmInfo using_items;
+extern const stepnc::meta::AlgorithmInfo using_representations;
+extern const stepnc::meta::AlgorithmInfo valid_calendar_date;
+extern const stepnc::meta::AlgorithmInfo leap_year;
+extern const stepnc::meta::AlgorithmInfo valid_time;
+extern const stepnc::meta::AlgorithmInfo dependent_instantiable_representation_item;
+extern const stepnc::meta::AlgorithmInfo dependent_instantiable_shape_representation;
+extern const stepnc::meta::AlgorithmInfo geometric_representation_item_3d;
+}  // namespace meta_algorithms
+
 // TYPE trimming_preference = ENUMERATION; to_string() and from_string<>() in stepnc/meta/enumeration.h.
 enum class trimming_preference : std::uint8_t { cartesian, parameter, unspecified };
 inline const stepnc::meta::TypeInfo& meta_type(trimming_preference) noexcept { return type_info::trimming_preference; }

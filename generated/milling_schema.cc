@@ -49,6 +49,130 @@ constexpr TypeInfo list_1_n_of_process_model{
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<milling_schema::process_model*>>};
 
+// Expression and statement trees (stepnc/meta/expression.h): a node's operands are the
+// `count` nodes from `first` on.
+using stepnc::meta::Builtin;
+using stepnc::meta::NodeKind;
+using stepnc::meta::Operator;
+constexpr stepnc::meta::Node rule_nodes[] = {
+    /* 0 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 1},
+    /* 1 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 3},
+    /* 2 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 19},
+    /* 3 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 5},
+    /* 4 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 12},
+    /* 5 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 7},
+    /* 6 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 9},
+    /* 7 */ {.kind = NodeKind::Attribute, .count = 1, .first = 8, .text = "cutspeed"},
+    /* 8 */ {.kind = NodeKind::Self},
+    /* 9 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 10},
+    /* 10 */ {.kind = NodeKind::Attribute, .count = 1, .first = 11, .text = "spindle"},
+    /* 11 */ {.kind = NodeKind::Self},
+    /* 12 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 14},
+    /* 13 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 16},
+    /* 14 */ {.kind = NodeKind::Attribute, .count = 1, .first = 15, .text = "spindle"},
+    /* 15 */ {.kind = NodeKind::Self},
+    /* 16 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 17},
+    /* 17 */ {.kind = NodeKind::Attribute, .count = 1, .first = 18, .text = "cutspeed"},
+    /* 18 */ {.kind = NodeKind::Self},
+    /* 19 */ {.kind = NodeKind::Attribute, .count = 1, .first = 20, .text = "its_adaptive_control"},
+    /* 20 */ {.kind = NodeKind::Self},
+    /* 21 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 22},
+    /* 22 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 24},
+    /* 23 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 40},
+    /* 24 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 26},
+    /* 25 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 33},
+    /* 26 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 28},
+    /* 27 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 30},
+    /* 28 */ {.kind = NodeKind::Attribute, .count = 1, .first = 29, .text = "feedrate"},
+    /* 29 */ {.kind = NodeKind::Self},
+    /* 30 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 31},
+    /* 31 */ {.kind = NodeKind::Attribute, .count = 1, .first = 32, .text = "feedrate_per_tooth"},
+    /* 32 */ {.kind = NodeKind::Self},
+    /* 33 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 35},
+    /* 34 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 37},
+    /* 35 */ {.kind = NodeKind::Attribute, .count = 1, .first = 36, .text = "feedrate_per_tooth"},
+    /* 36 */ {.kind = NodeKind::Self},
+    /* 37 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 38},
+    /* 38 */ {.kind = NodeKind::Attribute, .count = 1, .first = 39, .text = "feedrate"},
+    /* 39 */ {.kind = NodeKind::Self},
+    /* 40 */ {.kind = NodeKind::Attribute, .count = 1, .first = 41, .text = "its_adaptive_control"},
+    /* 41 */ {.kind = NodeKind::Self},
+    /* 42 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 43},
+    /* 43 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 45},
+    /* 44 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 47},
+    /* 45 */ {.kind = NodeKind::Attribute, .count = 1, .first = 46, .text = "allowance_bottom"},
+    /* 46 */ {.kind = NodeKind::Self},
+    /* 47 */ {.kind = NodeKind::Attribute, .count = 1, .first = 49, .text = "allowance_bottom"},
+    /* 48 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 49 */ {.kind = NodeKind::Self},
+    /* 50 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 51},
+    /* 51 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 53},
+    /* 52 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 55},
+    /* 53 */ {.kind = NodeKind::Attribute, .count = 1, .first = 54, .text = "allowance_side"},
+    /* 54 */ {.kind = NodeKind::Self},
+    /* 55 */ {.kind = NodeKind::Attribute, .count = 1, .first = 57, .text = "allowance_side"},
+    /* 56 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 57 */ {.kind = NodeKind::Self},
+    /* 58 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 59},
+    /* 59 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 61},
+    /* 60 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 63},
+    /* 61 */ {.kind = NodeKind::Attribute, .count = 1, .first = 62, .text = "allowance_side"},
+    /* 62 */ {.kind = NodeKind::Self},
+    /* 63 */ {.kind = NodeKind::Attribute, .count = 1, .first = 65, .text = "allowance_side"},
+    /* 64 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 65 */ {.kind = NodeKind::Self},
+    /* 66 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 67},
+    /* 67 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 69},
+    /* 68 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 71},
+    /* 69 */ {.kind = NodeKind::Attribute, .count = 1, .first = 70, .text = "allowance_bottom"},
+    /* 70 */ {.kind = NodeKind::Self},
+    /* 71 */ {.kind = NodeKind::Attribute, .count = 1, .first = 73, .text = "allowance_bottom"},
+    /* 72 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 73 */ {.kind = NodeKind::Self},
+    /* 74 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 75},
+    /* 75 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 77},
+    /* 76 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 79},
+    /* 77 */ {.kind = NodeKind::Attribute, .count = 1, .first = 78, .text = "depth_of_start"},
+    /* 78 */ {.kind = NodeKind::Self},
+    /* 79 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 80},
+    /* 80 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 82},
+    /* 81 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 84},
+    /* 82 */ {.kind = NodeKind::Attribute, .count = 1, .first = 83, .text = "reduced_cut_at_start"},
+    /* 83 */ {.kind = NodeKind::Self},
+    /* 84 */ {.kind = NodeKind::Attribute, .count = 1, .first = 85, .text = "reduced_feed_at_start"},
+    /* 85 */ {.kind = NodeKind::Self},
+    /* 86 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 87},
+    /* 87 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 89},
+    /* 88 */ {.kind = NodeKind::Unary, .op = Operator::Not, .count = 1, .first = 91},
+    /* 89 */ {.kind = NodeKind::Attribute, .count = 1, .first = 90, .text = "depth_of_end"},
+    /* 90 */ {.kind = NodeKind::Self},
+    /* 91 */ {.kind = NodeKind::Operation, .op = Operator::Or, .count = 2, .first = 92},
+    /* 92 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 94},
+    /* 93 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 96},
+    /* 94 */ {.kind = NodeKind::Attribute, .count = 1, .first = 95, .text = "reduced_cut_at_end"},
+    /* 95 */ {.kind = NodeKind::Self},
+    /* 96 */ {.kind = NodeKind::Attribute, .count = 1, .first = 97, .text = "reduced_feed_at_end"},
+    /* 97 */ {.kind = NodeKind::Self},
+};
+constexpr stepnc::meta::DomainRuleInfo milling_technology_where[] = {
+    {.label = "wr1", .text = "(((EXISTS(cutspeed) AND NOT EXISTS(spindle)) OR (EXISTS(spindle) AND NOT EXISTS(cutspeed))) OR EXISTS(its_adaptive_control))", .line = 81, .expression = {rule_nodes, 0}, .frame = 0},
+    {.label = "wr2", .text = "(((EXISTS(SELF.feedrate) AND NOT EXISTS(feedrate_per_tooth)) OR (EXISTS(feedrate_per_tooth) AND NOT EXISTS(SELF.feedrate))) OR EXISTS(its_adaptive_control))", .line = 83, .expression = {rule_nodes, 21}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo plane_rough_milling_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance_bottom) AND (SELF.allowance_bottom >= 0.0))", .line = 302, .expression = {rule_nodes, 42}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo side_rough_milling_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance_side) AND (SELF.allowance_side >= 0.0))", .line = 320, .expression = {rule_nodes, 50}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo bottom_and_side_rough_milling_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance_side) AND (SELF.allowance_side >= 0.0))", .line = 339, .expression = {rule_nodes, 58}, .frame = 0},
+    {.label = "wr2", .text = "(EXISTS(SELF.allowance_bottom) AND (SELF.allowance_bottom >= 0.0))", .line = 340, .expression = {rule_nodes, 66}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo drilling_type_strategy_where[] = {
+    {.label = "wr1", .text = "(EXISTS(depth_of_start) OR NOT (EXISTS(reduced_cut_at_start) OR EXISTS(reduced_feed_at_start)))", .line = 366, .expression = {rule_nodes, 74}, .frame = 0},
+    {.label = "wr2", .text = "(EXISTS(depth_of_end) OR NOT (EXISTS(reduced_cut_at_end) OR EXISTS(reduced_feed_at_end)))", .line = 368, .expression = {rule_nodes, 86}, .frame = 0},
+};
+
 constexpr std::string_view pathmode_type_items[] = {"forward", "zigzag"};
 constexpr std::string_view cutmode_type_items[] = {"climb", "conventional"};
 constexpr std::string_view left_or_right_items[] = {"left", "right"};
@@ -2341,6 +2465,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::milling_technology::met
     .attributes = meta_tables::milling_technology_attributes,
     .create = &stepnc::meta::create_in<milling_schema::milling_technology>,
     .upcasts = meta_tables::milling_technology_upcasts,
+    .where = meta_tables::milling_technology_where,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::adaptive_control::entity_info() const noexcept { return meta_entity; }
@@ -2741,6 +2866,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::plane_rough_milling::me
     .attributes = meta_tables::plane_rough_milling_attributes,
     .create = &stepnc::meta::create_in<milling_schema::plane_rough_milling>,
     .upcasts = meta_tables::plane_rough_milling_upcasts,
+    .where = meta_tables::plane_rough_milling_where,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::plane_finish_milling::entity_info() const noexcept { return meta_entity; }
@@ -2777,6 +2903,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::side_rough_milling::met
     .attributes = meta_tables::side_rough_milling_attributes,
     .create = &stepnc::meta::create_in<milling_schema::side_rough_milling>,
     .upcasts = meta_tables::side_rough_milling_upcasts,
+    .where = meta_tables::side_rough_milling_where,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::side_finish_milling::entity_info() const noexcept { return meta_entity; }
@@ -2813,6 +2940,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::bottom_and_side_rough_m
     .attributes = meta_tables::bottom_and_side_rough_milling_attributes,
     .create = &stepnc::meta::create_in<milling_schema::bottom_and_side_rough_milling>,
     .upcasts = meta_tables::bottom_and_side_rough_milling_upcasts,
+    .where = meta_tables::bottom_and_side_rough_milling_where,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::bottom_and_side_finish_milling::entity_info() const noexcept { return meta_entity; }
@@ -2848,6 +2976,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::drilling_type_strategy:
     .attributes = meta_tables::drilling_type_strategy_attributes,
     .create = &stepnc::meta::create_in<milling_schema::drilling_type_strategy>,
     .upcasts = meta_tables::drilling_type_strategy_upcasts,
+    .where = meta_tables::drilling_type_strategy_where,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::drilling_operation::entity_info() const noexcept { return meta_entity; }

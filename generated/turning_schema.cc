@@ -63,6 +63,58 @@ constexpr TypeInfo list_0_n_of_length_measure{
     .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::length_measure>>};
 
+// Expression and statement trees (stepnc/meta/expression.h): a node's operands are the
+// `count` nodes from `first` on.
+using stepnc::meta::Builtin;
+using stepnc::meta::NodeKind;
+using stepnc::meta::Operator;
+constexpr stepnc::meta::Node rule_nodes[] = {
+    /* 0 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 1},
+    /* 1 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 3},
+    /* 2 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 5},
+    /* 3 */ {.kind = NodeKind::Attribute, .count = 1, .first = 4, .text = "allowance"},
+    /* 4 */ {.kind = NodeKind::Self},
+    /* 5 */ {.kind = NodeKind::Attribute, .count = 1, .first = 7, .text = "allowance"},
+    /* 6 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 7 */ {.kind = NodeKind::Self},
+    /* 8 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 9},
+    /* 9 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 11},
+    /* 10 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 13},
+    /* 11 */ {.kind = NodeKind::Attribute, .count = 1, .first = 12, .text = "allowance"},
+    /* 12 */ {.kind = NodeKind::Self},
+    /* 13 */ {.kind = NodeKind::Attribute, .count = 1, .first = 15, .text = "allowance"},
+    /* 14 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 15 */ {.kind = NodeKind::Self},
+    /* 16 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 17},
+    /* 17 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 19},
+    /* 18 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 21},
+    /* 19 */ {.kind = NodeKind::Attribute, .count = 1, .first = 20, .text = "allowance"},
+    /* 20 */ {.kind = NodeKind::Self},
+    /* 21 */ {.kind = NodeKind::Attribute, .count = 1, .first = 23, .text = "allowance"},
+    /* 22 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 23 */ {.kind = NodeKind::Self},
+    /* 24 */ {.kind = NodeKind::Operation, .op = Operator::And, .count = 2, .first = 25},
+    /* 25 */ {.kind = NodeKind::Builtin, .builtin = Builtin::Exists, .count = 1, .first = 27},
+    /* 26 */ {.kind = NodeKind::Operation, .op = Operator::GreaterEqual, .count = 2, .first = 29},
+    /* 27 */ {.kind = NodeKind::Attribute, .count = 1, .first = 28, .text = "allowance"},
+    /* 28 */ {.kind = NodeKind::Self},
+    /* 29 */ {.kind = NodeKind::Attribute, .count = 1, .first = 31, .text = "allowance"},
+    /* 30 */ {.kind = NodeKind::Real, .real = 0.0},
+    /* 31 */ {.kind = NodeKind::Self},
+};
+constexpr stepnc::meta::DomainRuleInfo facing_rough_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance) AND (SELF.allowance >= 0.0))", .line = 251, .expression = {rule_nodes, 0}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo grooving_rough_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance) AND (SELF.allowance >= 0.0))", .line = 269, .expression = {rule_nodes, 8}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo contouring_rough_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance) AND (SELF.allowance >= 0.0))", .line = 306, .expression = {rule_nodes, 16}, .frame = 0},
+};
+constexpr stepnc::meta::DomainRuleInfo threading_rough_where[] = {
+    {.label = "wr1", .text = "(EXISTS(SELF.allowance) AND (SELF.allowance >= 0.0))", .line = 323, .expression = {rule_nodes, 24}, .frame = 0},
+};
+
 constexpr const TypeInfo* speed_select_members[] = {
     &turning_schema::type_info::const_spindle_speed,
     &turning_schema::type_info::const_cutting_speed,
@@ -2138,6 +2190,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::facing_rough::meta_enti
     .attributes = meta_tables::facing_rough_attributes,
     .create = &stepnc::meta::create_in<turning_schema::facing_rough>,
     .upcasts = meta_tables::facing_rough_upcasts,
+    .where = meta_tables::facing_rough_where,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::facing_finish::entity_info() const noexcept { return meta_entity; }
@@ -2174,6 +2227,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::grooving_rough::meta_en
     .attributes = meta_tables::grooving_rough_attributes,
     .create = &stepnc::meta::create_in<turning_schema::grooving_rough>,
     .upcasts = meta_tables::grooving_rough_upcasts,
+    .where = meta_tables::grooving_rough_where,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::grooving_finish::entity_info() const noexcept { return meta_entity; }
@@ -2244,6 +2298,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::contouring_rough::meta_
     .attributes = meta_tables::contouring_rough_attributes,
     .create = &stepnc::meta::create_in<turning_schema::contouring_rough>,
     .upcasts = meta_tables::contouring_rough_upcasts,
+    .where = meta_tables::contouring_rough_where,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::contouring_finish::entity_info() const noexcept { return meta_entity; }
@@ -2280,6 +2335,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::threading_rough::meta_e
     .attributes = meta_tables::threading_rough_attributes,
     .create = &stepnc::meta::create_in<turning_schema::threading_rough>,
     .upcasts = meta_tables::threading_rough_upcasts,
+    .where = meta_tables::threading_rough_where,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::threading_finish::entity_info() const noexcept { return meta_entity; }

@@ -3,6 +3,8 @@
 // 14649 schemas and report every problem.
 #include <fmt/format.h>
 
+#include "stepnc/rules/evaluate.h"
+
 #include "command.h"
 #include "load.h"
 #include "summary.h"
@@ -14,6 +16,7 @@ struct ValidateOptions {
   std::string file;
   bool strict = false;
   bool json = false;
+  bool no_rules = false;
   std::size_t error_limit = 100;
 };
 
@@ -32,7 +35,12 @@ int run_validate(const ValidateOptions& options) {
   exchange::ModelReadOptions read_options;
   read_options.strict = false;  // read everything, to report every problem
   read_options.error_limit = options.error_limit;
-  const LoadedFile result = read_and_report(options.file, read_options, !options.json);
+  LoadedFile result = read_and_report(options.file, read_options, /*print=*/false);
+  // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly.
+  if (!options.no_rules && result.ok())
+    rules::report_violations(result.file->model, options.file, result.diagnostics, verbosity() == Verbosity::verbose,
+                             options.error_limit);
+  if (!options.json) report_read(result, options.file);
   std::size_t warnings = 0;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
     if (diagnostic.severity == p21::Severity::warning) ++warnings;
@@ -66,6 +74,9 @@ void add_validate_command(CLI::App& app, Action& action) {
   command->add_flag("--strict", options->strict, "Fail on warnings too (e.g. entities no schema defines)");
   command->add_flag("--json", options->json,
                     "Print the verdict and every diagnostic (file, line, column, id, severity, message) as JSON");
+  command->add_flag("--no-rules", options->no_rules,
+                    "Skip evaluating WHERE rules, UNIQUE clauses and global RULEs (with -v, a violation shows the "
+                    "rule's text)");
   command->add_option("--max-errors", options->error_limit, "Stop after this many errors")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

@@ -115,28 +115,59 @@ bool oneof_separates(const SupertypeExpression& expression, const std::unordered
   return false;
 }
 
+// Every supertype constraint on `root`: its SUPERTYPE OF and the
+// SUBTYPE_CONSTRAINTs FOR it (ISO 10303-11 9.7).
+std::vector<const SupertypeExpression*> constraints_on(const Entity& root) {
+  std::vector<const SupertypeExpression*> result;
+  if (root.supertype_constraint) result.push_back(root.supertype_constraint.get());
+  for (const SubtypeConstraint* constraint : root.subtype_constraints)
+    if (constraint->expression) result.push_back(constraint->expression.get());
+  return result;
+}
+
+// Can the entities `above_a` and `above_b` (each an entity with all its
+// ancestors) meet in one instance? They must share an ancestor (a complex
+// instance grows from one root, ISO 10303-11 annex B), and no constraint of
+// a common ancestor may put them below different operands of a ONEOF.
+bool combinable(const std::unordered_set<const Entity*>& above_a, const std::unordered_set<const Entity*>& above_b) {
+  bool common_ancestor = false;
+  for (const Entity* root : above_a) {
+    if (!above_b.contains(root)) continue;
+    common_ancestor = true;
+    for (const SupertypeExpression* constraint : constraints_on(*root)) {
+      std::unordered_map<const Entity*, int> counts;
+      count_leaves(*constraint, counts);
+      if (oneof_separates(*constraint, counts, above_a, above_b)) return false;
+    }
+  }
+  return common_ancestor;
+}
+
 // Can one instance be both an `a` and a `b` (as a simple or a complex
-// instance)? Answers "no" only when sure: the two are related by no
-// ancestor and no descendant, or a common ancestor's SUPERTYPE OF puts
-// them below different operands of a ONEOF.
+// instance)? It can when one is an ancestor of the other, when they share a
+// subtype, or when an `a` (itself or a subtype) and a `b` (itself or a
+// subtype) are combinable into one complex instance: an `instanced_feature`
+// (a shape_aspect and a feature_definition) with a `round_hole` (a
+// feature_definition) is both a shape_aspect and a round_hole. Answers "no"
+// only when sure.
 bool can_be_both(const Entity& a, const Entity& b) {
   if (&a == &b) return true;
   const auto above_a = closure(a, &Entity::supertypes);
   const auto above_b = closure(b, &Entity::supertypes);
   if (above_a.contains(&b) || above_b.contains(&a)) return true;
+  const auto below_a = closure(a, &Entity::subtypes);
   const auto below_b = closure(b, &Entity::subtypes);
-  for (const Entity* e : closure(a, &Entity::subtypes))
+  for (const Entity* e : below_a)
     if (below_b.contains(e)) return true;  // a common subtype
-  bool common_ancestor = false;
-  for (const Entity* root : above_a) {
-    if (!above_b.contains(root)) continue;
-    common_ancestor = true;
-    if (!root->supertype_constraint) continue;
-    std::unordered_map<const Entity*, int> counts;
-    count_leaves(*root->supertype_constraint, counts);
-    if (oneof_separates(*root->supertype_constraint, counts, above_a, above_b)) return false;
+  if (combinable(above_a, above_b)) return true;
+  std::vector<std::unordered_set<const Entity*>> above_below_b;
+  for (const Entity* e : below_b) above_below_b.push_back(closure(*e, &Entity::supertypes));
+  for (const Entity* ea : below_a) {
+    const auto above_ea = closure(*ea, &Entity::supertypes);
+    for (const auto& above_eb : above_below_b)
+      if (combinable(above_ea, above_eb)) return true;
   }
-  return common_ancestor;
+  return false;
 }
 
 // The attribute `name` as seen from `entity` itself (own or inherited).
@@ -198,6 +229,9 @@ class Checker {
     }
   };
 
+  // Expression defects are warnings (see resolver.h, Reporter::warning);
+  // what cannot be represented at all stays an error.
+  void warning(ast::Position at, std::string message) { reporter_.warning(work_.file, at, std::move(message)); }
   void error(ast::Position at, std::string message) { reporter_.error(work_.file, at, std::move(message)); }
 
   void bind(const std::string& name, Binding binding, Shape shape = {}) {
@@ -275,6 +309,13 @@ class Checker {
     return {};
   }
 
+  // An entity name, whatever the scopes bind to the same name.
+  Binding lookup_entity(std::string_view name) const {
+    const Symbol* symbol = work_.find(name);
+    if (symbol && symbol->kind == Symbol::Kind::Entity) return {.kind = BindingKind::Entity, .entity = symbol->entity};
+    return {};
+  }
+
   // ------------------------------------------------------------ expressions
 
   // Binds the names of `e` and reports those that mean nothing; returns
@@ -286,12 +327,17 @@ class Checker {
         Entry entry = lookup(e.text);
         e.binding = entry.binding;
         switch (e.binding.kind) {
-          case BindingKind::Unresolved: error(e.position, fmt::format("unknown name '{}'", e.text)); break;
+          case BindingKind::Unresolved: warning(e.position, fmt::format("unknown name '{}'", e.text)); break;
           case BindingKind::Function:
+            // A function without parameters may be called without
+            // parentheses (ISO 10303-11 12.8; ISO 10303-52's this_schema).
+            if (e.binding.algorithm && e.binding.algorithm->parameters.empty())
+              return shape_of(e.binding.algorithm->result);
+            [[fallthrough]];
           case BindingKind::BuiltinFunction:
           case BindingKind::Procedure:
           case BindingKind::BuiltinProcedure:
-            error(e.position, fmt::format("'{}' is an algorithm, not a value; call it with arguments", e.text));
+            warning(e.position, fmt::format("'{}' is an algorithm, not a value; call it with arguments", e.text));
             break;
           case BindingKind::Attribute: return shape_of(e.binding.attribute->type);
           default: break;
@@ -301,16 +347,17 @@ class Checker {
       case K::Call: {
         e.binding = lookup(e.text).binding;
         for (const auto& operand : e.operands) check(*operand);
+        check_arguments(e.position, e.text, e.binding, e.operands.size());
         switch (e.binding.kind) {
           case BindingKind::Function: return e.binding.algorithm ? shape_of(e.binding.algorithm->result) : Shape{};
           case BindingKind::BuiltinFunction: return {};
           case BindingKind::Entity: return Shape::of_entity(e.binding.entity);  // an entity constructor
-          case BindingKind::Unresolved: error(e.position, fmt::format("unknown function '{}'", e.text)); return {};
-          default: error(e.position, fmt::format("'{}' is not a function or an entity", e.text)); return {};
+          case BindingKind::Unresolved: warning(e.position, fmt::format("unknown function '{}'", e.text)); return {};
+          default: warning(e.position, fmt::format("'{}' is not a function or an entity", e.text)); return {};
         }
       }
       case K::Self:
-        if (!self_allowed_) error(e.position, "SELF is only allowed in entity and type declarations");
+        if (!self_allowed_) warning(e.position, "SELF is only allowed in entity and type declarations");
         return self_shape_;
       case K::Attribute: {
         const ast::Expression& base = *e.operands[0];
@@ -323,10 +370,12 @@ class Checker {
       }
       case K::Group: {
         const Shape base = check(*e.operands[0]);
-        const Binding target = lookup(e.text).binding;
+        // A group qualifier names an entity (ISO 10303-11 12.7.4): an
+        // attribute or variable of the same name does not hide it.
+        const Binding target = lookup_entity(e.text);
         e.binding = target;
         if (target.kind != BindingKind::Entity) {
-          error(e.position, fmt::format("unknown entity '{}'", e.text));
+          warning(e.position, fmt::format("unknown entity '{}'", e.text));
           return {};
         }
         check_group_qualifier(e, base, *target.entity);
@@ -353,12 +402,48 @@ class Checker {
     }
   }
 
+  // The number of arguments of a call against the signature: a user
+  // algorithm's parameters, a built-in's (ISO 10303-11 15, 16), an entity
+  // constructor's own explicit attributes (ISO 10303-11 9.2.6).
+  void check_arguments(ast::Position at, const std::string& name, const Binding& binding, size_t count) {
+    size_t expected = 0;
+    const char* what = "function";
+    switch (binding.kind) {
+      case BindingKind::Function:
+      case BindingKind::Procedure:
+        if (!binding.algorithm) return;  // declared inside an algorithm
+        expected = binding.algorithm->parameters.size();
+        if (binding.kind == BindingKind::Procedure) what = "procedure";
+        break;
+      case BindingKind::BuiltinFunction:
+      case BindingKind::BuiltinProcedure: {
+        static const std::unordered_map<std::string, size_t> two = {
+            {"atan", 2}, {"nvl", 2}, {"usedin", 2}, {"value_in", 2}, {"format", 2}, {"remove", 2}, {"insert", 3}};
+        auto it = two.find(lowercase(name));
+        expected = it == two.end() ? 1 : it->second;
+        if (binding.kind == BindingKind::BuiltinProcedure) what = "procedure";
+        break;
+      }
+      case BindingKind::Entity:
+        if (!binding.entity) return;
+        // A partial entity value: the entity's own explicit attributes (its
+        // supertypes' come from other constructors joined with ||).
+        for (const auto& attribute : binding.entity->attributes)
+          if (attribute->kind == Attribute::Kind::Explicit && !attribute->redeclares) ++expected;
+        what = "entity constructor";
+        break;
+      default: return;
+    }
+    if (count != expected)
+      warning(at, fmt::format("{} '{}' takes {} argument{}, not {}", what, name, expected, expected == 1 ? "" : "s", count));
+  }
+
   // `x.name` where `x` is known to be an entity or a select: some entity it
   // may be must declare `name`.
   Shape check_attribute_reference(const ast::Expression& e, const Shape& base) {
     if (base.kind == Shape::Kind::Entity) {
       if (!family_has_attribute(*base.entity, e.text)) {
-        error(e.position, fmt::format("entity '{}' has no attribute '{}'", base.entity->name, e.text));
+        warning(e.position, fmt::format("entity '{}' has no attribute '{}'", base.entity->name, e.text));
         return {};
       }
       const Attribute* attribute = own_or_inherited(*base.entity, e.text);
@@ -372,7 +457,7 @@ class Checker {
         if (family_has_attribute(*member.entity, e.text)) return {};
       }
       if (any_entity)
-        error(e.position, fmt::format("no entity of select type '{}' has an attribute '{}'", base.select->name, e.text));
+        warning(e.position, fmt::format("no entity of select type '{}' has an attribute '{}'", base.select->name, e.text));
     }
     return {};
   }
@@ -382,7 +467,7 @@ class Checker {
   void check_group_qualifier(const ast::Expression& e, const Shape& base, const Entity& group) {
     if (base.kind == Shape::Kind::Entity) {
       if (!can_be_both(*base.entity, group))
-        error(e.position, fmt::format("group qualifier '{}': an instance of '{}' is never an instance of '{}'",
+        warning(e.position, fmt::format("group qualifier '{}': an instance of '{}' is never an instance of '{}'",
                                       group.name, base.entity->name, group.name));
       return;
     }
@@ -394,7 +479,7 @@ class Checker {
         if (can_be_both(*member.entity, group)) return;
       }
       if (any_entity)
-        error(e.position,
+        warning(e.position,
               fmt::format("group qualifier '{}': no entity of select type '{}' is ever an instance of '{}'",
                           group.name, base.select->name, group.name));
     }
@@ -404,7 +489,7 @@ class Checker {
   void check_enumeration_reference(const ast::Expression& e, const ast::Expression& base) {
     const DefinedType* type = base.binding.type;
     if (type->kind != DefinedType::Kind::Enumeration) {
-      error(e.position, fmt::format("'{}' is a type; only enumeration types have items", type->name));
+      warning(e.position, fmt::format("'{}' is a type; only enumeration types have items", type->name));
       return;
     }
     for (const std::string& item : type->enumeration_items)
@@ -412,7 +497,7 @@ class Checker {
         e.binding = {.kind = BindingKind::EnumerationItem, .type = type};
         return;
       }
-    error(e.position, fmt::format("'{}' is not an item of enumeration '{}'", e.text, type->name));
+    warning(e.position, fmt::format("'{}' is not an item of enumeration '{}'", e.text, type->name));
   }
 
   void check_type_spec(const ast::TypeSpec& type) {
@@ -532,10 +617,11 @@ class Checker {
       case K::Call: {
         s.binding = lookup(s.name.text).binding;
         if (s.binding.kind == BindingKind::Unresolved)
-          error(s.name.position, fmt::format("unknown procedure '{}'", s.name.text));
+          warning(s.name.position, fmt::format("unknown procedure '{}'", s.name.text));
         else if (s.binding.kind != BindingKind::Procedure && s.binding.kind != BindingKind::BuiltinProcedure)
-          error(s.name.position, fmt::format("'{}' is not a procedure", s.name.text));
+          warning(s.name.position, fmt::format("'{}' is not a procedure", s.name.text));
         for (const auto& argument : s.arguments) check(*argument);
+        check_arguments(s.name.position, s.name.text, s.binding, s.arguments.size());
         return;
       }
       case K::Repeat: {

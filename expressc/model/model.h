@@ -179,6 +179,7 @@ struct Entity {
   std::vector<const Entity*> supertypes;  // SUBTYPE OF, in written order
   std::vector<const Entity*> subtypes;    // every entity naming this one in SUBTYPE OF, sorted by name
   std::unique_ptr<SupertypeExpression> supertype_constraint;  // SUPERTYPE OF (...), if written
+  std::vector<const struct SubtypeConstraint*> subtype_constraints;  // SUBTYPE_CONSTRAINTs FOR this entity
 
   // Attributes this entity declares, in written order (explicit, then
   // derived, then inverse), redeclarations included.
@@ -214,6 +215,7 @@ struct Algorithm {  // FUNCTION, PROCEDURE or RULE: kept as checked syntax
   enum class Kind : uint8_t { Function, Procedure, Rule };
   Kind kind = Kind::Function;
   std::string name;
+  const Schema* schema = nullptr;
   SourceLocation location;
   std::vector<Parameter> parameters;  // FUNCTION and PROCEDURE
   TypeRef result;                     // FUNCTION only

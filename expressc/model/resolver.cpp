@@ -189,6 +189,7 @@ class Resolver {
                            auto algorithm = std::make_unique<Algorithm>();
                            algorithm->kind = kind;
                            algorithm->name = name_ptr->text;
+                           algorithm->schema = work.schema;
                            algorithm->location = location(work, name_ptr->position);
                            if (!enter(work, *name_ptr, {.kind = symbol_kind, .algorithm = algorithm.get()})) return;
                            on_declared(*algorithm);
@@ -455,7 +456,10 @@ class Resolver {
     }
 
     for (auto& [constraint, syntax] : work.constraints) {
-      constraint->entity = resolve_entity(work, syntax->entity, "entity");
+      if (Entity* entity = resolve_entity(work, syntax->entity, "entity")) {
+        constraint->entity = entity;
+        entity->subtype_constraints.push_back(constraint);
+      }
       for (const ast::Name& name : syntax->total_over)
         if (Entity* entity = resolve_entity(work, name, "entity")) constraint->total_over.push_back(entity);
       if (syntax->expression) {

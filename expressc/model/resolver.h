@@ -21,11 +21,20 @@ class Reporter {
  public:
   explicit Reporter(std::vector<Diagnostic>& out) : out_(out) {}
   void error(const std::string* file, ast::Position at, std::string message) {
-    out_.push_back({Diagnostic::Severity::Error, file ? *file : std::string(), at.line, at.column, std::move(message)});
+    report(Diagnostic::Severity::Error, file, at, std::move(message));
+  }
+  // A defect inside an expression (a WHERE rule, a derivation, an algorithm
+  // body): the declarations still hold, so bindings are still generated
+  // (`expressc --werror` fails on it).
+  void warning(const std::string* file, ast::Position at, std::string message) {
+    report(Diagnostic::Severity::Warning, file, at, std::move(message));
   }
   size_t count() const { return out_.size(); }
 
  private:
+  void report(Diagnostic::Severity severity, const std::string* file, ast::Position at, std::string message) {
+    out_.push_back({severity, file ? *file : std::string(), at.line, at.column, std::move(message)});
+  }
   std::vector<Diagnostic>& out_;
 };
 

@@ -51,10 +51,11 @@ TEST_CASE("exit codes: 0 ok, 1 invalid input, 2 bad command line, 3 could not fi
       {"info " + not_p21.string(), 1},
       {"info", 2},
       {"info " + example1 + " > /dev/full", 3},
-      {"validate " + example1, 0},
+      {"validate --no-rules " + example1, 0},
+      {"validate " + example1, 1},  // representation_item.wr1 (README)
       {"validate " + bad, 1},
       {"validate --max-errors 0 " + example1, 2},
-      {"validate " + example1 + " > /dev/full", 3},
+      {"validate --no-rules " + example1 + " > /dev/full", 3},
       {"format " + example1 + " -o " + (dir / "f.stp").string(), 0},
       {"format " + not_p21.string(), 1},
       {"format " + example1 + " extra-argument", 2},
@@ -97,7 +98,7 @@ TEST_CASE("a file that is not Part 21 is an error for info, with no empty summar
 
 TEST_CASE("a full standard output is an error: a message and exit 3", "[cli][conventions]") {
   for (const std::string& arguments :
-       {"info " + example1, "validate " + example1, "query " + example1 + " /project", "dump " + example1 + " 18",
+       {"info " + example1, "validate --no-rules " + example1, "query " + example1 + " /project", "dump " + example1 + " 18",
         "format " + example1, "format " + example1 + " -o -", "format " + example1 + " -o /dev/stdout",
         "post " + example1 + " -d rs274ngc", "plot " + example1, std::string("--help"), std::string("--version")}) {
     INFO("stepnc " << arguments);
@@ -138,7 +139,7 @@ TEST_CASE("- is standard input for every input and standard output for every out
   const std::string in = " - 2>/dev/null < " + example1;
 
   CHECK_THAT(shell("{} info" + in).out, Catch::Contains("instances: 108 typed, 0 generic"));
-  CHECK_THAT(shell("{} validate" + in).out, Catch::Contains("valid (0 errors, 0 warnings, 108 instances)"));
+  CHECK_THAT(shell("{} validate --no-rules" + in).out, Catch::Contains("valid (0 errors, 0 warnings, 108 instances)"));
   CHECK(shell("{} query" + in + " /project/its_workpieces[0]/its_material/standard_identifier").out == "'ST-50'\n");
   CHECK_THAT(shell("{} dump" + in + " 18").out, Catch::StartsWith("#18=closed_pocket"));
   CHECK_THAT(shell("{} post" + in + " -d siemens840d -o -").out, Catch::Contains("CYCLE832(0.01,102001)"));
@@ -266,10 +267,10 @@ TEST_CASE("--quiet prints errors only; --verbose adds what was read and written"
   const std::string warn = (dir / "warn.stp").string();
   put(warn, warning_only);
 
-  const Run normal = shell("{} validate " + warn + " 2>&1");
+  const Run normal = shell("{} validate --no-rules " + warn + " 2>&1");
   CHECK_THAT(normal.out, Catch::Contains("warning: #2: unknown entity VENDOR_THING"));
   CHECK_THAT(normal.out, Catch::Contains("valid (0 errors, 1 warnings"));
-  const Run quiet = shell("{} validate --quiet " + warn + " 2>&1");
+  const Run quiet = shell("{} validate --no-rules --quiet " + warn + " 2>&1");
   CHECK(quiet.exit_code == 0);
   CHECK(quiet.out.empty());
   const Run quiet_error = shell("{} -q validate " + (dir / "missing.stp").string() + " 2>&1");

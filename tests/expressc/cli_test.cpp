@@ -78,6 +78,24 @@ TEST_CASE("expressc reports every error as file:line:col and exits 1", "[cli]") 
                           ":12:8: error: supertype cycle: self_loop -> self_loop\n");
 }
 
+TEST_CASE("expressc compiles a schema with expression defects as warnings; --werror fails on them", "[cli]") {
+  const std::string file = expressc::test::corpus("bad/expression_defects.exp").string();
+  const auto directory = scratch_directory() / "werror";
+  std::filesystem::remove_all(directory);
+  Run run = run_expressc({"--cpp-out", directory.string(), file});
+  CHECK(run.status == 0);
+  CHECK(run.output.find(file + ":22:13: warning: entity 'global_unit_assigned_context' has no attribute "
+                               "'coordinate_space_dimension'\n") != std::string::npos);
+  CHECK(std::filesystem::exists(directory / "expression_defects.h"));
+  std::filesystem::remove_all(directory);
+  for (const char* flag : {"--werror", "--strict"}) {
+    Run strict = run_expressc({flag, "--cpp-out", directory.string(), file});
+    CHECK(strict.status == 1);
+    CHECK(strict.output.find("warning: unknown name 'missing_constant'") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(directory / "expression_defects.h"));
+  }
+}
+
 TEST_CASE("expressc exits 2 on usage errors", "[cli]") {
   CHECK(run_expressc({}).status == 2);
   CHECK(run_expressc({"--no-such-option", expressc::test::corpus("good/lexical.exp").string()}).status == 2);

@@ -365,3 +365,35 @@ TEST_CASE("attribute references that hold for a subtype inheriting from another 
         "(NOT ('INHERITED_BY_SUBTYPE.KNOWN_SOURCE' IN TYPEOF(SELF.source)) OR (SELF.source.name = 'ISO 13584 library'))");
   CHECK(test::entity(*model, "known_source").supertypes.size() == 2);
 }
+
+TEST_CASE("a group qualifier names an entity although an attribute of that name is in scope", "[corpus]") {
+  auto model = compile_good({"group_qualifier_names_entity.exp"});
+  const model::Entity& representation = test::entity(*model, "element_representation");
+  const ast::Expression* group = nullptr;
+  visit(*representation.where.at(0).expression, [&](const ast::Expression& e) {
+    if (e.kind == ast::Expression::Kind::Group) group = &e;
+  });
+  REQUIRE(group);
+  CHECK(group->binding.kind == ast::Binding::Kind::Entity);
+  CHECK(group->binding.entity == &test::entity(*model, "element_descriptor"));
+  // The qualified operand is still the attribute.
+  CHECK(group->operands.at(0)->binding.kind == ast::Binding::Kind::Attribute);
+}
+
+TEST_CASE("group qualifiers that hold through complex instances of common subtypes", "[corpus]") {
+  auto model = compile_good({"complex_instances.exp"});
+  const model::Entity& feature = test::entity(*model, "feature_definition");
+  REQUIRE(feature.subtype_constraints.size() == 1);
+  CHECK(feature.subtype_constraints.at(0)->name == "holes_and_pockets");
+  CHECK(test::entity(*model, "shape_aspect_relationship").where.size() == 2);
+}
+
+TEST_CASE("a function without parameters is called without parentheses", "[corpus]") {
+  auto model = compile_good({"zero_argument_function.exp"});
+  const model::Entity& item = test::entity(*model, "item");
+  const ast::Expression* call = find_name(*item.where.at(0).expression, "this_schema");
+  REQUIRE(call);
+  CHECK(call->kind == ast::Expression::Kind::Name);
+  CHECK(call->binding.kind == ast::Binding::Kind::Function);
+  CHECK(call->binding.algorithm == &algorithm(*model->schemas.at(0), "this_schema"));
+}

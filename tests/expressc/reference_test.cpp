@@ -18,7 +18,15 @@ const model::Model& standard_model() {
   static const std::unique_ptr<model::Model> model = [] {
     auto result = model::compile({{"iso14649-standard.exp", test::reference_standard_part()}});
     for (const auto& diagnostic : result.diagnostics) UNSCOPED_INFO(diagnostic.to_string());
-    REQUIRE(result.diagnostics.empty());
+    REQUIRE(result.ok());
+    // Its only warnings: entity constructors given one argument fewer than
+    // the entity's own attributes, because the reference moved `name` down
+    // from representation_item (its remark: the WZL parser had no multiple
+    // inheritance) while its functions still construct without it.
+    for (const auto& diagnostic : result.diagnostics) {
+      CHECK(diagnostic.severity == model::Diagnostic::Severity::Warning);
+      CHECK(diagnostic.message.rfind("entity constructor '", 0) == 0);
+    }
     return std::move(result.model);
   }();
   return *model;
@@ -110,7 +118,10 @@ TEST_CASE("the whole reference file is rejected with exactly its three errors", 
   auto result = model::compile({{name, test::read_file(test::reference_schema())}});
   CHECK_FALSE(result.ok());
   std::vector<std::string> messages;
-  for (const auto& diagnostic : result.diagnostics) messages.push_back(diagnostic.to_string());
+  // (Besides the warnings at the constructors that omit the moved `name`,
+  // see standard_model() above.)
+  for (const auto& diagnostic : result.diagnostics)
+    if (diagnostic.severity == model::Diagnostic::Severity::Error) messages.push_back(diagnostic.to_string());
   CHECK(messages ==
         Names{name + ":5323:31: error: entity 'kinematic_pair' names unknown subtypes 'lower_pair', 'higher_pair' "
                      "and 'user_defined_pair' in SUPERTYPE OF",

@@ -163,11 +163,19 @@ const Interface* find_interface(const Model& model, std::string_view schema,
 
 }  // namespace
 
-TEST_CASE("schemas/ compiles without any diagnostic", "[schemas]") {
+TEST_CASE("schemas/ compiles without errors; its warnings are the reference's constructor defect", "[schemas]") {
   const CompileResult& result = project_schemas().result;
   INFO(diagnostics_text(result));
   REQUIRE(result.ok());
-  CHECK(result.diagnostics.empty());
+  // The reference moved `name` down from representation_item to its
+  // subtypes (direction, vector, face, edge...), so its functions'
+  // constructors, written for the standard's attributes, pass one fewer
+  // (schemas/README.md); nothing else is reported.
+  CHECK(result.diagnostics.size() == 32);
+  for (const auto& d : result.diagnostics) {
+    CHECK(d.severity == expressc::model::Diagnostic::Severity::Warning);
+    CHECK(d.message.rfind("entity constructor '", 0) == 0);
+  }
 }
 
 TEST_CASE("schemas/ holds one schema per ISO 14649 part, linked by USE FROM",

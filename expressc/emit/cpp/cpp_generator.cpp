@@ -14,6 +14,7 @@
 #include "emit/cpp/derived.h"
 #include "emit/cpp/names.h"
 #include "emit/cpp/printer.h"
+#include "emit/cpp/rules.h"
 #include "stepnc/io/output.h"
 
 namespace expressc::emit::cpp {
@@ -259,6 +260,7 @@ struct EntityTables {
   bool attributes = false;
   bool derived = false;
   bool inverses = false;
+  const Entity* entity = nullptr;  // null for a complex combination
 };
 
 class SchemaEmitter {
@@ -300,6 +302,7 @@ class SchemaEmitter {
   std::vector<model::Diagnostic>& diagnostics_;
 
   std::string aggregates_;  // anonymous aggregate TypeInfo definitions, in dependency order
+  RuleTables rules_;        // the schema's expression trees (rules.h), made by source()
   std::map<std::string, std::string> aggregate_names_;  // structural name -> storage type
 };
 
@@ -438,6 +441,14 @@ std::string SchemaEmitter::header() {
   for (const Entity* e : entities)
     p.print("extern const stepnc::meta::TypeInfo $name$;\n", {{"name", identifier(e->name)}});
   p.print("}  // namespace type_info\n");
+
+  if (!schema_.algorithms.empty()) {
+    p.print("\n// The FUNCTIONs, PROCEDUREs and RULEs as trees for the rule evaluator (stepnc/rules/evaluate.h).\n"
+            "namespace meta_algorithms {\n");
+    for (const auto& a : schema_.algorithms)
+      p.print("extern const stepnc::meta::AlgorithmInfo $name$;\n", {{"name", identifier(a->name)}});
+    p.print("}  // namespace meta_algorithms\n");
+  }
 
   for (const DefinedType* t : types_in_order()) print_type(p, *t);
   for (const Entity* e : entities) print_entity_class(p, *e);
@@ -642,24 +653,26 @@ std::string SchemaEmitter::register_aggregate(const TypeRef& t) {
 
 void SchemaEmitter::print_type_tables(Printer& p, const DefinedType& type) {
   const std::string name = identifier(type.name);
+  const auto where = rules_.type_where.find(&type);
+  const std::string rules = where == rules_.type_where.end() ? "" : ",\n                               .where = meta_tables::" + where->second;
   switch (type.kind) {
     case DefinedType::Kind::Alias:
       p.print(
           "constinit const TypeInfo $name${.kind = TypeKind::Alias, .name = \"$express$\", .schema = &meta_schema,\n"
-          "                               .underlying = $underlying$};\n",
-          {{"name", name}, {"express", type.name}, {"underlying", type_info_ref(type.underlying)}});
+          "                               .underlying = $underlying$$rules$};\n",
+          {{"name", name}, {"express", type.name}, {"underlying", type_info_ref(type.underlying)}, {"rules", rules}});
       return;
     case DefinedType::Kind::Enumeration:
       p.print(
           "constinit const TypeInfo $name${.kind = TypeKind::Enumeration, .name = \"$express$\", .schema = &meta_schema,\n"
-          "                               .items = meta_tables::$name$_items};\n",
-          {{"name", name}, {"express", type.name}});
+          "                               .items = meta_tables::$name$_items$rules$};\n",
+          {{"name", name}, {"express", type.name}, {"rules", rules}});
       return;
     case DefinedType::Kind::Select:
       p.print(
           "constinit const TypeInfo $name${.kind = TypeKind::Select, .name = \"$express$\", .schema = &meta_schema,\n"
-          "                               .members = meta_tables::$name$_members};\n",
-          {{"name", name}, {"express", type.name}});
+          "                               .members = meta_tables::$name$_members$rules$};\n",
+          {{"name", name}, {"express", type.name}, {"rules", rules}});
       return;
   }
 }
@@ -696,6 +709,7 @@ EntityTables SchemaEmitter::print_entity_tables(Printer& p, const Entity* entity
   tables.table_name = identifier(entity ? entity->name : combination->name);
   tables.express_name = entity ? entity->name : "";
   tables.abstract = entity ? entity->abstract : combination->abstract;
+  tables.entity = entity;
   const std::string& cpp_name = tables.cpp_name;
   const std::string& table_name = tables.table_name;
   p.print("\n// $name$\n", {{"name", entity ? entity->name : combination->name}});
@@ -754,6 +768,8 @@ EntityTables SchemaEmitter::print_entity_tables(Printer& p, const Entity* entity
         const Printer::Variables v{{"name", a->name}, {"cpp", cpp_name}, {"type", type}, {"member", member}};
         p.print("    {.name = \"$name$\", .owner = &$cpp$::meta_entity, .type = $type$, .kind = AttributeKind::Derived", v);
         if (translate_derived(*a)) p.print(",\n     .derive = &stepnc::meta::derived<$cpp$, &$cpp$::$member$>", v);
+        if (auto d = rules_.derivations.find(a); d != rules_.derivations.end())
+          p.print(",\n     .derivation = &$table$", {{"table", d->second}});
         p.print("},\n");
       }
       p.print("};\n");
@@ -802,6 +818,12 @@ void SchemaEmitter::print_entity_info(Printer& p, const EntityTables& tables) {
   if (tables.inverses) p.print(".inverses = meta_tables::$table$_inverses,\n", v);
   if (!tables.abstract)
     p.print(".create = &stepnc::meta::create_in<$cpp$>,\n.upcasts = meta_tables::$table$_upcasts,\n", v);
+  if (tables.entity) {
+    if (auto w = rules_.entity_where.find(tables.entity); w != rules_.entity_where.end())
+      p.print(".where = meta_tables::$where$,\n", {{"where", w->second}});
+    if (auto u = rules_.entity_unique.find(tables.entity); u != rules_.entity_unique.end())
+      p.print(".unique = meta_tables::$unique$,\n", {{"unique", u->second}});
+  }
   p.outdent();
   p.outdent();
   p.print("};\n");
@@ -811,6 +833,7 @@ std::string SchemaEmitter::source() {
   const std::string ns_name = ns(&schema_);
   const auto entities = entities_in_order();
   const auto& combinations = analysis_.combinations(&schema_);
+  rules_ = emit_rules(schema_);
 
   // Tables first into their own buffer: they register the anonymous
   // aggregate types, which must be defined before them.
@@ -858,8 +881,12 @@ std::string SchemaEmitter::source() {
       "\n"
       "#include \"stepnc/meta/model.h\"\n",
       {{"schema", schema_.name}, {"file", file_name(schema_.location)}});
-  const auto dependencies = source_dependencies();
-  if (!dependencies.empty()) p.print("\n// Schemas declaring subtypes or inverse owners of entities here.\n");
+  auto dependencies = source_dependencies();
+  for (const Schema* s : rules_.schemas)  // entities, types and algorithms the rules name
+    if (s != &schema_ && std::find(dependencies.begin(), dependencies.end(), s) == dependencies.end())
+      dependencies.push_back(s);
+  if (!dependencies.empty())
+    p.print("\n// Schemas declaring subtypes or inverse owners of entities here, or named by its rules.\n");
   for (const Schema* s : dependencies) p.print("#include \"$name$.h\"\n", {{"name", s->name}});
   p.print("\n// The schemas generated together with this one (SchemaInfo::schema_set).\n");
   for (const auto& s : model_.schemas) {
@@ -881,6 +908,7 @@ std::string SchemaEmitter::source() {
       "using stepnc::meta::Upcast;\n",
       {{"ns", ns_name}});
   if (!aggregates_.empty()) p.print("\n$text$", {{"text", aggregates_}});
+  if (!rules_.tables.empty()) p.print("\n$text$", {{"text", rules_.tables}});
   if (!tables.empty()) p.print("\n$text$", {{"text", tables}});
   p.print("\nconstexpr const EntityInfo* schema_entities[] = {\n");
   for (const Entity* e : entities) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
@@ -889,25 +917,37 @@ std::string SchemaEmitter::source() {
   p.print("constexpr const stepnc::meta::SchemaInfo* schema_set[] = {\n");
   for (const auto& s : model_.schemas) p.print("    &::$name$::meta_schema,\n", {{"name", ns(s.get())}});
   p.print("};\n");
+  for (const auto& [list, name] : {std::pair{&rules_.rules, "schema_rules"}, std::pair{&rules_.functions, "schema_algorithms"}}) {
+    if (list->empty()) continue;
+    p.print("constexpr const stepnc::meta::AlgorithmInfo* $name$[] = {\n", {{"name", name}});
+    for (const std::string& a : *list) p.print("    $a$,\n", {{"a", a}});
+    p.print("};\n");
+  }
   if (!schema_.types.empty()) {
     p.print("constexpr const TypeInfo* schema_types[] = {\n");
     for (const auto& type : schema_.types)
       p.print("    &$ns$::type_info::$name$,\n", {{"ns", ns_name}, {"name", identifier(type->name)}});
     p.print("};\n");
   }
+  const std::string algorithms =
+      rules_.algorithms.empty() ? ""
+                                : "namespace meta_algorithms {\n\n" + rules_.algorithms + "\n}  // namespace meta_algorithms\n\n";
   p.print(
       "\n}  // namespace\n"
       "}  // namespace meta_tables\n"
       "\n"
+      "$algorithms$"
       "using stepnc::meta::TypeInfo;\n"
       "using stepnc::meta::TypeKind;\n"
       "\n"
       "constinit const stepnc::meta::SchemaInfo meta_schema{\n"
       "    .name = \"$schema$\",\n"
       "    .entities = meta_tables::schema_entities,\n",
-      {{"schema", schema_.name}});
+      {{"schema", schema_.name}, {"algorithms", algorithms}});
   if (!schema_.types.empty()) p.print("    .types = meta_tables::schema_types,\n");
   p.print("    .schema_set = meta_tables::schema_set,\n");
+  if (!rules_.rules.empty()) p.print("    .rules = meta_tables::schema_rules,\n");
+  if (!rules_.functions.empty()) p.print("    .algorithms = meta_tables::schema_algorithms,\n");
   p.print("};\n\nnamespace type_info {\n\n$text$\n}  // namespace type_info\n", {{"text", type_tables}});
 
   for (const EntityTables& entity_tables : classes) print_entity_info(p, entity_tables);

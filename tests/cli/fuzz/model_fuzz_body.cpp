@@ -7,6 +7,7 @@
 
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
+#include "stepnc/rules/evaluate.h"
 
 namespace stepnc::exchange::fuzz {
 namespace {
@@ -37,6 +38,14 @@ void run_one(const std::uint8_t* data, std::size_t size) {
     // Whatever a lenient read kept can be written.
     const std::string first = to_text(*result.file);
     if (!result.ok()) continue;
+    // The rule evaluator finishes on whatever the schema allows, and the
+    // same model gives the same verdicts.
+    const auto verdicts = rules::check(result.file->model, 50);
+    check(verdicts.size() <= 50, "the violation limit holds");
+    const auto twice = rules::check(result.file->model, 50);
+    check(twice.size() == verdicts.size(), "rule evaluation is deterministic");
+    for (std::size_t i = 0; i < verdicts.size(); ++i)
+      check(twice[i].to_string() == verdicts[i].to_string(), "the same violations in the same order");
 
     ModelReadResult again = read_model_text(first, "again.stp", registry(), options);
     check(again.ok(), "the output of an error-free file reads back without errors");

@@ -45,6 +45,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "stepnc/meta/expression.h"
+
 namespace stepnc::meta {
 
 struct SchemaInfo;
@@ -137,6 +139,7 @@ struct TypeInfo {
   const ReferenceOps* reference = nullptr;              ///< Entity
   std::span<const std::string_view> items{};               ///< Enumeration, in order
   std::span<const TypeInfo* const> members{};              ///< Select: entities and non-select types reachable
+  std::span<const DomainRuleInfo> where{};  ///< named types: WHERE rules (SELF is the value)
 
   /// True for ARRAY, LIST, BAG and SET.
   bool is_aggregate() const noexcept {
@@ -194,6 +197,9 @@ struct AttributeInfo {
   /// Inverse attributes: `name : SET [0:?] OF inverse_entity FOR inverse_attribute`.
   const EntityInfo* inverse_entity = nullptr;
   std::string_view inverse_attribute{};  ///< inverse: the attribute of inverse_entity it inverts
+  /// Derived attributes: the derivation as an expression tree (SELF the
+  /// instance), for the rule evaluator; `frame` slots for its variables.
+  const DomainRuleInfo* derivation = nullptr;
 
   /// An explicit attribute redeclared as derived in a subtype keeps its Part
   /// 21 slot, written as `*`.
@@ -227,6 +233,8 @@ struct EntityInfo {
   /// Concrete (instantiable) classes only.
   Instance* (*create)(Model& model, std::uint32_t id) = nullptr;
   std::span<const Upcast> upcasts{};  ///< every ancestor and itself
+  std::span<const DomainRuleInfo> where{};   ///< WHERE rules declared here
+  std::span<const UniqueRuleInfo> unique{};  ///< UNIQUE clauses declared here
 
   bool is_complex() const noexcept { return !parts.empty(); }  ///< true for a complex (ANDOR) combination of entities
   /// True when this entity is `other` or one of its subtypes (EXPRESS `IN TYPEOF`).
@@ -248,6 +256,8 @@ struct SchemaInfo {
   /// generation order: the closed set whose subtype tables refer to each
   /// other, and so what a Registry needs (Registry::of_set).
   std::span<const SchemaInfo* const> schema_set{};
+  std::span<const AlgorithmInfo* const> rules{};       ///< global RULEs, in source order
+  std::span<const AlgorithmInfo* const> algorithms{};  ///< FUNCTIONs and PROCEDUREs, in source order
 };
 
 // ---------------------------------------------------------------- casts

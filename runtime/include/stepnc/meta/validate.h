@@ -10,7 +10,8 @@
 ///   * an enumeration value outside its items;
 ///   * a reference to an instance of another model;
 ///   * two instances with the same id.
-/// WHERE rules and UNIQUE clauses are not evaluated yet.
+/// WHERE rules, UNIQUE clauses and global RULEs are evaluated by
+/// rules::check (stepnc/rules/evaluate.h), a layer above this one.
 ///
 ///   for (const auto& problem : meta::validate(model)) print(problem.to_string());
 #pragma once

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: Apache-2.0
+// The checked expressions of one schema as constant node tables
+// (stepnc/meta/expression.h): WHERE rules, UNIQUE clauses, derivations,
+// FUNCTIONs, PROCEDUREs and global RULEs, for the runtime's one rule
+// interpreter. Emitting data instead of C++ per rule keeps one evaluator
+// (the same for every schema, with three-valued logic and `?` in one
+// place), keeps each rule's text beside it for messages, and adds no
+// compile time per rule beyond a table row.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "model/model.h"
+
+namespace expressc::emit::cpp {
+
+struct RuleTables {
+  std::string tables;      // node array and rule arrays, for the anonymous meta_tables namespace
+  std::string algorithms;  // AlgorithmInfo definitions, for namespace meta_algorithms
+  std::map<const model::Entity*, std::string> entity_where, entity_unique;  // table names
+  std::map<const model::DefinedType*, std::string> type_where;
+  std::map<const model::Attribute*, std::string> derivations;
+  std::vector<std::string> rules, functions;  // qualified AlgorithmInfo names, source order
+  std::set<const model::Schema*> schemas;     // other schemas the tables refer to
+};
+
+// C++ string literal for `text`.
+std::string cpp_string(std::string_view text);
+
+RuleTables emit_rules(const model::Schema& schema);
+
+}  // namespace expressc::emit::cpp

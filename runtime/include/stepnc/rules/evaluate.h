@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: Apache-2.0
+/// @file
+/// The rule evaluator: checks a typed model against the rules of its
+/// schemas that C++ types cannot express, by walking the expression trees
+/// expressc emits (stepnc/meta/expression.h) over the model through
+/// reflection:
+///   * WHERE rules of entities (every rule of every entity an instance is,
+///     supertypes and complex parts included) and of defined types (every
+///     value stored in an attribute, inside aggregates and selects too);
+///   * UNIQUE clauses, among the instances of the declaring entity;
+///   * global RULEs over the entity populations;
+/// with DERIVE and INVERSE attributes, FUNCTIONs and PROCEDUREs (LOCALs,
+/// IF, CASE, REPEAT, ALIAS, RETURN, ESCAPE, SKIP) and the built-ins
+/// evaluated on the way. Logic is three-valued (ISO 10303-11 12.4): a rule
+/// that comes out UNKNOWN or `?` holds; only FALSE is a violation.
+///
+///   for (const auto& v : rules::check(model)) print(v.to_string());
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stepnc/meta/model.h"
+#include "stepnc/p21/diagnostic.h"
+
+namespace stepnc::rules {
+
+/// A rule a model breaks, or one the evaluator could not finish.
+struct Violation {
+  /// Which kind of rule, or that it could not be evaluated.
+  enum class Kind : std::uint8_t {
+    Where,        ///< an entity's WHERE rule
+    TypeWhere,    ///< a defined type's WHERE rule, on a value held by `attribute`
+    Unique,       ///< a UNIQUE clause: `other` holds the same values
+    GlobalRule,   ///< a RULE's domain rule (`id` 0)
+    Unevaluated,  ///< the rule could not be evaluated: `message` says why
+  };
+  Kind kind = Kind::Where;       ///< which kind of rule
+  std::uint32_t id = 0;         ///< the instance's `#id`; 0 for a global rule
+  std::string_view owner;       ///< the entity, defined type or RULE declaring the rule
+  std::string_view label;       ///< the rule's label (may be empty)
+  std::string_view text;        ///< the rule in canonical EXPRESS
+  std::string_view attribute;   ///< TypeWhere: the attribute holding the value
+  std::uint32_t other = 0;      ///< Unique: the instance with the same values
+  std::string message;          ///< Unevaluated: the reason
+
+  /// "#12: positive_length_measure.wr1 violated (by depth)", "#7: item.ur1
+  /// violated: the same values as #3", "rule compatible_dimension.wr1 violated".
+  std::string to_string() const;
+};
+
+/// Every violation, in instance order (global rules last), up to `limit`.
+std::vector<Violation> check(const meta::Model& model, std::size_t limit = 1000);
+
+/// Evaluates every rule on `model`, read from `path`, and adds each
+/// violation to `diagnostics` as an error at the instance's record
+/// (`file:line:col: error: #id: entity.label violated`), with the rule's
+/// text when `with_text`; a rule that cannot be evaluated is a warning.
+/// The file is read again only when there is something to locate, to find
+/// the records (standard input cannot be: no positions then). Returns the
+/// number of violations.
+std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
+                              p21::Diagnostics& diagnostics, bool with_text, std::size_t limit = 1000);
+
+/// Every rule a schema declares, as "owner.label" (WHERE rules of entities
+/// and types, UNIQUE clauses, global RULEs), in declaration order: what a
+/// generated schema checks.
+std::vector<std::string> list_rules(const meta::SchemaInfo& schema);
+
+/// The value of a derived attribute of `instance` as EXPRESS text (`?` when
+/// indeterminate), computed from its derivation tree; empty when the
+/// attribute has none.
+std::string derive_text(meta::Instance& instance, const meta::AttributeInfo& attribute);
+
+/// Calls FUNCTION `function` with `arguments` (instances of `model` or
+/// EXPRESS literals as text: `1`, `2.5`, `'text'`, `.T.`, `#12`) and returns
+/// its result as EXPRESS text; for tests and `stepnc dump`.
+std::string call_text(const meta::Model& model, const meta::AlgorithmInfo& function,
+                      const std::vector<std::string>& arguments);
+
+}  // namespace stepnc::rules

@@ -1,0 +1,1371 @@
+// SPDX-License-Identifier: Apache-2.0
+// The one interpreter of the expression trees expressc emits (see
+// stepnc/meta/expression.h and stepnc/rules/evaluate.h). Values are
+// EXPRESS values (ISO 10303-11 8): `?`, numbers, LOGICAL (BOOLEAN is its
+// TRUE/FALSE part), strings, binaries, enumeration items, entity instances
+// (of the model, or partial values built by entity constructors) and
+// aggregates.
+#include "stepnc/rules/evaluate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "stepnc/io/output.h"
+#include "stepnc/meta/registry.h"
+#include "stepnc/p21/document.h"
+#include "stepnc/meta/value.h"
+#include "stepnc/query/usedin.h"
+
+namespace stepnc::rules {
+namespace {
+
+using meta::Builtin;
+using meta::Node;
+using meta::NodeKind;
+using meta::Operator;
+
+// A rule the evaluator cannot finish (a `?` is not one: it is a value).
+struct Unevaluable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class Truth : std::uint8_t { False, True, Unknown };
+
+struct Value;
+using Elements = std::vector<Value>;
+
+// An entity value made by a constructor (`direction([1.0, 0.0])`), or by
+// `||` of several: its entities and attribute values.
+struct Partial {
+  std::vector<const meta::EntityInfo*> entities;
+  std::vector<std::pair<std::string_view, std::shared_ptr<Value>>> attributes;
+};
+
+struct Value {
+  enum class Kind : std::uint8_t { Indeterminate, Integer, Real, Logical, String, Binary, Enumeration, Instance, Partial, Aggregate };
+  Kind kind = Kind::Indeterminate;
+  Truth logical = Truth::Unknown;
+  std::int64_t integer = 0;  // Integer; Aggregate: the lower index
+  double real = 0;
+  std::string text;  // String, Binary (bits), Enumeration (item)
+  const meta::TypeInfo* type = nullptr;  // the named type the value was declared with, if any
+  meta::Instance* instance = nullptr;
+  std::shared_ptr<Partial> partial;
+  std::shared_ptr<Elements> elements;
+
+  bool indeterminate() const { return kind == Kind::Indeterminate; }
+  bool number() const { return kind == Kind::Integer || kind == Kind::Real; }
+  double as_real() const { return kind == Kind::Integer ? static_cast<double>(integer) : real; }
+  bool entity() const { return kind == Kind::Instance || kind == Kind::Partial; }
+
+  static Value of_integer(std::int64_t v) {
+    Value r;
+    r.kind = Kind::Integer;
+    r.integer = v;
+    return r;
+  }
+  static Value of_real(double v) {
+    Value r;
+    r.kind = Kind::Real;
+    r.real = v;
+    return r;
+  }
+  static Value of_truth(Truth t) {
+    Value r;
+    r.kind = Kind::Logical;
+    r.logical = t;
+    return r;
+  }
+  static Value of_bool(bool b) { return of_truth(b ? Truth::True : Truth::False); }
+  static Value of_string(std::string s) {
+    Value r;
+    r.kind = Kind::String;
+    r.text = std::move(s);
+    return r;
+  }
+  static Value of_instance(meta::Instance* i) {
+    Value r;
+    if (i) {
+      r.kind = Kind::Instance;
+      r.instance = i;
+    }
+    return r;
+  }
+  static Value of_elements(Elements e, std::int64_t lower = 1) {
+    Value r;
+    r.kind = Kind::Aggregate;
+    r.integer = lower;
+    r.elements = std::make_shared<Elements>(std::move(e));
+    return r;
+  }
+};
+
+Truth truth_of(const Value& v) {
+  if (v.kind == Value::Kind::Logical) return v.logical;
+  return Truth::Unknown;
+}
+Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
+
+std::string upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// ---------------------------------------------------------------- values from storage
+
+Value from_ref(const meta::ValueRef& ref);
+
+Value from_select(const meta::Select& select) {
+  const auto& storage = select.storage();
+  if (const auto* instance = std::get_if<meta::Instance*>(&storage)) return Value::of_instance(*instance);
+  const meta::TypeInfo* member = select.member();
+  if (!member || std::holds_alternative<std::monostate>(storage)) return {};
+  Value v;
+  const meta::TypeInfo& resolved = member->resolved();
+  if (const auto* i = std::get_if<std::int64_t>(&storage)) {
+    switch (resolved.kind) {
+      case meta::TypeKind::Boolean: v = Value::of_bool(*i != 0); break;
+      case meta::TypeKind::Logical: v = Value::of_truth(static_cast<Truth>(*i)); break;
+      case meta::TypeKind::Enumeration:
+        v.kind = Value::Kind::Enumeration;
+        if (*i >= 0 && static_cast<std::size_t>(*i) < resolved.items.size()) v.text = resolved.items[*i];
+        break;
+      default: v = Value::of_integer(*i);
+    }
+  } else if (const auto* d = std::get_if<double>(&storage)) {
+    v = Value::of_real(*d);
+  } else if (const auto* s = std::get_if<meta::String>(&storage)) {
+    v = Value::of_string(std::string(s->view()));
+    if (resolved.kind == meta::TypeKind::Binary) v.kind = Value::Kind::Binary;
+  }
+  v.type = member;
+  return v;
+}
+
+Value from_ref(const meta::ValueRef& ref) {
+  Value v;
+  const meta::TypeInfo& resolved = ref.resolved();
+  switch (resolved.kind) {
+    case meta::TypeKind::Integer: v = Value::of_integer(ref.integer()); break;
+    case meta::TypeKind::Real:
+    case meta::TypeKind::Number: v = Value::of_real(ref.real()); break;
+    case meta::TypeKind::Boolean: v = Value::of_bool(ref.boolean()); break;
+    case meta::TypeKind::Logical: v = Value::of_truth(static_cast<Truth>(ref.logical())); break;
+    case meta::TypeKind::String: v = Value::of_string(std::string(ref.string())); break;
+    case meta::TypeKind::Binary:
+      v.kind = Value::Kind::Binary;
+      v.text = std::string(ref.binary().hex_digits.view());
+      break;
+    case meta::TypeKind::Enumeration:
+      v.kind = Value::Kind::Enumeration;
+      v.text = std::string(ref.enumeration());
+      break;
+    case meta::TypeKind::Entity: return Value::of_instance(ref.instance());
+    case meta::TypeKind::Select: return from_select(ref.select());
+    case meta::TypeKind::Array:
+    case meta::TypeKind::List:
+    case meta::TypeKind::Bag:
+    case meta::TypeKind::Set: {
+      Elements elements;
+      const std::size_t n = ref.size();
+      elements.reserve(n);
+      for (std::size_t i = 0; i < n; ++i) elements.push_back(from_ref(ref.element(i)));
+      v = Value::of_elements(std::move(elements), resolved.kind == meta::TypeKind::Array ? resolved.lower : 1);
+      break;
+    }
+    case meta::TypeKind::Alias: break;  // resolved() never is
+  }
+  if (!ref.type().name.empty()) v.type = &ref.type();
+  return v;
+}
+
+// ---------------------------------------------------------------- equality and order
+
+Truth equal(const Value& a, const Value& b);
+
+Truth equal_elements(const Elements& a, const Elements& b) {
+  if (a.size() != b.size()) return Truth::False;
+  Truth result = Truth::True;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const Truth t = equal(a[i], b[i]);
+    if (t == Truth::False) return Truth::False;
+    if (t == Truth::Unknown) result = Truth::Unknown;
+  }
+  return result;
+}
+
+// Value equality (ISO 10303-11 12.2.1); entity instances compare by identity.
+Truth equal(const Value& a, const Value& b) {
+  using K = Value::Kind;
+  if (a.indeterminate() || b.indeterminate()) return Truth::Unknown;
+  if (a.number() && b.number()) {
+    if (a.kind == K::Integer && b.kind == K::Integer) return a.integer == b.integer ? Truth::True : Truth::False;
+    return a.as_real() == b.as_real() ? Truth::True : Truth::False;
+  }
+  if (a.kind != b.kind) return Truth::False;
+  switch (a.kind) {
+    case K::Logical: return a.logical == b.logical ? Truth::True : Truth::False;
+    case K::String:
+    case K::Binary: return a.text == b.text ? Truth::True : Truth::False;
+    case K::Enumeration: return meta::equal_names(a.text, b.text) ? Truth::True : Truth::False;
+    case K::Instance: return a.instance == b.instance ? Truth::True : Truth::False;
+    case K::Partial: return a.partial == b.partial ? Truth::True : Truth::False;
+    case K::Aggregate: return equal_elements(*a.elements, *b.elements);
+    default: return Truth::Unknown;
+  }
+}
+
+// -1, 0, 1, or nullopt when the two do not compare (`?` or other kinds).
+std::optional<int> compare(const Value& a, const Value& b) {
+  using K = Value::Kind;
+  if (a.number() && b.number()) {
+    if (a.kind == K::Integer && b.kind == K::Integer) return (a.integer > b.integer) - (a.integer < b.integer);
+    const double x = a.as_real(), y = b.as_real();
+    return (x > y) - (x < y);
+  }
+  if (a.kind != b.kind) return std::nullopt;
+  if (a.kind == K::String || a.kind == K::Binary) return a.text.compare(b.text) < 0 ? -1 : a.text == b.text ? 0 : 1;
+  if (a.kind == K::Logical) {
+    // FALSE < UNKNOWN < TRUE (ISO 10303-11 12.2.1.2)
+    auto rank = [](Truth t) { return t == Truth::False ? 0 : t == Truth::Unknown ? 1 : 2; };
+    return (rank(a.logical) > rank(b.logical)) - (rank(a.logical) < rank(b.logical));
+  }
+  if (a.kind == K::Enumeration && a.type && b.type && &a.type->resolved() == &b.type->resolved()) {
+    const auto& items = a.type->resolved().items;
+    auto index = [&](const std::string& item) {
+      return std::find_if(items.begin(), items.end(), [&](std::string_view i) { return meta::equal_names(i, item); }) -
+             items.begin();
+    };
+    const auto x = index(a.text), y = index(b.text);
+    return (x > y) - (x < y);
+  }
+  return std::nullopt;
+}
+
+// LIKE (ISO 10303-11 12.2.5): @ letter, ^ upper-case letter, ? any
+// character, & any rest, # digit, $ a word, * any run, \ escapes.
+bool like(std::string_view s, std::string_view p) {
+  if (p.empty()) return s.empty();
+  const char c = p.front();
+  auto one = [&](bool ok) { return !s.empty() && ok && like(s.substr(1), p.substr(1)); };
+  switch (c) {
+    case '@': return one(!s.empty() && std::isalpha(static_cast<unsigned char>(s.front())));
+    case '^': return one(!s.empty() && std::isupper(static_cast<unsigned char>(s.front())));
+    case '?': return one(true);
+    case '#': return one(!s.empty() && std::isdigit(static_cast<unsigned char>(s.front())));
+    case '&': return true;
+    case '*':
+    case '$':
+      for (std::size_t i = 0; i <= s.size(); ++i)
+        if (like(s.substr(i), p.substr(1))) return true;
+      return false;
+    case '\\':
+      if (p.size() < 2) return false;
+      return !s.empty() && s.front() == p[1] && like(s.substr(1), p.substr(2));
+    default: return !s.empty() && s.front() == c && like(s.substr(1), p.substr(1));
+  }
+}
+
+// ---------------------------------------------------------------- the interpreter
+
+struct Frame {
+  std::vector<Value> slots;
+  Value self;
+  Value result;
+};
+
+enum class Flow : std::uint8_t { Next, Return, Escape, Skip };
+
+constexpr int max_depth = 256;              // nested calls
+constexpr std::uint64_t max_steps = 50'000'000;  // loop iterations of one top-level evaluation
+
+class Interpreter {
+ public:
+  explicit Interpreter(const meta::Model& model) : model_(model) {}
+
+  Value evaluate(const meta::DomainRuleInfo& rule, Value self) {
+    Frame frame;
+    frame.slots.resize(rule.frame);
+    frame.self = std::move(self);
+    steps_ = 0;
+    return eval(rule.expression.nodes, rule.expression.root, frame);
+  }
+
+  Value call(const meta::AlgorithmInfo& algorithm, std::vector<Value> arguments) {
+    steps_ = 0;
+    return invoke(algorithm, arguments);
+  }
+
+  // A global rule: runs its body, then reports each domain rule's result.
+  std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule) {
+    Frame frame;
+    frame.slots.resize(rule.frame);
+    steps_ = 0;
+    execute(rule.body.nodes, rule.body.root, frame);
+    std::vector<Truth> results;
+    for (const meta::DomainRuleInfo& where : rule.where)
+      results.push_back(truth_of(eval(where.expression.nodes, where.expression.root, frame)));
+    return results;
+  }
+
+  Value attribute_of(meta::Instance& instance, std::string_view name) { return attribute(Value::of_instance(&instance), name); }
+
+ private:
+  const meta::Model& model_;
+  std::unique_ptr<query::ReferenceIndex> references_;
+  std::map<const meta::EntityInfo*, Elements> populations_;
+  int depth_ = 0;
+  std::uint64_t steps_ = 0;
+
+  // Where an attribute name leads, per concrete entity. Names come from
+  // the constant tables, so their address identifies them.
+  struct Key {
+    const meta::EntityInfo* entity;
+    const char* name;
+    std::size_t size;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const noexcept {
+      return std::hash<const void*>()(k.entity) * 31 + std::hash<const void*>()(k.name) + k.size;
+    }
+  };
+  std::unordered_map<Key, const meta::AttributeInfo*, KeyHash> attribute_cache_;
+
+  const query::ReferenceIndex& references() {
+    if (!references_) references_ = std::make_unique<query::ReferenceIndex>(model_);
+    return *references_;
+  }
+
+  static bool is_a(const meta::Instance& instance, const meta::EntityInfo& entity) {
+    return instance.entity_info().is_a(entity);
+  }
+
+  // The most specific attribute of that name: a redeclaration as DERIVE in
+  // a subtype wins over the inherited explicit one.
+  const meta::AttributeInfo* find(const meta::EntityInfo& entity, std::string_view name) {
+    const Key key{&entity, name.data(), name.size()};
+    if (auto it = attribute_cache_.find(key); it != attribute_cache_.end()) return it->second;
+    const meta::AttributeInfo* found = nullptr;
+    for (const meta::AttributeInfo& a : entity.attributes)
+      if (meta::equal_names(a.name, name)) found = &a;
+    if (!found || !found->stored()) {
+      const meta::AttributeInfo* derived = nullptr;
+      for (const meta::Upcast& up : entity.upcasts) {
+        for (const meta::AttributeInfo& a : up.entity->derived)
+          if (meta::equal_names(a.name, name) && (!derived || up.entity->is_a(*derived->owner))) derived = &a;
+        for (const meta::AttributeInfo& a : up.entity->inverses)
+          if (meta::equal_names(a.name, name) && !derived) derived = &a;
+      }
+      if (derived) found = derived;
+    }
+    attribute_cache_.emplace(key, found);
+    return found;
+  }
+
+  Value attribute(const Value& base, std::string_view name) {
+    if (base.kind == Value::Kind::Partial) {
+      for (const auto& [n, v] : base.partial->attributes)
+        if (meta::equal_names(n, name)) return *v;
+      return {};
+    }
+    if (base.kind != Value::Kind::Instance) return {};
+    meta::Instance& instance = *base.instance;
+    const meta::AttributeInfo* a = find(instance.entity_info(), name);
+    if (!a) return {};  // an attribute of another entity the instance is not
+    switch (a->kind) {
+      case meta::AttributeKind::Explicit:
+        if (auto ref = meta::get(instance, *a)) return from_ref(*ref);
+        return {};
+      case meta::AttributeKind::Derived: {
+        if (!a->derivation) throw Unevaluable(fmt::format("derived attribute '{}' has no derivation", a->name));
+        Frame frame;
+        frame.slots.resize(a->derivation->frame);
+        frame.self = base;
+        const Node* nodes = a->derivation->expression.nodes;
+        return eval(nodes, a->derivation->expression.root, frame);
+      }
+      case meta::AttributeKind::Inverse: {
+        Elements users;
+        for (const auto& use : references().uses(instance))
+          if (a->inverse_entity && is_a(*use.user, *a->inverse_entity) &&
+              meta::equal_names(use.attribute->name, a->inverse_attribute))
+            if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
+        if (!a->type->resolved().is_aggregate()) return users.empty() ? Value{} : users.front();
+        return Value::of_elements(std::move(users));
+      }
+    }
+    return {};
+  }
+
+  const Elements& population(const meta::EntityInfo& entity) {
+    auto [it, fresh] = populations_.try_emplace(&entity);
+    if (fresh)
+      for (meta::Instance* i : model_.instances())
+        if (is_a(*i, entity)) it->second.push_back(Value::of_instance(i));
+    return it->second;
+  }
+
+  // ------------------------------------------------------------ expressions
+
+  Value eval(const Node* nodes, std::uint32_t index, Frame& frame) {
+    const Node& n = nodes[index];
+    auto operand = [&](std::uint32_t i) { return eval(nodes, n.first + i, frame); };
+    switch (n.kind) {
+      case NodeKind::Integer: return Value::of_integer(n.integer);
+      case NodeKind::Real: return Value::of_real(n.real);
+      case NodeKind::String: return Value::of_string(std::string(n.text));
+      case NodeKind::Binary: {
+        Value v = Value::of_string(std::string(n.text));
+        v.kind = Value::Kind::Binary;
+        return v;
+      }
+      case NodeKind::Logical: return Value::of_truth(static_cast<Truth>(n.integer));
+      case NodeKind::Indeterminate: return {};
+      case NodeKind::Self: return frame.self;
+      case NodeKind::Variable: return frame.slots.at(n.slot);
+      case NodeKind::EnumerationItem: {
+        Value v;
+        v.kind = Value::Kind::Enumeration;
+        v.text = std::string(n.text);
+        v.type = n.type;
+        return v;
+      }
+      case NodeKind::Population: return Value::of_elements(population(*n.entity));
+      case NodeKind::Attribute: return attribute(operand(0), n.text);
+      case NodeKind::Group: {
+        Value base = operand(0);
+        if (base.kind == Value::Kind::Instance && !is_a(*base.instance, *n.entity)) return {};
+        return base;
+      }
+      case NodeKind::Index: return index_of(operand(0), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
+      case NodeKind::Call: {
+        std::vector<Value> arguments;
+        for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(operand(i));
+        return invoke(*n.algorithm, arguments);
+      }
+      case NodeKind::Builtin: return builtin(nodes, n, frame);
+      case NodeKind::Construct: {
+        auto partial = std::make_shared<Partial>();
+        partial->entities.push_back(n.entity);
+        // The entity's own explicit attributes (ISO 10303-11 9.2.6). With
+        // fewer arguments than those, the last ones get them: transcriptions
+        // that moved an inherited `name` down (the ISO 14649 reference) keep
+        // the standard's constructor calls, which omit it.
+        std::vector<std::string_view> own;
+        for (const meta::AttributeInfo& a : n.entity->attributes)
+          if (a.owner == n.entity && a.kind == meta::AttributeKind::Explicit) own.push_back(a.name);
+        const std::size_t skip = own.size() > n.count ? own.size() - n.count : 0;
+        for (std::uint32_t i = 0; i < n.count && skip + i < own.size(); ++i)
+          partial->attributes.emplace_back(own[skip + i], std::make_shared<Value>(operand(i)));
+        Value v;
+        v.kind = Value::Kind::Partial;
+        v.partial = std::move(partial);
+        return v;
+      }
+      case NodeKind::Unary: {
+        Value v = operand(0);
+        if (n.op == Operator::Not) return Value::of_truth(negate(truth_of(v)));
+        if (n.op == Operator::Minus) {
+          if (v.kind == Value::Kind::Integer) return Value::of_integer(-v.integer);
+          if (v.kind == Value::Kind::Real) return Value::of_real(-v.real);
+          return {};
+        }
+        return v;
+      }
+      case NodeKind::Operation: return operation(nodes, n, frame);
+      case NodeKind::Aggregate: {
+        Elements elements;
+        for (std::uint32_t i = 0; i < n.count; ++i) {
+          const Node& e = nodes[n.first + i];
+          if (e.kind == NodeKind::Repeat) {
+            Value item = eval(nodes, e.first, frame);
+            Value times = eval(nodes, e.first + 1, frame);
+            if (times.kind != Value::Kind::Integer) continue;
+            for (std::int64_t k = 0; k < times.integer; ++k) elements.push_back(item);
+          } else {
+            elements.push_back(operand(i));
+          }
+        }
+        return Value::of_elements(std::move(elements));
+      }
+      case NodeKind::Repeat: return operand(0);
+      case NodeKind::Interval: {
+        Value low = operand(0), item = operand(1), high = operand(2);
+        const Truth a = relate(n.op, low, item), b = relate(n.op2, item, high);
+        return Value::of_truth(both(a, b));
+      }
+      case NodeKind::Query: {
+        Value source = operand(0);
+        if (source.kind != Value::Kind::Aggregate) return {};
+        Elements kept;
+        for (const Value& element : *source.elements) {
+          frame.slots.at(n.slot) = element;
+          if (truth_of(eval(nodes, n.first + 1, frame)) == Truth::True) kept.push_back(element);
+        }
+        return Value::of_elements(std::move(kept));
+      }
+      case NodeKind::Unevaluable: throw Unevaluable(fmt::format("'{}' was not resolved by expressc", n.text));
+      default: throw Unevaluable("a statement where an expression belongs");
+    }
+  }
+
+  static Truth both(Truth a, Truth b) {
+    if (a == Truth::False || b == Truth::False) return Truth::False;
+    if (a == Truth::Unknown || b == Truth::Unknown) return Truth::Unknown;
+    return Truth::True;
+  }
+  static Truth either(Truth a, Truth b) {
+    if (a == Truth::True || b == Truth::True) return Truth::True;
+    if (a == Truth::Unknown || b == Truth::Unknown) return Truth::Unknown;
+    return Truth::False;
+  }
+
+  static Truth relate(Operator op, const Value& a, const Value& b) {
+    if (a.indeterminate() || b.indeterminate()) return Truth::Unknown;
+    switch (op) {
+      case Operator::Equal:
+      case Operator::InstanceEqual: return equal(a, b);
+      case Operator::NotEqual:
+      case Operator::InstanceNotEqual: return negate(equal(a, b));
+      default: break;
+    }
+    const auto c = compare(a, b);
+    if (!c) return Truth::Unknown;
+    switch (op) {
+      case Operator::Less: return *c < 0 ? Truth::True : Truth::False;
+      case Operator::Greater: return *c > 0 ? Truth::True : Truth::False;
+      case Operator::LessEqual: return *c <= 0 ? Truth::True : Truth::False;
+      case Operator::GreaterEqual: return *c >= 0 ? Truth::True : Truth::False;
+      default: return Truth::Unknown;
+    }
+  }
+
+  static Truth member(const Value& item, const Value& aggregate) {
+    if (item.indeterminate() || aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
+    Truth result = Truth::False;
+    for (const Value& e : *aggregate.elements) {
+      const Truth t = equal(item, e);
+      if (t == Truth::True) return Truth::True;
+      if (t == Truth::Unknown) result = Truth::Unknown;
+    }
+    return result;
+  }
+
+  Value operation(const Node* nodes, const Node& n, Frame& frame) {
+    // AND and OR need their second operand only when the first does not decide.
+    if (n.op == Operator::And || n.op == Operator::Or) {
+      const Truth a = truth_of(eval(nodes, n.first, frame));
+      if (n.op == Operator::And && a == Truth::False) return Value::of_truth(Truth::False);
+      if (n.op == Operator::Or && a == Truth::True) return Value::of_truth(Truth::True);
+      const Truth b = truth_of(eval(nodes, n.first + 1, frame));
+      return Value::of_truth(n.op == Operator::And ? both(a, b) : either(a, b));
+    }
+    // 'SCHEMA.ENTITY' IN TYPEOF(e), the commonest test in schemas, without
+    // building the set of names.
+    if (n.op == Operator::In && nodes[n.first + 1].kind == NodeKind::Builtin &&
+        nodes[n.first + 1].builtin == Builtin::Typeof && nodes[n.first + 1].count == 1) {
+      Value name = eval(nodes, n.first, frame);
+      Value subject = eval(nodes, nodes[n.first + 1].first, frame);
+      if (name.kind == Value::Kind::String && subject.kind == Value::Kind::Instance)
+        return Value::of_bool(has_type_name(subject.instance->entity_info(), name.text));
+      if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
+      return Value::of_truth(member(name, type_of(subject)));
+    }
+    Value a = eval(nodes, n.first, frame), b = eval(nodes, n.first + 1, frame);
+    using K = Value::Kind;
+    switch (n.op) {
+      case Operator::Xor: {
+        const Truth x = truth_of(a), y = truth_of(b);
+        if (x == Truth::Unknown || y == Truth::Unknown) return Value::of_truth(Truth::Unknown);
+        return Value::of_bool(x != y);
+      }
+      case Operator::In: return Value::of_truth(member(a, b));  // (`x IN TYPEOF(e)` is answered above)
+      case Operator::Like:
+        if (a.kind != K::String || b.kind != K::String) return Value::of_truth(Truth::Unknown);
+        return Value::of_bool(like(a.text, b.text));
+      case Operator::ComplexConstruct: {
+        if (!a.entity() || !b.entity()) return {};
+        auto merged = std::make_shared<Partial>();
+        for (const Value* v : {&a, &b}) {
+          if (v->kind != K::Partial) return {};  // instances of a model cannot be combined
+          merged->entities.insert(merged->entities.end(), v->partial->entities.begin(), v->partial->entities.end());
+          merged->attributes.insert(merged->attributes.end(), v->partial->attributes.begin(), v->partial->attributes.end());
+        }
+        Value v;
+        v.kind = K::Partial;
+        v.partial = std::move(merged);
+        return v;
+      }
+      case Operator::Less:
+      case Operator::Greater:
+      case Operator::LessEqual:
+      case Operator::GreaterEqual:
+      case Operator::NotEqual:
+      case Operator::Equal:
+      case Operator::InstanceNotEqual:
+      case Operator::InstanceEqual: return Value::of_truth(relate(n.op, a, b));
+      default: break;
+    }
+    if (a.indeterminate() || b.indeterminate()) return {};
+    // Aggregates: union, difference, intersection (ISO 10303-11 12.6).
+    if (a.kind == K::Aggregate || b.kind == K::Aggregate) return aggregate_operation(n.op, a, b);
+    if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(a.text + b.text);
+    if (!a.number() || !b.number()) return {};
+    const bool integers = a.kind == K::Integer && b.kind == K::Integer;
+    switch (n.op) {
+      case Operator::Add: return integers ? Value::of_integer(a.integer + b.integer) : Value::of_real(a.as_real() + b.as_real());
+      case Operator::Subtract:
+        return integers ? Value::of_integer(a.integer - b.integer) : Value::of_real(a.as_real() - b.as_real());
+      case Operator::Multiply:
+        return integers ? Value::of_integer(a.integer * b.integer) : Value::of_real(a.as_real() * b.as_real());
+      case Operator::Divide:
+        if (b.as_real() == 0) return {};
+        return Value::of_real(a.as_real() / b.as_real());
+      case Operator::IntegerDivide:
+      case Operator::Modulo: {
+        if (!integers || b.integer == 0) return {};
+        if (n.op == Operator::IntegerDivide) return Value::of_integer(a.integer / b.integer);
+        std::int64_t m = a.integer % b.integer;
+        if (m != 0 && ((m < 0) != (b.integer < 0))) m += b.integer;  // the sign of the divisor
+        return Value::of_integer(m);
+      }
+      case Operator::Power:
+        if (integers && b.integer >= 0) return Value::of_integer(static_cast<std::int64_t>(std::pow(a.integer, b.integer)));
+        return Value::of_real(std::pow(a.as_real(), b.as_real()));
+      default: return {};
+    }
+  }
+
+  static Value aggregate_operation(Operator op, const Value& a, const Value& b) {
+    using K = Value::Kind;
+    Elements result = a.kind == K::Aggregate ? *a.elements : Elements{a};
+    auto contains = [](const Elements& list, const Value& v) {
+      return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
+    };
+    const Elements right = b.kind == K::Aggregate ? *b.elements : Elements{b};
+    switch (op) {
+      case Operator::Add:
+        if (a.kind != K::Aggregate) {
+          result = right;
+          result.insert(result.begin(), a);
+        } else {
+          result.insert(result.end(), right.begin(), right.end());
+        }
+        return Value::of_elements(std::move(result));
+      case Operator::Subtract:
+        std::erase_if(result, [&](const Value& e) { return contains(right, e); });
+        return Value::of_elements(std::move(result));
+      case Operator::Multiply:
+        std::erase_if(result, [&](const Value& e) { return !contains(right, e); });
+        return Value::of_elements(std::move(result));
+      default: return {};
+    }
+  }
+
+  static Value index_of(const Value& base, const Value& low, const Value& high, bool range) {
+    if (low.kind != Value::Kind::Integer || (range && high.kind != Value::Kind::Integer)) return {};
+    if (base.kind == Value::Kind::String) {
+      const std::int64_t from = low.integer, to = range ? high.integer : low.integer;
+      if (from < 1 || to > static_cast<std::int64_t>(base.text.size()) || from > to) return {};
+      return Value::of_string(base.text.substr(from - 1, to - from + 1));
+    }
+    if (base.kind != Value::Kind::Aggregate) return {};
+    const auto& elements = *base.elements;
+    const std::int64_t i = low.integer - base.integer;
+    if (!range) {
+      if (i < 0 || i >= static_cast<std::int64_t>(elements.size())) return {};
+      return elements[i];
+    }
+    const std::int64_t j = high.integer - base.integer;
+    if (i < 0 || j >= static_cast<std::int64_t>(elements.size()) || i > j) return {};
+    return Value::of_elements(Elements(elements.begin() + i, elements.begin() + j + 1));
+  }
+
+  // ------------------------------------------------------------ built-ins
+
+  // Is `name` ('SCHEMA.ENTITY', any case) one of TYPEOF's names for an instance of `entity`?
+  static bool has_type_name(const meta::EntityInfo& entity, std::string_view name) {
+    const auto dot = name.find('.');
+    if (dot == std::string_view::npos) return false;
+    const std::string_view schema = name.substr(0, dot), entity_name = name.substr(dot + 1);
+    for (const meta::Upcast& up : entity.upcasts)
+      if (!up.entity->name.empty() && meta::equal_names(up.entity->name, entity_name) &&
+          meta::equal_names(up.entity->schema->name, schema))
+        return true;
+    return false;
+  }
+
+  void typeof_names(const meta::EntityInfo& entity, Elements& out) {
+    for (const meta::Upcast& up : entity.upcasts) {
+      if (up.entity->name.empty()) continue;  // the complex combination itself
+      out.push_back(Value::of_string(upper(up.entity->schema->name) + "." + upper(up.entity->name)));
+    }
+  }
+
+  Value type_of(const Value& v) {
+    Elements names;
+    using K = Value::Kind;
+    switch (v.kind) {
+      case K::Indeterminate: return {};
+      case K::Instance: typeof_names(v.instance->entity_info(), names); break;
+      case K::Partial:
+        for (const meta::EntityInfo* e : v.partial->entities)
+          if (!e->upcasts.empty()) {
+            typeof_names(*e, names);
+          } else {
+            names.push_back(Value::of_string(upper(e->schema->name) + "." + upper(e->name)));
+          }
+        break;
+      default: {
+        for (const meta::TypeInfo* t = v.type; t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
+          if (!t->name.empty() && t->schema) names.push_back(Value::of_string(upper(t->schema->name) + "." + upper(t->name)));
+        static constexpr std::string_view simple[] = {"INTEGER", "REAL", "NUMBER", "LOGICAL", "STRING", "BINARY"};
+        if (v.kind == K::Integer) names.push_back(Value::of_string(std::string(simple[0])));
+        if (v.number()) names.push_back(Value::of_string(std::string(simple[1])));
+        if (v.number()) names.push_back(Value::of_string(std::string(simple[2])));
+        if (v.kind == K::Logical) names.push_back(Value::of_string(std::string(simple[3])));
+        if (v.kind == K::Logical && v.logical != Truth::Unknown) names.push_back(Value::of_string("BOOLEAN"));
+        if (v.kind == K::String) names.push_back(Value::of_string(std::string(simple[4])));
+        if (v.kind == K::Binary) names.push_back(Value::of_string(std::string(simple[5])));
+        if (v.kind == K::Aggregate) names.push_back(Value::of_string("AGGREGATE"));
+      }
+    }
+    return Value::of_elements(std::move(names));
+  }
+
+  // USEDIN(T, R) and ROLESOF(V) (ISO 10303-11 15.26, 15.20).
+  Value used_in(const Value& target, const Value& role) {
+    if (target.kind != Value::Kind::Instance || role.kind != Value::Kind::String) return {};
+    Elements users;
+    std::string_view r = role.text;
+    std::string_view entity_part, attribute_part;
+    if (!r.empty()) {
+      const auto dot = r.rfind('.');
+      if (dot == std::string_view::npos) return Value::of_elements({});
+      attribute_part = r.substr(dot + 1);
+      entity_part = r.substr(0, dot);
+      if (const auto d = entity_part.find('.'); d != std::string_view::npos) entity_part = entity_part.substr(d + 1);
+    }
+    for (const auto& use : references().uses(*target.instance)) {
+      if (!r.empty() && (!meta::equal_names(use.attribute->name, attribute_part) ||
+                         !meta::equal_names(use.attribute->owner->name, entity_part)))
+        continue;
+      if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
+    }
+    return Value::of_elements(std::move(users));
+  }
+
+  Value roles_of(const Value& target) {
+    if (target.kind != Value::Kind::Instance) return {};
+    Elements roles;
+    for (const auto& use : references().uses(*target.instance)) {
+      Value role = Value::of_string(upper(use.attribute->owner->schema->name) + "." + upper(use.attribute->owner->name) +
+                                    "." + upper(use.attribute->name));
+      if (member(role, Value::of_elements(roles)) != Truth::True) roles.push_back(std::move(role));
+    }
+    return Value::of_elements(std::move(roles));
+  }
+
+  Value builtin(const Node* nodes, const Node& n, Frame& frame) {
+    auto arg = [&](std::uint32_t i) { return i < n.count ? eval(nodes, n.first + i, frame) : Value{}; };
+    auto real_function = [&](double (*f)(double)) -> Value {
+      Value v = arg(0);
+      if (!v.number()) return {};
+      const double r = f(v.as_real());
+      return std::isfinite(r) ? Value::of_real(r) : Value{};
+    };
+    switch (n.builtin) {
+      case Builtin::Pi: return Value::of_real(3.14159265358979323846);
+      case Builtin::Const_e: return Value::of_real(2.71828182845904523536);
+      case Builtin::Exists: return Value::of_bool(!arg(0).indeterminate());
+      case Builtin::Nvl: {
+        Value v = arg(0);
+        return v.indeterminate() ? arg(1) : v;
+      }
+      case Builtin::Abs: {
+        Value v = arg(0);
+        if (v.kind == Value::Kind::Integer) return Value::of_integer(std::llabs(v.integer));
+        if (v.kind == Value::Kind::Real) return Value::of_real(std::fabs(v.real));
+        return {};
+      }
+      case Builtin::Sqrt: return real_function([](double x) { return std::sqrt(x); });
+      case Builtin::Sin: return real_function([](double x) { return std::sin(x); });
+      case Builtin::Cos: return real_function([](double x) { return std::cos(x); });
+      case Builtin::Tan: return real_function([](double x) { return std::tan(x); });
+      case Builtin::Asin: return real_function([](double x) { return std::asin(x); });
+      case Builtin::Acos: return real_function([](double x) { return std::acos(x); });
+      case Builtin::Exp: return real_function([](double x) { return std::exp(x); });
+      case Builtin::Log: return real_function([](double x) { return std::log(x); });
+      case Builtin::Log2: return real_function([](double x) { return std::log2(x); });
+      case Builtin::Log10: return real_function([](double x) { return std::log10(x); });
+      case Builtin::Atan: {
+        Value y = arg(0), x = arg(1);
+        if (!y.number() || !x.number()) return {};
+        return Value::of_real(std::atan2(y.as_real(), x.as_real()));
+      }
+      case Builtin::Odd: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::Integer) return Value::of_truth(Truth::Unknown);
+        return Value::of_bool(v.integer % 2 != 0);
+      }
+      case Builtin::Sizeof:
+      case Builtin::Hiindex: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::Aggregate) return {};
+        const auto size = static_cast<std::int64_t>(v.elements->size());
+        return Value::of_integer(n.builtin == Builtin::Sizeof ? size : v.integer + size - 1);
+      }
+      case Builtin::Loindex:
+      case Builtin::Lobound: {
+        Value v = arg(0);
+        return v.kind == Value::Kind::Aggregate ? Value::of_integer(v.integer) : Value{};
+      }
+      case Builtin::Hibound: {
+        // Bounds are not carried with values: the elements present bound it.
+        Value v = arg(0);
+        if (v.kind != Value::Kind::Aggregate) return {};
+        return Value::of_integer(v.integer + static_cast<std::int64_t>(v.elements->size()) - 1);
+      }
+      case Builtin::Length: {
+        Value v = arg(0);
+        return v.kind == Value::Kind::String ? Value::of_integer(static_cast<std::int64_t>(v.text.size())) : Value{};
+      }
+      case Builtin::Blength: {
+        Value v = arg(0);
+        return v.kind == Value::Kind::Binary ? Value::of_integer(static_cast<std::int64_t>(v.text.size())) : Value{};
+      }
+      case Builtin::Typeof: return type_of(arg(0));
+      case Builtin::Usedin: return used_in(arg(0), arg(1));
+      case Builtin::Rolesof: return roles_of(arg(0));
+      case Builtin::Value: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::String) return {};
+        char* end = nullptr;
+        const double d = std::strtod(v.text.c_str(), &end);
+        if (end == v.text.c_str()) return {};
+        if (v.text.find_first_of(".eE") == std::string::npos) return Value::of_integer(static_cast<std::int64_t>(d));
+        return Value::of_real(d);
+      }
+      case Builtin::Value_as_boolean: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::String) return {};
+        const std::string t = upper(v.text);
+        if (t == "TRUE" || t == ".T.") return Value::of_bool(true);
+        if (t == "FALSE" || t == ".F.") return Value::of_bool(false);
+        return {};
+      }
+      case Builtin::Value_in: return Value::of_truth(member(arg(1), arg(0)));
+      case Builtin::Value_unique: {
+        Value v = arg(0);
+        if (v.kind != Value::Kind::Aggregate) return Value::of_truth(Truth::Unknown);
+        const auto& e = *v.elements;
+        for (std::size_t i = 0; i < e.size(); ++i)
+          for (std::size_t j = i + 1; j < e.size(); ++j)
+            if (equal(e[i], e[j]) == Truth::True) return Value::of_bool(false);
+        return Value::of_bool(true);
+      }
+      case Builtin::Format: {
+        Value v = arg(0);
+        if (v.kind == Value::Kind::Integer) return Value::of_string(std::to_string(v.integer));
+        if (v.kind == Value::Kind::Real) return Value::of_string(fmt::format("{}", v.real));
+        return {};
+      }
+      default: throw Unevaluable("a built-in procedure in an expression");
+    }
+  }
+
+  // ------------------------------------------------------------ algorithms
+
+  Value invoke(const meta::AlgorithmInfo& algorithm, std::vector<Value>& arguments) {
+    if (depth_ >= max_depth) throw Unevaluable(fmt::format("calls nested deeper than {} in '{}'", max_depth, algorithm.name));
+    ++depth_;
+    Frame frame;
+    frame.slots.resize(std::max<std::size_t>(algorithm.frame, arguments.size()));
+    for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters; ++i) frame.slots[i] = arguments[i];
+    execute(algorithm.body.nodes, algorithm.body.root, frame);
+    --depth_;
+    for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters && i < 32; ++i)
+      if (algorithm.var_parameters & (1u << i)) arguments[i] = frame.slots[i];
+    return frame.result;
+  }
+
+  void step() {
+    if (++steps_ > max_steps) throw Unevaluable("more than 50 million loop iterations");
+  }
+
+  Flow execute_list(const Node* nodes, std::uint32_t first, std::uint32_t count, Frame& frame) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const Flow flow = execute(nodes, first + i, frame);
+      if (flow != Flow::Next) return flow;
+    }
+    return Flow::Next;
+  }
+
+  // Where an assignment writes: a variable, or an element or attribute below one.
+  Value* place(const Node* nodes, std::uint32_t index, Frame& frame) {
+    const Node& n = nodes[index];
+    if (n.kind == NodeKind::Variable) return &frame.slots.at(n.slot);
+    if (n.kind == NodeKind::Index && n.count == 2) {
+      Value* base = place(nodes, n.first, frame);
+      Value at = eval(nodes, n.first + 1, frame);
+      if (!base || base->kind != Value::Kind::Aggregate || at.kind != Value::Kind::Integer) return nullptr;
+      if (base->elements.use_count() > 1) base->elements = std::make_shared<Elements>(*base->elements);
+      const std::int64_t i = at.integer - base->integer;
+      if (i < 0 || i >= static_cast<std::int64_t>(base->elements->size())) return nullptr;
+      return &(*base->elements)[i];
+    }
+    if (n.kind == NodeKind::Attribute) {
+      Value* base = place(nodes, n.first, frame);
+      if (!base || base->kind != Value::Kind::Partial) return nullptr;
+      if (base->partial.use_count() > 1) base->partial = std::make_shared<Partial>(*base->partial);
+      for (auto& [name, value] : base->partial->attributes)
+        if (meta::equal_names(name, n.text)) {
+          value = std::make_shared<Value>(*value);
+          return value.get();
+        }
+    }
+    return nullptr;
+  }
+
+  Flow execute(const Node* nodes, std::uint32_t index, Frame& frame) {
+    const Node& n = nodes[index];
+    switch (n.kind) {
+      case NodeKind::Null: return Flow::Next;
+      case NodeKind::Escape: return Flow::Escape;
+      case NodeKind::Skip: return Flow::Skip;
+      case NodeKind::Block: return execute_list(nodes, n.first, n.count, frame);
+      case NodeKind::Return:
+        frame.result = n.count ? eval(nodes, n.first, frame) : Value{};
+        return Flow::Return;
+      case NodeKind::Assign: {
+        Value value = eval(nodes, n.first + 1, frame);
+        Value* target = place(nodes, n.first, frame);
+        if (!target) throw Unevaluable("an assignment to something that holds no value");
+        *target = std::move(value);
+        return Flow::Next;
+      }
+      case NodeKind::Alias:
+        frame.slots.at(n.slot) = eval(nodes, n.first, frame);
+        return execute_list(nodes, n.first + 1, n.count - 1, frame);
+      case NodeKind::If: {
+        const Truth t = truth_of(eval(nodes, n.first, frame));
+        return execute(nodes, t == Truth::True ? n.first + 1 : n.first + 2, frame);
+      }
+      case NodeKind::Case: {
+        Value selector = eval(nodes, n.first, frame);
+        const std::uint32_t actions = n.count - 1 - n.slot;
+        for (std::uint32_t a = 0; a < actions; ++a) {
+          const Node& action = nodes[n.first + 1 + a];
+          for (std::uint32_t l = 0; l < action.slot; ++l)
+            if (equal(selector, eval(nodes, action.first + l, frame)) == Truth::True)
+              return execute(nodes, action.first + action.slot, frame);
+        }
+        if (n.slot) return execute(nodes, n.first + n.count - 1, frame);
+        return Flow::Next;
+      }
+      case NodeKind::ProcedureCall: {
+        std::vector<Value> arguments;
+        for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(eval(nodes, n.first + i, frame));
+        if (n.algorithm) {
+          invoke(*n.algorithm, arguments);
+        } else {
+          builtin_procedure(n.builtin, arguments);
+          arguments.resize(1);  // INSERT and REMOVE change their first argument
+        }
+        const std::uint32_t var_parameters = n.algorithm ? n.algorithm->var_parameters : 1u;
+        for (std::uint32_t i = 0; i < n.count && i < 32 && i < arguments.size(); ++i)
+          if (var_parameters & (1u << i))
+            if (Value* target = place(nodes, n.first + i, frame)) *target = arguments[i];
+        return Flow::Next;
+      }
+      case NodeKind::Loop: return loop(nodes, n, frame);
+      default: throw Unevaluable("an expression where a statement belongs");
+    }
+  }
+
+  static void builtin_procedure(Builtin builtin, std::vector<Value>& arguments) {
+    if (arguments.size() < 2 || arguments[0].kind != Value::Kind::Aggregate) return;
+    Elements elements = *arguments[0].elements;
+    const Value position = arguments.size() > 2 ? arguments[2] : Value{};
+    if (builtin == Builtin::Insert) {
+      // INSERT(L, E, P): E after the P-th element (0: first).
+      const std::int64_t p = position.kind == Value::Kind::Integer ? position.integer : 0;
+      if (p < 0 || p > static_cast<std::int64_t>(elements.size())) return;
+      elements.insert(elements.begin() + p, arguments[1]);
+    } else if (builtin == Builtin::Remove) {
+      // REMOVE(L, P): the P-th element.
+      const Value& at = arguments[1];
+      if (at.kind != Value::Kind::Integer || at.integer < 1 || at.integer > static_cast<std::int64_t>(elements.size()))
+        return;
+      elements.erase(elements.begin() + (at.integer - 1));
+    }
+    arguments[0] = Value::of_elements(std::move(elements), arguments[0].integer);
+  }
+
+  Flow loop(const Node* nodes, const Node& n, Frame& frame) {
+    const std::uint32_t f = n.first;
+    const bool counted = n.integer != 0;
+    const bool has_while = nodes[f + 3].kind != NodeKind::Indeterminate;
+    const bool has_until = nodes[f + 4].kind != NodeKind::Indeterminate;
+    std::int64_t i = 0, to = 0, by = 1;
+    if (counted) {
+      Value from = eval(nodes, f, frame), limit = eval(nodes, f + 1, frame);
+      Value increment = nodes[f + 2].kind == NodeKind::Indeterminate ? Value::of_integer(1) : eval(nodes, f + 2, frame);
+      if (from.kind != Value::Kind::Integer || limit.kind != Value::Kind::Integer || increment.kind != Value::Kind::Integer ||
+          increment.integer == 0)
+        return Flow::Next;  // a `?` bound: the loop is not executed (ISO 10303-11 13.9.1)
+      i = from.integer;
+      to = limit.integer;
+      by = increment.integer;
+    }
+    for (;;) {
+      step();
+      if (counted && (by > 0 ? i > to : i < to)) break;
+      if (counted) frame.slots.at(n.slot) = Value::of_integer(i);
+      if (has_while && truth_of(eval(nodes, f + 3, frame)) != Truth::True) break;
+      const Flow flow = execute(nodes, f + 5, frame);
+      if (flow == Flow::Return) return flow;
+      if (flow == Flow::Escape) break;
+      if (has_until && truth_of(eval(nodes, f + 4, frame)) == Truth::True) break;
+      if (counted) i += by;
+    }
+    return Flow::Next;
+  }
+};
+
+// ---------------------------------------------------------------- checking a model
+
+class Checker {
+ public:
+  Checker(const meta::Model& model, std::size_t limit) : model_(model), interpreter_(model), limit_(limit) {}
+
+  std::vector<Violation> run() {
+    std::vector<meta::Instance*> order;
+    for (meta::Instance* instance : model_.in_id_order(order)) {
+      if (full()) break;
+      check_instance(*instance);
+    }
+    check_unique();
+    check_global_rules();
+    return std::move(violations_);
+  }
+
+ private:
+  const meta::Model& model_;
+  Interpreter interpreter_;
+  std::size_t limit_;
+  std::vector<Violation> violations_;
+  std::vector<const meta::SchemaInfo*> schemas_;
+
+  bool full() const { return violations_.size() >= limit_; }
+
+  static Violation violation(Violation::Kind kind, std::uint32_t id, std::string_view owner,
+                             std::string_view attribute = {}) {
+    Violation v;
+    v.kind = kind;
+    v.id = id;
+    v.owner = owner;
+    v.attribute = attribute;
+    return v;
+  }
+
+  void report(Violation v) {
+    if (!full()) violations_.push_back(std::move(v));
+  }
+
+  // Evaluates one rule; FALSE is a violation, and a rule that cannot be
+  // finished is reported as such.
+  void judge(const meta::DomainRuleInfo& rule, Value self, Violation violation) {
+    try {
+      if (truth_of(interpreter_.evaluate(rule, std::move(self))) != Truth::False) return;
+    } catch (const Unevaluable& reason) {
+      violation.kind = Violation::Kind::Unevaluated;
+      violation.message = reason.what();
+    } catch (const std::out_of_range&) {
+      violation.kind = Violation::Kind::Unevaluated;
+      violation.message = "a variable outside its frame";
+    }
+    violation.label = rule.label;
+    violation.text = rule.text;
+    report(std::move(violation));
+  }
+
+  void check_instance(meta::Instance& instance) {
+    const meta::EntityInfo& info = instance.entity_info();
+    for (const meta::Upcast& up : info.upcasts) {
+      note_schema(up.entity->schema);
+      for (const meta::DomainRuleInfo& rule : up.entity->where)
+        judge(rule, Value::of_instance(&instance), violation(Violation::Kind::Where, instance.id(), up.entity->name));
+    }
+    for (const meta::AttributeInfo& attribute : info.attributes) {
+      if (!attribute.stored()) continue;
+      if (auto ref = meta::get(instance, attribute)) check_value(instance, attribute, *ref);
+    }
+  }
+
+  static bool has_type_rules(const meta::TypeInfo& type, int depth = 0) {
+    if (depth > 64) return false;
+    if (!type.where.empty()) return true;
+    if (type.kind == meta::TypeKind::Alias || type.is_aggregate()) return type.underlying && has_type_rules(*type.underlying, depth + 1);
+    if (type.kind == meta::TypeKind::Select)
+      return std::any_of(type.members.begin(), type.members.end(),
+                         [&](const meta::TypeInfo* m) { return m->kind != meta::TypeKind::Entity && has_type_rules(*m, depth + 1); });
+    return false;
+  }
+
+  // The WHERE rules of every named type the value is declared with (an
+  // alias chain, aggregate elements, a select's member).
+  void check_value(meta::Instance& instance, const meta::AttributeInfo& attribute, const meta::ValueRef& ref) {
+    if (!has_type_rules(ref.type())) return;
+    for (const meta::TypeInfo* t = &ref.type(); t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
+      apply_type_rules(instance, attribute, *t, [&] { return from_ref(meta::ValueRef(*t, ref.slot())); });
+    const meta::TypeInfo& resolved = ref.resolved();
+    if (resolved.is_aggregate()) {
+      for (std::size_t i = 0; i < ref.size(); ++i) check_value(instance, attribute, ref.element(i));
+    } else if (resolved.kind == meta::TypeKind::Select) {
+      const meta::Select& select = ref.select();
+      if (const meta::TypeInfo* member = select.member())
+        for (const meta::TypeInfo* t = member; t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
+          apply_type_rules(instance, attribute, *t, [&] { return from_select(select); });
+    }
+  }
+
+  template <class MakeValue>
+  void apply_type_rules(meta::Instance& instance, const meta::AttributeInfo& attribute, const meta::TypeInfo& type,
+                        MakeValue make) {
+    if (type.where.empty()) return;
+    note_schema(type.schema);
+    const Value value = make();
+    for (const meta::DomainRuleInfo& rule : type.where)
+      judge(rule, value, violation(Violation::Kind::TypeWhere, instance.id(), type.name, attribute.name));
+  }
+
+  void note_schema(const meta::SchemaInfo* schema) {
+    if (schema && std::find(schemas_.begin(), schemas_.end(), schema) == schemas_.end()) schemas_.push_back(schema);
+  }
+
+  // A key for the values of a UNIQUE clause: instances by id, the rest by
+  // their canonical text.
+  static void key_of(const Value& v, std::string& key) {
+    using K = Value::Kind;
+    switch (v.kind) {
+      case K::Indeterminate: key += '?'; break;
+      case K::Integer: key += fmt::format("i{}", v.integer); break;
+      case K::Real: key += fmt::format("r{}", v.real); break;
+      case K::Logical: key += fmt::format("l{}", static_cast<int>(v.logical)); break;
+      case K::String:
+      case K::Binary:
+      case K::Enumeration: key += fmt::format("s{}:{}", v.text.size(), v.text); break;
+      case K::Instance: key += fmt::format("#{}", v.instance->id()); break;
+      case K::Partial: key += 'p'; break;
+      case K::Aggregate:
+        key += '(';
+        for (const Value& e : *v.elements) key_of(e, key), key += ',';
+        key += ')';
+        break;
+    }
+  }
+
+  void check_unique() {
+    std::map<const meta::EntityInfo*, bool> seen;
+    for (meta::Instance* instance : model_.instances())
+      for (const meta::Upcast& up : instance->entity_info().upcasts)
+        if (!up.entity->unique.empty()) seen[up.entity] = true;
+    for (const auto& [entity, unused] : seen) {
+      for (const meta::UniqueRuleInfo& rule : entity->unique) {
+        std::unordered_map<std::string, std::uint32_t> first;
+        std::vector<meta::Instance*> order;
+        for (meta::Instance* instance : model_.in_id_order(order)) {
+          if (full()) return;
+          if (!instance->entity_info().is_a(*entity)) continue;
+          std::string key;
+          bool any_indeterminate = false;
+          try {
+            for (std::string_view name : rule.attributes) {
+              Value v = interpreter_.attribute_of(*instance, name);
+              any_indeterminate |= v.indeterminate();
+              key_of(v, key);
+              key += '|';
+            }
+          } catch (const Unevaluable&) {
+            continue;
+          }
+          if (any_indeterminate) continue;  // `?` is never equal to anything
+          auto [it, fresh] = first.try_emplace(std::move(key), instance->id());
+          if (!fresh) {
+            Violation v = violation(Violation::Kind::Unique, instance->id(), entity->name);
+            v.label = rule.label;
+            v.other = it->second;
+            report(std::move(v));
+          }
+        }
+      }
+    }
+  }
+
+  void check_global_rules() {
+    for (const meta::SchemaInfo* schema : schemas_)
+      for (const meta::AlgorithmInfo* rule : schema->rules) {
+        if (full()) return;
+        Violation base = violation(Violation::Kind::GlobalRule, 0, rule->name);
+        try {
+          const std::vector<Truth> results = interpreter_.run_rule(*rule);
+          for (std::size_t i = 0; i < results.size(); ++i)
+            if (results[i] == Truth::False) {
+              Violation v = base;
+              v.label = rule->where[i].label;
+              v.text = rule->where[i].text;
+              report(std::move(v));
+            }
+        } catch (const Unevaluable& reason) {
+          base.kind = Violation::Kind::Unevaluated;
+          base.message = reason.what();
+          report(std::move(base));
+        }
+      }
+  }
+};
+
+std::string express_text(const Value& v) {
+  using K = Value::Kind;
+  switch (v.kind) {
+    case K::Indeterminate: return "?";
+    case K::Integer: return std::to_string(v.integer);
+    case K::Real: return fmt::format("{}", v.real);
+    case K::Logical: return v.logical == Truth::True ? "TRUE" : v.logical == Truth::False ? "FALSE" : "UNKNOWN";
+    case K::String: return "'" + v.text + "'";
+    case K::Binary: return "%" + v.text;
+    case K::Enumeration: return "." + upper(v.text) + ".";
+    case K::Instance: return fmt::format("#{}", v.instance->id());
+    case K::Partial: {
+      std::string out;
+      for (const meta::EntityInfo* e : v.partial->entities) out += (out.empty() ? "" : "||") + upper(e->name);
+      out += "(";
+      bool first = true;
+      for (const auto& [name, value] : v.partial->attributes) {
+        out += (first ? "" : ",") + express_text(*value);
+        first = false;
+      }
+      return out + ")";
+    }
+    case K::Aggregate: {
+      std::string out = "[";
+      for (std::size_t i = 0; i < v.elements->size(); ++i) out += (i ? "," : "") + express_text((*v.elements)[i]);
+      return out + "]";
+    }
+  }
+  return "?";
+}
+
+Value parse_argument(const meta::Model& model, std::string_view text) {
+  if (text == "?") return {};
+  if (text.starts_with("#")) {
+    const auto id = static_cast<std::uint32_t>(std::strtoul(std::string(text.substr(1)).c_str(), nullptr, 10));
+    for (meta::Instance* i : model.instances())
+      if (i->id() == id) return Value::of_instance(i);
+    return {};
+  }
+  if (text.size() >= 2 && text.front() == '\'' && text.back() == '\'') return Value::of_string(std::string(text.substr(1, text.size() - 2)));
+  if (text == ".T." || text == "TRUE") return Value::of_bool(true);
+  if (text == ".F." || text == "FALSE") return Value::of_bool(false);
+  if (text == ".U." || text == "UNKNOWN") return Value::of_truth(Truth::Unknown);
+  const std::string s(text);
+  if (s.find_first_of(".eE") != std::string::npos) return Value::of_real(std::strtod(s.c_str(), nullptr));
+  return Value::of_integer(std::strtoll(s.c_str(), nullptr, 10));
+}
+
+}  // namespace
+
+std::string Violation::to_string() const {
+  const std::string rule = std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+  switch (kind) {
+    case Kind::Where: return fmt::format("#{}: {} violated", id, rule);
+    case Kind::TypeWhere: return fmt::format("#{}: {} violated (by {})", id, rule, attribute);
+    case Kind::Unique: return fmt::format("#{}: {} violated: the same values as #{}", id, rule, other);
+    case Kind::GlobalRule: return fmt::format("rule {} violated", rule);
+    case Kind::Unevaluated:
+      return id ? fmt::format("#{}: {} not evaluated: {}", id, rule, message)
+                : fmt::format("rule {} not evaluated: {}", rule, message);
+  }
+  return rule;
+}
+
+std::vector<Violation> check(const meta::Model& model, std::size_t limit) { return Checker(model, limit).run(); }
+
+std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
+                              p21::Diagnostics& diagnostics, bool with_text, std::size_t limit) {
+  const std::vector<Violation> violations = check(model, limit);
+  if (violations.empty()) return 0;
+  std::optional<p21::Document> document;
+  if (!io::is_standard_stream(path)) {
+    p21::ReadOptions options;
+    options.strict = false;
+    options.validate_parameters = false;
+    document = std::move(p21::read_file(path, options).document);
+  }
+  std::size_t count = 0;
+  for (const Violation& v : violations) {
+    p21::Diagnostic d;
+    d.file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
+    d.instance_id = v.id;
+    d.severity = v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
+    if (v.kind != Violation::Kind::Unevaluated) ++count;
+    std::string message = v.to_string();
+    const std::string prefix = fmt::format("#{}: ", v.id);
+    if (v.id && message.starts_with(prefix)) message.erase(0, prefix.size());  // the diagnostic prints `#id`
+    if (with_text && !v.text.empty()) message += fmt::format(": {}", v.text);
+    d.message = std::move(message);
+    if (document && v.id)
+      if (const p21::RecordEntry* record = document->find(v.id)) d.location = document->location(record->offset);
+    diagnostics.add(std::move(d));
+  }
+  return count;
+}
+
+std::vector<std::string> list_rules(const meta::SchemaInfo& schema) {
+  std::vector<std::string> out;
+  auto name = [](std::string_view owner, std::string_view label) {
+    return std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+  };
+  for (const meta::TypeInfo* type : schema.types)
+    for (const meta::DomainRuleInfo& rule : type->where) out.push_back(name(type->name, rule.label));
+  for (const meta::EntityInfo* entity : schema.entities) {
+    for (const meta::DomainRuleInfo& rule : entity->where) out.push_back(name(entity->name, rule.label));
+    for (const meta::UniqueRuleInfo& rule : entity->unique) out.push_back(name(entity->name, rule.label));
+  }
+  for (const meta::AlgorithmInfo* rule : schema.rules)
+    for (const meta::DomainRuleInfo& where : rule->where) out.push_back(name(rule->name, where.label));
+  return out;
+}
+
+std::string derive_text(meta::Instance& instance, const meta::AttributeInfo& attribute) {
+  if (!attribute.derivation) return {};
+  meta::Model empty;
+  Interpreter interpreter(empty);
+  try {
+    return express_text(interpreter.evaluate(*attribute.derivation, Value::of_instance(&instance)));
+  } catch (const Unevaluable& reason) {
+    return std::string("not evaluated: ") + reason.what();
+  }
+}
+
+std::string call_text(const meta::Model& model, const meta::AlgorithmInfo& function, const std::vector<std::string>& arguments) {
+  Interpreter interpreter(model);
+  std::vector<Value> values;
+  for (const std::string& a : arguments) values.push_back(parse_argument(model, a));
+  try {
+    return express_text(interpreter.call(function, std::move(values)));
+  } catch (const Unevaluable& reason) {
+    return std::string("not evaluated: ") + reason.what();
+  }
+}
+
+}  // namespace stepnc::rules
