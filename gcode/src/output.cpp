@@ -13,11 +13,11 @@ namespace stepnc::gcode {
 namespace {
 
 std::string_view kind_name(CallKind kind) {
-  static constexpr std::array<std::string_view, 25> names = {
+  static constexpr std::array<std::string_view, 27> names = {
       "rapid", "linear", "arc", "dwell", "feed_rate", "spindle_speed", "spindle_clockwise",
       "spindle_counterclockwise", "spindle_stop", "select_tool", "change_tool", "tool_length_offset", "flood_on",
       "flood_off", "mist_on", "mist_off", "units", "plane", "g92_offset", "g5x_offset", "comment", "message",
-      "program_stop", "program_end", ""};
+      "program_stop", "program_end", "feed_sync_start", "feed_sync_stop"};
   return names[static_cast<std::size_t>(kind)];
 }
 
@@ -38,6 +38,7 @@ std::size_t value_count(CallKind kind) {
     case CallKind::g5x_offset: return 7;
     case CallKind::dwell: case CallKind::feed_rate: case CallKind::spindle_speed: case CallKind::select_tool:
     case CallKind::change_tool: case CallKind::tool_length_offset: case CallKind::plane: case CallKind::program_stop:
+    case CallKind::feed_sync_start:
       return 1;
     default: return 0;
   }
@@ -89,8 +90,10 @@ std::string json_text(const Result& result) {
 }
 
 std::string plot_svg(const Result& result) {
-  const bool lathe = std::any_of(result.calls.begin(), result.calls.end(),
-                                 [](const Call& c) { return c.kind == CallKind::plane && c.v[0] == 18; });
+  // Every call carries the plane it runs in (a lathe is in G18 from the start, with no plane call).
+  const bool lathe = std::any_of(result.calls.begin(), result.calls.end(), [](const Call& c) {
+    return (c.kind == CallKind::rapid || c.kind == CallKind::linear || c.kind == CallKind::arc) && c.plane == 18;
+  });
   // Screen axes: XY, or Z across and X up for G18 work.
   auto project = [&](double x, double y, double z) { return lathe ? std::array{z, x} : std::array{x, y}; };
   struct Path {
