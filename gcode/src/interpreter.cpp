@@ -1554,6 +1554,7 @@ class Interpreter {
       event.parameters.insert(event.parameters.begin(), it->second.begin(), it->second.end());
     lathe::Path path;
     std::string problem;
+    const std::size_t budget = o_.max_calls - std::min(o_.max_calls, result_.calls.size());
     switch (meaning) {
       case meaning_finishing_cycle: path = lathe::finish(capture_contour(w, name)); break;
       case meaning_stock_removal_turning:
@@ -1567,7 +1568,7 @@ class Interpreter {
                               turning ? 'U' : 'W'), column);
         const lathe::Point allowance{w.has('U') ? to_mm(w.get('U')) / 2 : 0, w.has('W') ? to_mm(w.get('W')) : 0};
         const auto contour = capture_contour(w, name);
-        problem = lathe::rough(contour, {depth, repetitive_.roughing_retract_mm, allowance, turning}, path);
+        problem = lathe::rough(contour, {depth, repetitive_.roughing_retract_mm, allowance, turning}, path, budget);
         if (problem.starts_with("type II")) unsupported(fmt::format("{} {}", name, problem), column);
         break;
       }
@@ -1579,7 +1580,11 @@ class Interpreter {
         if (w.has('K')) relief.z = to_mm(w.get('K'));
         if (w.has('D')) divisions = division_count(w, 'D');
         const lathe::Point allowance{w.has('U') ? to_mm(w.get('U')) / 2 : 0, w.has('W') ? to_mm(w.get('W')) : 0};
-        path = lathe::pattern_repeat(capture_contour(w, name), allowance, relief, divisions);
+        const auto contour = capture_contour(w, name);
+        if (static_cast<double>(divisions) * static_cast<double>(contour.moves.size() + 1) > static_cast<double>(budget))
+          problem = "more moves than the call budget allows";
+        else
+          path = lathe::pattern_repeat(contour, allowance, relief, divisions);
         break;
       }
       case meaning_end_face_peck_drilling:
@@ -1597,7 +1602,7 @@ class Interpreter {
         pecking.step = pecking.along_z ? di : dk;
         pecking.retract = repetitive_.peck_return_mm;
         pecking.relief = w.has('D') ? increments(w, 'D') : w.has('R') ? to_mm(w.get('R')) : 0;
-        problem = lathe::peck(pecking, path);
+        problem = lathe::peck(pecking, path, budget);
         break;
       }
       case meaning_multiple_threading: {
@@ -1620,7 +1625,7 @@ class Interpreter {
         t.finish_passes = repetitive_.thread_finish_passes;
         t.chamfer = repetitive_.thread_chamfer_leads * state_.feed;
         t.angle_deg = w.has('A') ? thread_angle(w.get('A'), w.col('A')) : repetitive_.thread_angle_deg;
-        problem = lathe::thread(t, path);
+        problem = lathe::thread(t, path, budget);
         break;
       }
       default: break;

@@ -14,7 +14,7 @@ namespace stepnc::gcode::lathe {
 namespace {
 
 constexpr double eps = 1e-9;
-constexpr std::size_t max_moves = 10'000'000;  // a fuzzed depth of 1e-300 must not run forever
+constexpr const char* over_budget = "more moves than the call budget allows";
 
 double sign(double v) { return v > eps ? 1 : v < -eps ? -1 : 0; }
 
@@ -49,7 +49,7 @@ Path shifted(const Path& path, Point by) {
   return out;
 }
 
-std::string rough(const Contour& contour, const Roughing& r, Path& out) {
+std::string rough(const Contour& contour, const Roughing& r, Path& out, std::size_t max_moves) {
   if (contour.moves.empty()) return "the contour has no move";
   if (!(r.depth > 0)) return "the depth of cut must be above zero";
   // (a, b): a the axis the passes step along (X for G71, Z for G72), b the
@@ -118,7 +118,7 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out) {
   const double top = alpha(path.front().end);
   const double b_start = b_of(start);
   for (int k = 1; k * r.depth < top - 1e-6; ++k) {
-    if (out.size() > max_moves) return "too many passes";
+    if (out.size() > max_moves) return over_budget;
     const double level = k * r.depth;
     const double a = a_of(start) + ds * level;
     const double b_end = b_start + db * hit(level);
@@ -164,7 +164,7 @@ Path finish(const Contour& contour) {
 // Each column: pecks of `peck`, each followed by a rapid back by e; at the
 // bottom the relief, a rapid back to the start level, then to the next
 // column; after the last, back to the start point.
-std::string peck(const Pecking& p, Path& out) {
+std::string peck(const Pecking& p, Path& out, std::size_t max_moves) {
   auto a_of = [&](Point q) { return p.along_z ? q.x : q.z; };
   auto b_of = [&](Point q) { return p.along_z ? q.z : q.x; };
   auto point = [&](double a, double b) { return p.along_z ? Point{a, b} : Point{b, a}; };
@@ -177,7 +177,7 @@ std::string peck(const Pecking& p, Path& out) {
   if (p.peck > 0 && p.retract >= p.peck) return "the return e must be smaller than the peck depth";
   double a = a0;
   for (bool first = true;; first = false) {
-    if (out.size() > max_moves) return "too many pecks";
+    if (out.size() > max_moves) return over_budget;
     if (!first) out.push_back(rapid(point(a, b0)));
     double b = b0;
     while (true) {
@@ -186,7 +186,7 @@ std::string peck(const Pecking& p, Path& out) {
       if (next == b1) break;
       out.push_back(rapid(point(a, next - db * p.retract)));
       b = next;
-      if (out.size() > max_moves) return "too many pecks";
+      if (out.size() > max_moves) return over_budget;
     }
     const double relieved = a - da * p.relief;
     if (p.relief > 0 && da != 0) out.push_back(rapid(point(relieved, b1)));
@@ -203,7 +203,7 @@ std::string peck(const Pecking& p, Path& out) {
 // passes at k. Single-edge infeed: each pass starts depth * tan(a / 2)
 // further back along the thread's direction. A chamfer runs at 45
 // degrees out of the last `chamfer` mm of the thread.
-std::string thread(const Threading& t, Path& out) {
+std::string thread(const Threading& t, Path& out, std::size_t max_moves) {
   const double dz = sign(t.end.z - t.start.z);
   if (dz == 0) return "the thread's end Z equals the start Z";
   const double sx = sign(t.start.x - t.end.x);  // from the root toward the outside
@@ -217,7 +217,7 @@ std::string thread(const Threading& t, Path& out) {
   std::vector<double> depths;
   double last = 0;
   for (int n = 1;; ++n) {
-    if (depths.size() > 100'000) return "too many passes";
+    if (depths.size() * 6 > max_moves) return over_budget;
     double d = std::max(t.first_depth * std::sqrt(n), last + t.min_depth);
     if (d >= rough_to - 1e-9) {
       depths.push_back(rough_to);
@@ -227,6 +227,7 @@ std::string thread(const Threading& t, Path& out) {
     last = d;
   }
   for (int i = 0; i < t.finish_passes; ++i) depths.push_back(t.height);
+  if (depths.size() * 6 > max_moves) return over_budget;
   const double tan_half = std::tan(t.angle_deg / 2 * std::numbers::pi / 180);
   for (const double d : depths) {
     const double shift = -dz * d * tan_half;

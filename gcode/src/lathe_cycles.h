@@ -6,6 +6,7 @@
 // the moves.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,14 +44,15 @@ Path shifted(const Path& path, Point by);
 // parallel to Z (G71) or X (G72) down to the contour shifted by the
 // allowance, each lifted by `retract` at 45 degrees and brought back at
 // rapid; then one pass along the shifted contour and a rapid to the start.
-// An empty string, or what is wrong with the contour.
+// An empty string, or what is wrong with the contour. Every generator
+// stops with an error past `max_moves` (the interpreter's call budget).
 struct Roughing {
   double depth = 0;
   double retract = 0;
   Point allowance;  // delta u / 2, delta w
   bool along_z = true;
 };
-std::string rough(const Contour& contour, const Roughing& roughing, Path& out);
+std::string rough(const Contour& contour, const Roughing& roughing, Path& out, std::size_t max_moves);
 
 // G73: the contour `divisions` times, shifted by allowance + relief * (d - i) / (d - 1).
 Path pattern_repeat(const Contour& contour, Point allowance, Point relief, int divisions);
@@ -67,7 +69,7 @@ struct Pecking {
   double relief = 0;   // delta d, at the bottom, against the step direction
   bool along_z = true;
 };
-std::string peck(const Pecking& pecking, Path& out);
+std::string peck(const Pecking& pecking, Path& out, std::size_t max_moves);
 
 // G92 (one pass at full depth) and G76 (passes of equal cut area).
 struct Threading {
@@ -82,6 +84,6 @@ struct Threading {
   double chamfer = 0;     // r times the lead, mm
   double angle_deg = 0;   // a: successive passes shift along Z by depth * tan(a / 2)
 };
-std::string thread(const Threading& threading, Path& out);
+std::string thread(const Threading& threading, Path& out, std::size_t max_moves);
 
 }  // namespace stepnc::gcode::lathe
