@@ -943,7 +943,8 @@ class Interpreter {
         for (std::size_t i = 0; i < n.args.size(); ++i)
           if (n.args[i] != Word::none) event.parameters.emplace_back(static_cast<char>('1' + i), eval(n.args[i], n.column));
         result_.cycles.push_back(std::move(event));
-      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE85" || n.name == "CYCLE86")) {
+      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE83" || n.name == "CYCLE84" ||
+                            n.name == "CYCLE85" || n.name == "CYCLE86")) {
         siemens_drilling(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
@@ -959,7 +960,7 @@ class Interpreter {
   void siemens_drilling(const NamedWord& n, const Block& block) {
     std::vector<std::optional<double>> a;
     for (std::uint32_t arg : n.args) a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
-    a.resize(std::max<std::size_t>(a.size(), 11));
+    a.resize(std::max<std::size_t>(a.size(), 12));
     auto need = [&](std::size_t i, const char* name) {
       if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
       return *a[i];
@@ -968,7 +969,8 @@ class Interpreter {
     const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
     const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
     if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
-    if (n.name != "CYCLE85" && state_.feed <= 0) stop(fmt::format("{} with zero feed rate", n.name), n.column);
+    if (n.name != "CYCLE85" && n.name != "CYCLE84" && state_.feed <= 0)
+      stop(fmt::format("{} with zero feed rate", n.name), n.column);
     CycleEvent event;
     event.name = n.name;
     event.line = block.line;
@@ -982,7 +984,11 @@ class Interpreter {
     };
     const double dwell = a[5].value_or(0);
     move(CallKind::rapid, at(rfp + sdis));
-    if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
+    if (n.name == "CYCLE83") {
+      deep_hole_drilling(n, a, rfp, sdis, dp, at);
+    } else if (n.name == "CYCLE84") {
+      rigid_tapping(n, a, rfp + sdis, dp, at);
+    } else if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
       const double feed = state_.feed;
       state_.feed = to_mm(need(6, "FFR"));
       emit(CallKind::feed_rate).v[0] = state_.feed;
@@ -997,6 +1003,8 @@ class Interpreter {
       move(CallKind::linear, at(dp));
       if (n.name != "CYCLE81" && dwell > 0) emit(CallKind::dwell).v[0] = dwell;
     }
+    std::int8_t sdac = 0;  // CYCLE84: the spindle as SDAC leaves it (3, 4, 5)
+    if (n.name == "CYCLE84") sdac = static_cast<std::int8_t>(to_int(a[6].value_or(3), n.column));
     std::int8_t restart = 0;
     if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
       if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
@@ -1012,8 +1020,105 @@ class Interpreter {
       state_.spindle_direction = restart;
       emit(restart > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
     }
+    if (sdac) {
+      if (sdac < 3 || sdac > 5) stop("CYCLE84: SDAC must be 3, 4 or 5", n.column);
+      state_.spindle_direction = sdac == 3 ? 1 : sdac == 4 ? -1 : 0;
+      emit(sdac == 3 ? CallKind::spindle_clockwise : sdac == 4 ? CallKind::spindle_counterclockwise : CallKind::spindle_stop);
+    }
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
+  }
+
+  // CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI)
+  // from RFP + SDIS: the first depth FDEP (or FDPR below RFP) at F * FRF,
+  // then each step DAM shorter than the one before but never shorter than
+  // DAM (0: as long as the first), DTB at each depth. VARI 1 (chip removal):
+  // out to RFP + SDIS at rapid, DTS there, back at rapid to the anticipation
+  // distance above the last depth (0.6 mm, or depth / 50 up to 7 mm beyond
+  // 30 mm deep); VARI 0 (chip breaking): back 1 mm at feed.
+  template <class At>
+  void deep_hole_drilling(const NamedWord& n, const std::vector<std::optional<double>>& a, double rfp, double sdis,
+                          double dp, const At& at) {
+    const double first = a[5] ? to_mm(*a[5]) : a[6] ? rfp - to_mm(*a[6]) : dp;
+    if (first > rfp || first < dp) stop("CYCLE83: FDEP must lie between RFP and DP", n.column);
+    const double dam = to_mm(a[7].value_or(0)), dtb = a[8].value_or(0), dts = a[9].value_or(0);
+    const double frf = a[10].value_or(1);
+    const int vari = to_int(a[11].value_or(0), n.column);
+    if (vari != 0 && vari != 1) unsupported(fmt::format("CYCLE83 VARI={}", vari), n.column);
+    if (frf <= 0 || frf > 1) stop("CYCLE83: FRF must lie in (0, 1]", n.column);
+    if (dam < 0) stop("CYCLE83: DAM must not be negative", n.column);
+    const double feed = state_.feed;
+    const double total = rfp - dp;
+    const double anticipation = total <= 30 ? 0.6 : std::min(7.0, total / 50);
+    double depth = first, step = rfp - first;
+    if (frf != 1) {
+      state_.feed = feed * frf;
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+    }
+    move(CallKind::linear, at(depth));
+    if (frf != 1) {
+      state_.feed = feed;
+      emit(CallKind::feed_rate).v[0] = feed;
+    }
+    if (dtb > 0) emit(CallKind::dwell).v[0] = dtb;
+    std::size_t steps = 0;
+    while (depth > dp + 1e-9) {
+      if (++steps > o_.max_calls) stop("CYCLE83: more steps than the call budget allows", n.column);
+      if (dam > 0) step = std::max(step - dam, dam);
+      if (!(step > 1e-9)) stop("CYCLE83: the drilling depth does not advance", n.column);
+      const double next = std::max(depth - step, dp);
+      if (vari == 1) {
+        move(CallKind::rapid, at(rfp + sdis));
+        if (dts > 0) emit(CallKind::dwell).v[0] = dts;
+        move(CallKind::rapid, at(depth + anticipation));
+      } else {
+        move(CallKind::linear, at(depth + 1));
+      }
+      move(CallKind::linear, at(next));
+      if (dtb > 0) emit(CallKind::dwell).v[0] = dtb;
+      depth = next;
+    }
+  }
+
+  // CYCLE84(RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1):
+  // tapping synchronised to the spindle at SST with the pitch PIT (or the
+  // metric coarse pitch of the thread size MPIT; negative: left hand, M4),
+  // DTB at the bottom, out again at SST1 with the spindle reversed; SDAC is
+  // restored after the cycle.
+  template <class At>
+  void rigid_tapping(const NamedWord& n, const std::vector<std::optional<double>>& a, double start, double dp,
+                     const At& at) {
+    double pitch = 0;
+    if (a[8]) {
+      pitch = to_mm(*a[8]);
+    } else if (a[7]) {
+      // ISO metric coarse threads M3 to M48 (ISO 261).
+      static constexpr std::array<std::pair<int, double>, 21> coarse = {{{3, 0.5}, {4, 0.7}, {5, 0.8}, {6, 1}, {8, 1.25},
+          {10, 1.5}, {12, 1.75}, {14, 2}, {16, 2}, {18, 2.5}, {20, 2.5}, {22, 2.5}, {24, 3}, {27, 3}, {30, 3.5},
+          {33, 3.5}, {36, 4}, {39, 4}, {42, 4.5}, {45, 4.5}, {48, 5}}};
+      const auto it = std::find_if(coarse.begin(), coarse.end(), [&](const auto& e) { return e.first == std::abs(*a[7]); });
+      if (it == coarse.end()) stop(fmt::format("CYCLE84: MPIT {} is not a metric thread size from 3 to 48", *a[7]), n.column);
+      pitch = *a[7] < 0 ? -it->second : it->second;
+    } else {
+      stop("CYCLE84 needs PIT (the pitch) or MPIT (the thread size)", n.column);
+    }
+    if (pitch == 0) stop("CYCLE84: the pitch must not be zero", n.column);
+    const double in_speed = a[10].value_or(state_.spindle), out_speed = a[11].value_or(in_speed);
+    if (in_speed <= 0) stop("CYCLE84 needs SST, the tapping speed", n.column);
+    const bool right_hand = pitch > 0;
+    auto spindle = [&](double speed, bool clockwise) {
+      state_.spindle = speed;
+      emit(CallKind::spindle_speed).v[0] = speed;
+      state_.spindle_direction = clockwise ? 1 : -1;
+      emit(clockwise ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+    };
+    spindle(in_speed, right_hand);
+    emit(CallKind::feed_sync_start).v[0] = std::abs(pitch);
+    move(CallKind::linear, at(dp));
+    if (a[5].value_or(0) > 0) emit(CallKind::dwell).v[0] = *a[5];
+    spindle(out_speed, !right_hand);
+    move(CallKind::linear, at(start));
+    emit(CallKind::feed_sync_stop);
   }
 
   SavedModes save_modes() const {
