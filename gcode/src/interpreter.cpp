@@ -199,7 +199,7 @@ class Interpreter {
   std::array<std::array<double, axes>, 10> g5x_{};  // [1..9]
   bool cycle_initial_set_ = false;
   double cycle_initial_z_ = 0;  // the level G98 returns to
-  double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;  // sticky canned-cycle words (mm, program units)
+  double cycle_q_ = 0, cycle_p_ = 0;  // sticky canned-cycle words (Q in mm, P as written)
   double cycle_r_prog_ = 0, cycle_z_prog_ = 0;
 
   // Parameters.
@@ -879,6 +879,7 @@ class Interpreter {
   // M99: the next run of the subprogram, else back after the M98 (or to the
   // caller's block N P with `M99 P`).
   void return_from_subprogram(const Words& w, std::uint32_t column) {
+    if (capturing_) stop("M99 inside a cycle's contour", column);
     if (frames_.size() == 1 || !frames_.back().subprogram)
       unsupported("M99 outside a subprogram (the main program restarting without end)", column);
     Frame& frame = frames_.back();
