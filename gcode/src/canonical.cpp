@@ -75,6 +75,7 @@ class CallPrinter {
         fmt::format_to(std::back_inserter(out_), "START_SPEED_FEED_SYNC({:.6f},0", len(v[0]));
         break;
       case CallKind::feed_sync_stop: out_ += "STOP_SPEED_FEED_SYNCH("; break;
+      case CallKind::quadratic_spline: out_ += "NURBS_FEED(3, ..."; break;  // rs274 -g prints no points
     }
     out_ += ")";
   }

@@ -14,7 +14,7 @@ constexpr std::uint16_t same = 0;  // meaning = the code itself (filled in by g_
 
 // RS274NGC as LinuxCNC 2.9 reads it.
 constexpr GCodeEntry rs274ngc_g[] = {
-    {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {51, 1, same},
+    {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {50, 1, same},   {51, 1, same},
     {52, 1, same},   {53, 1, same},   {70, 15, same},  {80, 15, same},  {100, 0, same},  {170, 2, same},
     {171, 2, same},  {180, 2, same},  {181, 2, same},  {190, 2, same},  {191, 2, same},  {200, 6, same},
     {210, 6, same},  {280, 0, same},  {281, 0, same},  {300, 0, same},  {301, 0, same},  {330, 1, same},

@@ -1173,7 +1173,8 @@ class Interpreter {
 
   void refuse_unsupported_g(int code, std::uint32_t column, const Words&) {
     switch (code) {
-      case 51: case 52: case 53: unsupported("G5.x splines", column);
+      case 50: unsupported("G5 cubic splines", column);
+      case 52: case 53: unsupported("G5.2/G5.3 NURBS blocks", column);
       case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
       case 410: case 411: case 420: case 421:
@@ -1252,6 +1253,7 @@ class Interpreter {
         move(CallKind::linear, end);
         return;
       }
+      case 51: quadratic_spline(w); return;
       case 20: case 30:
         if (machine_coordinates) stop("G53 with an arc");
         if (!inverse_time_ && state_.feed <= 0) stop("G2/G3 with zero feed rate");
@@ -1274,6 +1276,26 @@ class Interpreter {
       }
       default: unsupported(fmt::format("G{:g} motion", motion_ / 10.0));
     }
+  }
+
+  // G5.1 (LinuxCNC): a quadratic B-spline in XY from the current point
+  // through the control point start + (I, J) to X Y.
+  void quadratic_spline(const Words& w) {
+    if (plane_ != 17) stop("G5.1 outside the XY plane (G17)");
+    if (!w.has('I') && !w.has('J')) stop("G5.1 needs I or J, the control point from the start");
+    const double i = w.has('I') ? to_mm(w.get('I')) : 0, j = w.has('J') ? to_mm(w.get('J')) : 0;
+    if (i == 0 && j == 0) stop("G5.1 with I and J both zero", w.col(w.has('I') ? 'I' : 'J'));
+    if (inverse_time_) unsupported("G5.1 in inverse time (G93)");
+    if (state_.feed <= 0) stop("G5.1 with zero feed rate");
+    const auto start = program_position();
+    const auto end = target(w, false);
+    if (end[2] != start[2]) stop("G5.1 moves in X and Y only", w.col('Z'));
+    Call& call = emit(CallKind::quadratic_spline);
+    std::copy(end.begin(), end.end(), call.v.begin());
+    call.v[6] = start[0] + i;
+    call.v[7] = start[1] + j;
+    set_program_position(end);
+    last_move_ = end;
   }
 
   // G93 (RS274NGC 3.5.19): the block's F is 1/minutes; the feed printed is

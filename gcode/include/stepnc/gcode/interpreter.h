@@ -42,6 +42,7 @@ enum class CallKind : std::uint8_t {
   program_end,       // M2/M30
   feed_sync_start,   // START_SPEED_FEED_SYNC(v[0] = pitch, mm per revolution): G33, Fanuc G32/G92/G76
   feed_sync_stop,    // STOP_SPEED_FEED_SYNCH()
+  quadratic_spline,  // NURBS_FEED(3, ...) of a G5.1: v = end x y z a b c, control point x y
 };
 
 // The modal state every motion runs under.
