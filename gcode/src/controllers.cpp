@@ -42,8 +42,8 @@ constexpr GCodeEntry fanuc_mill_g[] = {
     {400, 7, same},  {410, 7, same},  {420, 7, same},  {430, 8, same},  {440, 8, 4400},   {490, 8, same},
     {530, 0, same},  {540, 12, same}, {550, 12, same}, {560, 12, same}, {570, 12, same}, {580, 12, same},
     {590, 12, same}, {610, 13, same}, {640, 13, same}, {680, 16, 680},  {690, 16, 690},  {730, 1, same},
-    {740, 1, same},  {760, 1, meaning_fine_boring},  {800, 1, same},  {810, 1, same},  {820, 1, same},  {830, 1, same},
-    {840, 1, same},  {850, 1, same},  {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},
+    {740, 1, meaning_left_hand_tapping},  {760, 1, meaning_fine_boring},  {800, 1, same},  {810, 1, same},
+    {820, 1, same},  {830, 1, same},  {840, 1, meaning_tapping},  {850, 1, same},  {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},
     {900, 3, same},  {910, 3, same},  {920, 0, same},  {940, 5, same},  {950, 5, same},  {980, 10, same},
     {990, 10, same}};
 // Fanuc lathe (0i-TF, G-code system A): G90/G92/G94 are single cycles,

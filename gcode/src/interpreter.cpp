@@ -1189,7 +1189,6 @@ class Interpreter {
       case 611: unsupported("G61.1 exact stop", column);
       case 4400: unsupported("G44 negative tool length offset", column);
       case 680: unsupported("G68 coordinate rotation", column);
-      case meaning_fine_boring: unsupported("G76 fine boring cycle", column);
       default: break;
     }
   }
@@ -1260,7 +1259,8 @@ class Interpreter {
         arc(w, motion_ == 20);
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
-      case 730: case 810: case 820: case 830: case 850: case 860: case 890: cycle(w, block); return;
+      case 730: case 810: case 820: case 830: case 850: case 860: case 890:
+      case meaning_left_hand_tapping: case meaning_tapping: case meaning_fine_boring: cycle(w, block); return;
       case meaning_turning_cycle: case meaning_threading_cycle: case meaning_facing_cycle: single_cycle(w, block); return;
       case 330: {  // spindle-synchronised motion: LinuxCNC G33 K, Fanuc G32 F (the lead)
         const char letter = c_.thread_pitch_letter;
@@ -1379,7 +1379,7 @@ class Interpreter {
   // ---- canned cycles (G73, G81-G83, G85, G86, G89), XY plane ----------------
 
   void cycle(const Words& w, const Block& block) {
-    const int code = motion_ / 10;
+    const int code = motion_ > 5000 ? motion_ / 100 : motion_ / 10;  // Fanuc's own cycles are G code x 100
     if (plane_ != 17) unsupported("canned cycles outside the XY plane (G18, G19)");
     const char r_letter = c_.repeat_letter;
     if (w.repeats && (*w.repeats < 1 || std::floor(*w.repeats) != *w.repeats || *w.repeats > 1e6))
@@ -1399,7 +1399,11 @@ class Interpreter {
     if (w.has('P')) cycle_p_ = w.get('P');
     if ((code == 73 || code == 83) && cycle_q_ <= 0) stop(fmt::format("G{} needs a positive Q", code));
     if ((code == 82 || code == 89) && !w.has('P') && cycle_p_ < 0) stop(fmt::format("G{} needs P", code));
-    if (code == 86 && state_.spindle_direction == 0) stop("G86 with the spindle not turning");
+    if ((code == 86 || code == 84 || code == 74 || code == 76) && state_.spindle_direction == 0)
+      stop(fmt::format("G{} with the spindle not turning", code));
+    if (code == 84 && state_.spindle_direction < 0) stop("G84 (right-hand tapping) with the spindle turning M4");
+    if (code == 74 && state_.spindle_direction > 0) stop("G74 (left-hand tapping) with the spindle turning M3");
+    if (code == 76 && !(cycle_q_ > 0)) stop("G76 needs a positive Q, the shift at the bottom");
     double r = to_mm(cycle_r_prog_), z = to_mm(cycle_z_prog_);
     if (incremental_) {  // R from the initial level, Z from R (LinuxCNC)
       r = cycle_initial_z_ + r;
@@ -1443,7 +1447,7 @@ class Interpreter {
         case 81: move(CallKind::linear, at(z)); move(CallKind::rapid, at(clear)); break;
         case 82:
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           move(CallKind::rapid, at(clear));
           break;
         case 73:
@@ -1460,7 +1464,7 @@ class Interpreter {
         case 86: {  // bore, stop the spindle, rapid out, restart it as it turned
           const auto direction = state_.spindle_direction;
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           state_.spindle_direction = 0;
           emit(CallKind::spindle_stop);
           move(CallKind::rapid, at(clear));
@@ -1470,9 +1474,43 @@ class Interpreter {
         }
         case 89:
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           move(CallKind::linear, at(clear));
           break;
+        case 74:
+        case 84: {  // Fanuc tapping: in, dwell P, the spindle reversed, out to R at feed, turning as before
+          const auto direction = state_.spindle_direction;
+          auto turn = [&](std::int8_t d) {
+            state_.spindle_direction = d;
+            emit(d > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          };
+          move(CallKind::linear, at(z));
+          if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+          turn(static_cast<std::int8_t>(-direction));
+          move(CallKind::linear, at(r));
+          turn(direction);
+          if (clear != r) move(CallKind::rapid, at(clear));
+          break;
+        }
+        case 76: {  // Fanuc fine boring: in, dwell P, oriented stop, shift Q off the wall, rapid out, back, restart
+          const auto direction = state_.spindle_direction;
+          move(CallKind::linear, at(z));
+          if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+          state_.spindle_direction = 0;
+          emit(CallKind::spindle_stop).text = "oriented";
+          auto shifted = [&](double zz) {
+            auto p = at(zz);
+            p[0] += c_.fine_boring_shift_x * cycle_q_;
+            p[1] += c_.fine_boring_shift_y * cycle_q_;
+            return p;
+          };
+          move(CallKind::rapid, shifted(z));
+          move(CallKind::rapid, shifted(clear));
+          move(CallKind::rapid, at(clear));
+          state_.spindle_direction = direction;
+          emit(direction > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          break;
+        }
         default: break;
       }
     }
@@ -1480,6 +1518,8 @@ class Interpreter {
     result_.cycles.push_back(std::move(event));
   }
   bool cycle_r_set_ = false, cycle_z_set_ = false;
+  // A canned cycle's P: a dwell in ms on Fanuc (as G04 P), in s elsewhere.
+  double cycle_dwell() const { return c_.dwell_p_milliseconds ? cycle_p_ / 1000 : cycle_p_; }
   bool single_cycle_set_ = false;
   std::array<double, 3> single_cycle_end_{};  // X (radius), Z and the taper R of the last G90/G92/G94
 

@@ -21,7 +21,10 @@ inline constexpr std::uint16_t meaning_pattern_repeating = 7300;      // G73
 inline constexpr std::uint16_t meaning_end_face_peck_drilling = 7400;  // G74
 inline constexpr std::uint16_t meaning_diameter_grooving = 7500;      // G75
 inline constexpr std::uint16_t meaning_multiple_threading = 7600;     // G76
+// Fanuc mill canned cycles RS274NGC (LinuxCNC 2.9) has no code for.
+inline constexpr std::uint16_t meaning_left_hand_tapping = 7410;      // Fanuc mill G74
 inline constexpr std::uint16_t meaning_fine_boring = 7610;            // Fanuc mill G76
+inline constexpr std::uint16_t meaning_tapping = 8410;                // Fanuc mill G84
 // Fanuc lathe single cycles (group 01, modal).
 inline constexpr std::uint16_t meaning_turning_cycle = 9000;          // G90
 inline constexpr std::uint16_t meaning_threading_cycle = 9200;        // G92
@@ -80,6 +83,8 @@ struct Controller {
   char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
   double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
   char thread_pitch_letter = 'K';        // G33 (LinuxCNC K) / G32 (Fanuc F: the lead)
+  // Fanuc mill G76: the direction of the shift Q at the bottom (parameter 5101 RD1/RD2).
+  double fine_boring_shift_x = 1, fine_boring_shift_y = 0;
   RepetitiveCycleDefaults repetitive{};
 };
 
