@@ -1007,14 +1007,27 @@ class Interpreter {
     std::int8_t sdac = 0;  // CYCLE84: the spindle as SDAC leaves it (3, 4, 5)
     if (n.name == "CYCLE84") sdac = static_cast<std::int8_t>(to_int(a[6].value_or(3), n.column));
     std::int8_t restart = 0;
-    if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
-      if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
-        unsupported("CYCLE86 with a lift-off (RPA, RPO)", n.column);
+    if (n.name == "CYCLE86") {
+      // An oriented spindle stop at the bottom (POSS); with a lift-off, G0
+      // by RPA, RPO, RPAP off the wall, up to RFP + SDIS and back over the
+      // hole; then out to RTP and SDIR restarts the spindle.
       const int sdir = to_int(need(6, "SDIR"), n.column);
       if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
       restart = sdir == 3 ? 1 : -1;
       state_.spindle_direction = 0;
-      emit(CallKind::spindle_stop);
+      emit(CallKind::spindle_stop).text = "oriented";
+      const double rpa = to_mm(a[7].value_or(0)), rpo = to_mm(a[8].value_or(0)), rpap = to_mm(a[9].value_or(0));
+      if (rpa != 0 || rpo != 0 || rpap != 0) {
+        const auto centre = program_position();  // over the hole, at the bottom
+        auto over = [&](double dx, double dy, double z) {
+          auto p = centre;
+          p[0] += dx, p[1] += dy, p[2] = z;
+          return p;
+        };
+        move(CallKind::rapid, over(rpa, rpo, dp + rpap));
+        move(CallKind::rapid, over(rpa, rpo, rfp + sdis));
+        move(CallKind::rapid, over(0, 0, rfp + sdis));
+      }
     }
     move(CallKind::rapid, at(rtp));
     if (restart) {

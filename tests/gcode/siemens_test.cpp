@@ -187,3 +187,21 @@ TEST_CASE("Siemens 840D CYCLE84 rigid tapping: synchronised in and out, SDAC res
   REQUIRE(bad.errors.size() == 1);
   CHECK(bad.errors[0].message == "CYCLE84: MPIT 7 is not a metric thread size from 3 to 48");
 }
+
+TEST_CASE("Siemens 840D CYCLE86 with a lift-off: off the wall, up, back over the hole, out", "[gcode][siemens]") {
+  const Result r = interpret_text("G17 G71 G90 G94\nS800 M3\nF80\nG0 X20 Y30 Z50\nCYCLE86(50,0,2,-12,,0.5,3,-0.4,0.3,0.1)\nM30\n",
+                                  *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  std::vector<std::array<double, 3>> moves;
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i)
+    if (r.calls[i].kind == CallKind::rapid || r.calls[i].kind == CallKind::linear)
+      moves.push_back({r.calls[i].v[0], r.calls[i].v[1], r.calls[i].v[2]});
+  const std::vector<std::array<double, 3>> expected = {{20, 30, 2},   {20, 30, -12},  {19.6, 30.3, -11.9},
+                                                       {19.6, 30.3, 2}, {20, 30, 2}, {20, 30, 50}};
+  REQUIRE(moves.size() == expected.size());
+  for (std::size_t i = 0; i < moves.size(); ++i)
+    for (int k = 0; k < 3; ++k) CHECK(moves[i][static_cast<std::size_t>(k)] == Approx(expected[i][static_cast<std::size_t>(k)]));
+  CHECK(r.calls[r.cycles[0].end_call - 1].kind == CallKind::spindle_clockwise);
+}
