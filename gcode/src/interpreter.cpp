@@ -825,6 +825,10 @@ class Interpreter {
       if (motion_word) {
         motion_ = motion_word->first;
         if (motion_ < 730) cycle_initial_set_ = false;
+        if (motion_ == 800 && c_.g80_clears_cycle_words) {
+          cycle_r_set_ = cycle_z_set_ = false;
+          cycle_q_ = cycle_p_ = 0;
+        }
       }
       // A motion word moves even without axis words (`G0` alone, a full circle `G2 I5`).
       if (!axes_used && (w.any_axis() || (motion_word && motion_ != 800))) motion(w, block, machine_coordinates);

@@ -147,6 +147,11 @@ TEST_CASE("Fanuc mill G84/G74 tapping, G76 fine boring, cycle dwells P in millis
   CHECK(dwells[0]->v[0] == Approx(0.3));
   CHECK(dwells[1]->v[0] == Approx(0.2));
   CHECK(dwells[2]->v[0] == Approx(1.5));  // G82 P1500: 1.5 s
+  // G80 cancels the cycle's words on Fanuc: a G81 after it needs its own R and Z.
+  const Result cancelled = run("fanuc-mill", "G21 G94 F100.\nG81 X0 Y0 Z-5. R2.\nG80\nG81 X10.\nM30\n");
+  REQUIRE(cancelled.errors.size() == 1);
+  CHECK(cancelled.errors[0].message == "G81 needs R");
+  CHECK(cancelled.errors[0].pos.line == 4);
   const Result wrong = run("fanuc-mill", "G21 G94 S500 M04\nG84 X0 Y0 Z-10. R2. F750.\nM30\n");
   REQUIRE(wrong.errors.size() == 1);
   CHECK(wrong.errors[0].message == "G84 (right-hand tapping) with the spindle turning M4");

@@ -188,3 +188,9 @@ TEST_CASE("G5.1 quadratic spline and G33 spindle-synchronised motion", "[gcode][
   REQUIRE(cubic.unsupported());
   CHECK(cubic.errors[0].message == "unsupported: G5 cubic splines");
 }
+
+TEST_CASE("controller_names lists the table rows the CLI offers", "[gcode][interpreter]") {
+  const std::vector<std::string_view> expected = {"rs274ngc", "fanuc-mill", "fanuc-lathe", "siemens840d"};
+  CHECK(controller_names() == expected);
+  for (const std::string_view name : controller_names()) CHECK(controller(name).has_value());
+}

@@ -80,6 +80,7 @@ struct Controller {
   bool dwell_f_seconds = false;          // Siemens G4 F: seconds
   bool tool_offsets_on_machine = false;  // Siemens T/D offsets move the machine, not the program's coordinates
   bool feed_per_rev_default = false;     // power-on G99 (Fanuc lathe) rather than feed per minute
+  bool g80_clears_cycle_words = false;   // Fanuc: G80 cancels R, Z, P, Q (RS274NGC keeps them sticky)
   char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
   double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
   char thread_pitch_letter = 'K';        // G33 (LinuxCNC K) / G32 (Fanuc F: the lead)
