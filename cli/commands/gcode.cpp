@@ -70,7 +70,7 @@ void add_gcode_command(CLI::App& app, Action& action) {
   add_input_option(*command, options->file, "G-code program");
   std::vector<std::string> names;
   for (const std::string_view name : gcode::controller_names()) names.emplace_back(name);
-  command->add_option("-c,--controller", options->controller, fmt::format("{} (default: rs274ngc)", fmt::join(names, ", ")))
+  command->add_option("-c,--controller", options->controller, "The controller whose dialect the program is in (default: rs274ngc)")
       ->check(CLI::IsMember(names));
   command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")->check(CLI::ExistingFile);
   command->add_flag("--canonical", options->canonical, "Print LinuxCNC canonical machining calls, one a line");
