@@ -71,6 +71,11 @@ class CallPrinter {
         out_ += static_cast<int>(v[0]) == 1 ? "OPTIONAL_PROGRAM_STOP(" : "PROGRAM_STOP(";
         break;
       case CallKind::program_end: out_ += "PROGRAM_END("; break;
+      case CallKind::feed_sync_start:  // as rs274 prints it: six decimals, no space
+        fmt::format_to(std::back_inserter(out_), "START_SPEED_FEED_SYNC({:.6f},0", len(v[0]));
+        break;
+      case CallKind::feed_sync_stop: out_ += "STOP_SPEED_FEED_SYNCH("; break;
+      case CallKind::quadratic_spline: out_ += "NURBS_FEED(3, ..."; break;  // rs274 -g prints no points
     }
     out_ += ")";
   }

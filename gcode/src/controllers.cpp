@@ -14,7 +14,7 @@ constexpr std::uint16_t same = 0;  // meaning = the code itself (filled in by g_
 
 // RS274NGC as LinuxCNC 2.9 reads it.
 constexpr GCodeEntry rs274ngc_g[] = {
-    {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {51, 1, same},
+    {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {50, 1, same},   {51, 1, same},
     {52, 1, same},   {53, 1, same},   {70, 15, same},  {80, 15, same},  {100, 0, same},  {170, 2, same},
     {171, 2, same},  {180, 2, same},  {181, 2, same},  {190, 2, same},  {191, 2, same},  {200, 6, same},
     {210, 6, same},  {280, 0, same},  {281, 0, same},  {300, 0, same},  {301, 0, same},  {330, 1, same},
@@ -42,8 +42,8 @@ constexpr GCodeEntry fanuc_mill_g[] = {
     {400, 7, same},  {410, 7, same},  {420, 7, same},  {430, 8, same},  {440, 8, 4400},   {490, 8, same},
     {530, 0, same},  {540, 12, same}, {550, 12, same}, {560, 12, same}, {570, 12, same}, {580, 12, same},
     {590, 12, same}, {610, 13, same}, {640, 13, same}, {680, 16, 680},  {690, 16, 690},  {730, 1, same},
-    {740, 1, same},  {760, 1, 7600},  {800, 1, same},  {810, 1, same},  {820, 1, same},  {830, 1, same},
-    {840, 1, same},  {850, 1, same},  {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},
+    {740, 1, meaning_left_hand_tapping},  {760, 1, meaning_fine_boring},  {800, 1, same},  {810, 1, same},
+    {820, 1, same},  {830, 1, same},  {840, 1, meaning_tapping},  {850, 1, same},  {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},
     {900, 3, same},  {910, 3, same},  {920, 0, same},  {940, 5, same},  {950, 5, same},  {980, 10, same},
     {990, 10, same}};
 // Fanuc lathe (0i-TF, G-code system A): G90/G92/G94 are single cycles,
@@ -53,9 +53,10 @@ constexpr GCodeEntry fanuc_lathe_g[] = {
     {0, 1, same},   {10, 1, same},  {20, 1, same},  {30, 1, same},  {40, 0, same},  {180, 16, same},
     {200, 6, same}, {210, 6, same}, {280, 0, same}, {320, 1, 330},  {400, 7, same}, {410, 7, same},
     {420, 7, same}, {500, 0, meaning_spindle_clamp_or_set}, {540, 14, same}, {550, 14, same}, {560, 14, same},
-    {570, 14, same}, {580, 14, same}, {590, 14, same}, {700, 0, 7000}, {710, 0, 7100}, {720, 0, 7200},
-    {730, 0, 7300}, {740, 0, 7400}, {750, 0, 7500}, {760, 0, 7600}, {800, 10, same}, {900, 1, 9000},
-    {920, 1, 9200}, {940, 1, 9400}, {960, 2, same}, {970, 2, same}, {980, 5, 940}, {990, 5, 950}};
+    {570, 14, same}, {580, 14, same}, {590, 14, same}, {700, 0, meaning_finishing_cycle},
+    {710, 0, meaning_stock_removal_turning}, {720, 0, meaning_stock_removal_facing}, {730, 0, meaning_pattern_repeating},
+    {740, 0, meaning_end_face_peck_drilling}, {750, 0, meaning_diameter_grooving}, {760, 0, meaning_multiple_threading},
+    {800, 10, same}, {900, 1, meaning_turning_cycle}, {920, 1, meaning_threading_cycle}, {940, 1, meaning_facing_cycle}, {960, 2, same}, {970, 2, same}, {980, 5, 940}, {990, 5, 950}};
 constexpr MCodeEntry fanuc_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 7}, {6, 6},
                                   {7, 8}, {8, 8}, {9, 8}, {30, 4}, {98, 11}, {99, 11}};
 
@@ -77,11 +78,12 @@ constexpr Controller controllers[] = {
      .bracket_expressions = true, .o_word_statements = true},
     {.name = "fanuc-mill", .g_codes = fanuc_mill_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTXYZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true,
-     .integer_is_least_increment = true, .dwell_p_milliseconds = true, .repeat_letter = 'K'},
+     .integer_is_least_increment = true, .dwell_p_milliseconds = true, .g80_clears_cycle_words = true,
+     .repeat_letter = 'K'},
     {.name = "fanuc-lathe", .g_codes = fanuc_lathe_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTUWXZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true, .diameter_x = true,
      .uw_incremental = true, .integer_is_least_increment = true, .dwell_p_milliseconds = true,
-     .tool_word_changes_tool = true, .feed_per_rev_default = true},
+     .tool_word_changes_tool = true, .feed_per_rev_default = true, .thread_pitch_letter = 'F'},
     {.name = "siemens840d", .g_codes = siemens_g, .m_codes = siemens_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ",
      .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true},
 };
@@ -92,6 +94,12 @@ std::optional<Controller> controller(std::string_view name) {
   for (const Controller& c : controllers)
     if (c.name == name) return c;
   return std::nullopt;
+}
+
+std::vector<std::string_view> controller_names() {
+  std::vector<std::string_view> names;
+  for (const Controller& c : controllers) names.push_back(c.name);
+  return names;
 }
 
 std::optional<GCodeEntry> g_entry(const Controller& c, int code10) {

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "lathe_cycles.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -27,6 +29,9 @@ struct Stop {
   std::string message;
 };
 
+// An error already recorded at its own block (a cycle's contour block): the run stops.
+struct Reported {};
+
 // Column 0: the block's motion word (or its first word) is blamed.
 [[noreturn]] void stop(std::string message, std::uint32_t column = 0) { throw Stop{column, std::move(message)}; }
 [[noreturn]] void unsupported(std::string_view feature, std::uint32_t column = 0) {
@@ -47,6 +52,8 @@ constexpr int slot(char c) { return c == '@' ? 26 : c == '^' ? 27 : c - 'A'; }
 struct Words {
   std::array<std::optional<double>, 28> value{};
   std::array<std::uint32_t, 28> column{};
+  std::array<double, 28> raw{};        // as written, before least increments were applied
+  std::array<bool, 28> pointless{};    // a literal written without a decimal point
   std::vector<std::pair<int, std::uint32_t>> g;  // code times 10, column
   std::vector<std::pair<int, std::uint32_t>> m;
   std::optional<double> repeats;  // the repeat word as written (Fanuc K is also an arc length)
@@ -74,6 +81,10 @@ struct Frame {
   std::array<double, 31> saved{};  // #1..#30 of the caller
   std::unordered_map<std::string, double> locals;
   std::unordered_map<std::string, double> repeat_left;  // label -> iterations left
+  // Fanuc M98: the program's O block and the runs still to come.
+  bool subprogram = false;
+  std::uint32_t program_block = 0;
+  int runs_left = 0;
 };
 
 class Interpreter {
@@ -85,6 +96,7 @@ class Interpreter {
     if (controller.diameter_x) plane_ = 18;  // a lathe works in XZ
     feed_per_rev_ = state_.feed_per_rev = controller.feed_per_rev_default;
     params_[5220] = 1;  // G54
+    repetitive_ = controller.repetitive;
     frames_.emplace_back();
     index_labels();
   }
@@ -132,11 +144,14 @@ class Interpreter {
           pc = o_statement(block, pc);
         } else {
           execute(block);
-          ++pc;
+          pc = jump_.value_or(pc + 1);
+          jump_.reset();
         }
         if (ended_) break;
       } catch (const Stop& s) {
         error_at(block.line, s.column ? s.column : blamed_column(block), s.message);
+        break;
+      } catch (const Reported&) {
         break;
       }
     }
@@ -150,6 +165,8 @@ class Interpreter {
   Result result_;
   std::uint32_t block_ = 0, line_ = 0;
   bool ended_ = false;
+  std::optional<std::uint32_t> jump_;  // the block to run next, when not the following one (M98, M99, G71)
+  bool capturing_ = false;             // running a cycle's contour blocks to learn their path
 
   // Modal state.
   bool inch_ = false;
@@ -182,7 +199,7 @@ class Interpreter {
   std::array<std::array<double, axes>, 10> g5x_{};  // [1..9]
   bool cycle_initial_set_ = false;
   double cycle_initial_z_ = 0;  // the level G98 returns to
-  double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;  // sticky canned-cycle words (mm, program units)
+  double cycle_q_ = 0, cycle_p_ = 0;  // sticky canned-cycle words (Q in mm, P as written)
   double cycle_r_prog_ = 0, cycle_z_prog_ = 0;
 
   // Parameters.
@@ -193,6 +210,10 @@ class Interpreter {
   std::unordered_map<std::string, std::uint32_t> subs_;
   std::optional<SavedModes> saved_;  // M70
   std::unordered_map<std::string, std::vector<std::uint32_t>> numbered_;  // N number -> blocks (GOTO)
+  std::unordered_map<int, std::uint32_t> programs_;  // Fanuc O number -> its block (M98)
+  RepetitiveCycleDefaults repetitive_;    // what 0i first blocks set (U R, W R, P Q R ...), kept as parameters
+  std::optional<double> roughing_depth_;  // G71 U / G72 W of a first block
+  std::map<int, std::vector<std::pair<char, double>>> first_block_words_;  // by cycle code
 
   // The group-1 G word of the block, else its first word, else column 1.
   std::uint32_t blamed_column(const Block& block) const {
@@ -532,14 +553,27 @@ class Interpreter {
 
   // Fanuc GOTO n: the block numbered N n, searched forward first, then from the start.
   std::uint32_t go_to(const Block& block, std::uint32_t pc) {
-    if (numbered_.empty())  // built at the first GOTO: most programs have none
+    const auto& list = numbered(block.o.label);
+    if (list.empty()) stop(fmt::format("GOTO {}: no block N{}", block.o.label, block.o.label));
+    for (std::uint32_t i : list)
+      if (i > pc) return i;
+    return list.front();
+  }
+  const std::vector<std::uint32_t>& numbered(const std::string& label) {
+    if (numbered_.empty())  // built at the first use: most programs have no GOTO
       for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
         if (p_.blocks[i].n >= 0) numbered_[fmt::format("{}", p_.blocks[i].n)].push_back(i);
-    const auto it = numbered_.find(block.o.label);
-    if (it == numbered_.end() || it->second.empty()) stop(fmt::format("GOTO {}: no block N{}", block.o.label, block.o.label));
-    for (std::uint32_t i : it->second)
-      if (i > pc) return i;
-    return it->second.front();
+    static const std::vector<std::uint32_t> none;
+    const auto it = numbered_.find(label);
+    return it == numbered_.end() ? none : it->second;
+  }
+  // The first block numbered N n at or after block `from`, else the first anywhere.
+  std::optional<std::uint32_t> numbered_block(double n, std::uint32_t from) {
+    const auto& list = numbered(fmt::format("{}", n));
+    for (std::uint32_t i : list)
+      if (i >= from) return i;
+    if (!list.empty()) return list.front();
+    return std::nullopt;
   }
 
   // ---- blocks ------------------------------------------------------------
@@ -553,10 +587,11 @@ class Interpreter {
       double value = word.expr == Word::none ? word.literal : eval(word.expr, word.column);
       const char c = word.letter;
       if (c == c_.repeat_letter) w.repeats = value;
+      const double raw = value;
       // Fanuc: a length without a decimal point counts least input increments.
       if (c_.integer_is_least_increment && word.expr == Word::none && !word.decimal_point &&
           std::string_view("XYZUWIJKRQ").find(c) != std::string_view::npos)
-        value *= inch_ ? 0.0001 : 0.001;
+        value *= least_increment();
       if (c == 'G') {
         const int code = to_int(value * 10, word.column);
         if (std::abs(value * 10 - code) > 1e-6) stop(fmt::format("G{} is not a G code", value), word.column);
@@ -577,10 +612,20 @@ class Interpreter {
       } else {
         if (w.value[slot(c)]) stop(fmt::format("word {} twice in one block", c), word.column);
         w.value[slot(c)] = value;
+        w.raw[slot(c)] = raw;
+        w.pointless[slot(c)] = word.expr == Word::none && !word.decimal_point;
         w.column[slot(c)] = word.column;
       }
     }
     return w;
+  }
+
+  double least_increment() const { return inch_ ? 0.0001 : 0.001; }
+  // A Fanuc length given in least increments when written without a point
+  // (G74 P, G76 P and Q, the 0-T D), as mm.
+  double increments(const Words& w, char c) const {
+    const double v = c_.integer_is_least_increment && w.pointless[slot(c)] ? w.raw[slot(c)] * least_increment() : w.raw[slot(c)];
+    return to_mm(v);
   }
 
   bool has_g(const Words& w, int code) const {
@@ -671,7 +716,6 @@ class Interpreter {
         case 4: state_.spindle_direction = -1; emit(CallKind::spindle_counterclockwise); break;
         case 5: state_.spindle_direction = 0; emit(CallKind::spindle_stop); break;
         case 19: unsupported("M19 spindle orientation", column);
-        case 98: case 99: unsupported("M98/M99 subprograms", column);
         default: break;
       }
     }
@@ -773,13 +817,22 @@ class Interpreter {
         default: break;
       }
     }
-    // 20 motion
-    if (auto g = g_of(w, 1)) {
-      motion_ = g->first;
-      if (motion_ < 730) cycle_initial_set_ = false;
+    // 20 motion; Fanuc's multiple repetitive cycles are non-modal and use their X/Z as cycle words
+    const auto motion_word = g_of(w, 1);
+    if (motion_word && is_repetitive_cycle(motion_word->first)) {
+      repetitive_cycle(motion_word->first, motion_word->second, w, block);
+    } else {
+      if (motion_word) {
+        motion_ = motion_word->first;
+        if (motion_ < 730) cycle_initial_set_ = false;
+        if (motion_ == 800 && c_.g80_clears_cycle_words) {
+          cycle_r_set_ = cycle_z_set_ = false;
+          cycle_q_ = cycle_p_ = 0;
+        }
+      }
+      // A motion word moves even without axis words (`G0` alone, a full circle `G2 I5`).
+      if (!axes_used && (w.any_axis() || (motion_word && motion_ != 800))) motion(w, block, machine_coordinates);
     }
-    // A motion word moves even without axis words (`G0` alone, a full circle `G2 I5`).
-    if (!axes_used && (w.any_axis() || (g_of(w, 1) && motion_ != 800))) motion(w, block, machine_coordinates);
     // After a tool change LinuxCNC re-reads the position from the machine
     // (a queue buster): the end of the last move called, so an offset change
     // in the same block does not shift it.
@@ -789,7 +842,64 @@ class Interpreter {
     for (const auto& [code, column] : w.m) {
       if (code == 0 || code == 1 || code == 60) emit(CallKind::program_stop).v[0] = code;
       if (code == 2 || code == 30) program_end();
+      if (code == 98) call_subprogram(w, column);
+      if (code == 99) return_from_subprogram(w, column);
     }
+  }
+
+  // ---- Fanuc subprograms (M98 P, M99) ----------------------------------------
+
+  // M98 P(count)(number): the last four digits name the program O(number),
+  // the digits before them repeat it (0i-TF); `M98 P1234 L3` repeats too.
+  void call_subprogram(const Words& w, std::uint32_t column) {
+    if (capturing_) stop("M98 inside a cycle's contour", column);
+    if (!w.has('P')) stop("M98 needs P, the program number", column);
+    const double p = w.get('P');
+    if (p < 0 || p >= 1e8 || p != std::floor(p)) stop(fmt::format("M98 P{}: not a program number", p), w.col('P'));
+    const int whole = static_cast<int>(p);
+    const int number = whole > 9999 ? whole % 10000 : whole;
+    int runs = whole > 9999 ? whole / 10000 : 1;
+    if (w.has('L')) {
+      if (whole > 9999) stop("M98: a repeat count in both P and L", w.col('L'));
+      runs = to_int(w.get('L'), w.col('L'));
+      if (runs < 1 || runs > 9999 || w.get('L') != runs) stop("M98 L must be a count from 1 to 9999", w.col('L'));
+    }
+    if (programs_.empty())  // built at the first M98
+      for (std::uint32_t i = 0; i < p_.blocks.size(); ++i)
+        if (p_.blocks[i].program_number >= 0 && p_.blocks[i].program_number < 1e8)
+          programs_.try_emplace(static_cast<int>(p_.blocks[i].program_number), i);
+    const auto it = programs_.find(number);
+    if (it == programs_.end()) unsupported(fmt::format("subprogram O{:04} outside this file", number), w.col('P'));
+    if (frames_.size() > 100) stop("subprogram calls nested deeper than 100", column);
+    Frame frame;
+    frame.return_block = block_ + 1;
+    frame.subprogram = true;
+    frame.program_block = it->second;
+    frame.runs_left = runs;
+    frames_.push_back(std::move(frame));
+    jump_ = it->second;
+  }
+
+  // M99: the next run of the subprogram, else back after the M98 (or to the
+  // caller's block N P with `M99 P`).
+  void return_from_subprogram(const Words& w, std::uint32_t column) {
+    if (capturing_) stop("M99 inside a cycle's contour", column);
+    if (frames_.size() == 1 || !frames_.back().subprogram)
+      unsupported("M99 outside a subprogram (the main program restarting without end)", column);
+    Frame& frame = frames_.back();
+    if (--frame.runs_left > 0) {
+      jump_ = frame.program_block;
+      return;
+    }
+    std::uint32_t back = frame.return_block;
+    if (w.has('P')) {
+      const double n = w.get('P');
+      const auto found = numbered_block(n, 0);
+      if (!found) stop(fmt::format("M99 P{}: no block N{}", n, n), w.col('P'));
+      back = *found;
+    }
+    frames_.pop_back();
+    jump_ = back;
   }
 
   // Siemens names (840D): diameter mode, the CSS clamp, tool data,
@@ -838,7 +948,8 @@ class Interpreter {
         for (std::size_t i = 0; i < n.args.size(); ++i)
           if (n.args[i] != Word::none) event.parameters.emplace_back(static_cast<char>('1' + i), eval(n.args[i], n.column));
         result_.cycles.push_back(std::move(event));
-      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE85" || n.name == "CYCLE86")) {
+      } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE83" || n.name == "CYCLE84" ||
+                            n.name == "CYCLE85" || n.name == "CYCLE86")) {
         siemens_drilling(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
@@ -854,7 +965,7 @@ class Interpreter {
   void siemens_drilling(const NamedWord& n, const Block& block) {
     std::vector<std::optional<double>> a;
     for (std::uint32_t arg : n.args) a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
-    a.resize(std::max<std::size_t>(a.size(), 11));
+    a.resize(std::max<std::size_t>(a.size(), 12));
     auto need = [&](std::size_t i, const char* name) {
       if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
       return *a[i];
@@ -863,7 +974,8 @@ class Interpreter {
     const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
     const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
     if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
-    if (n.name != "CYCLE85" && state_.feed <= 0) stop(fmt::format("{} with zero feed rate", n.name), n.column);
+    if (n.name != "CYCLE85" && n.name != "CYCLE84" && state_.feed <= 0)
+      stop(fmt::format("{} with zero feed rate", n.name), n.column);
     CycleEvent event;
     event.name = n.name;
     event.line = block.line;
@@ -877,7 +989,11 @@ class Interpreter {
     };
     const double dwell = a[5].value_or(0);
     move(CallKind::rapid, at(rfp + sdis));
-    if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
+    if (n.name == "CYCLE83") {
+      deep_hole_drilling(n, a, rfp, sdis, dp, at);
+    } else if (n.name == "CYCLE84") {
+      rigid_tapping(n, a, rfp + sdis, dp, at);
+    } else if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
       const double feed = state_.feed;
       state_.feed = to_mm(need(6, "FFR"));
       emit(CallKind::feed_rate).v[0] = state_.feed;
@@ -892,23 +1008,135 @@ class Interpreter {
       move(CallKind::linear, at(dp));
       if (n.name != "CYCLE81" && dwell > 0) emit(CallKind::dwell).v[0] = dwell;
     }
+    std::int8_t sdac = 0;  // CYCLE84: the spindle as SDAC leaves it (3, 4, 5)
+    if (n.name == "CYCLE84") sdac = static_cast<std::int8_t>(to_int(a[6].value_or(3), n.column));
     std::int8_t restart = 0;
-    if (n.name == "CYCLE86") {  // spindle stop at the bottom, out, SDIR restarts it
-      if (a[7].value_or(0) != 0 || a[8].value_or(0) != 0)
-        unsupported("CYCLE86 with a lift-off (RPA, RPO)", n.column);
+    if (n.name == "CYCLE86") {
+      // An oriented spindle stop at the bottom (POSS); with a lift-off, G0
+      // by RPA, RPO, RPAP off the wall, up to RFP + SDIS and back over the
+      // hole; then out to RTP and SDIR restarts the spindle.
       const int sdir = to_int(need(6, "SDIR"), n.column);
       if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
       restart = sdir == 3 ? 1 : -1;
       state_.spindle_direction = 0;
-      emit(CallKind::spindle_stop);
+      emit(CallKind::spindle_stop).text = "oriented";
+      const double rpa = to_mm(a[7].value_or(0)), rpo = to_mm(a[8].value_or(0)), rpap = to_mm(a[9].value_or(0));
+      if (rpa != 0 || rpo != 0 || rpap != 0) {
+        const auto centre = program_position();  // over the hole, at the bottom
+        auto over = [&](double dx, double dy, double z) {
+          auto p = centre;
+          p[0] += dx, p[1] += dy, p[2] = z;
+          return p;
+        };
+        move(CallKind::rapid, over(rpa, rpo, dp + rpap));
+        move(CallKind::rapid, over(rpa, rpo, rfp + sdis));
+        move(CallKind::rapid, over(0, 0, rfp + sdis));
+      }
     }
     move(CallKind::rapid, at(rtp));
     if (restart) {
       state_.spindle_direction = restart;
       emit(restart > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
     }
+    if (sdac) {
+      if (sdac < 3 || sdac > 5) stop("CYCLE84: SDAC must be 3, 4 or 5", n.column);
+      state_.spindle_direction = sdac == 3 ? 1 : sdac == 4 ? -1 : 0;
+      emit(sdac == 3 ? CallKind::spindle_clockwise : sdac == 4 ? CallKind::spindle_counterclockwise : CallKind::spindle_stop);
+    }
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
+  }
+
+  // CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI)
+  // from RFP + SDIS: the first depth FDEP (or FDPR below RFP) at F * FRF,
+  // then each step DAM shorter than the one before but never shorter than
+  // DAM (0: as long as the first), DTB at each depth. VARI 1 (chip removal):
+  // out to RFP + SDIS at rapid, DTS there, back at rapid to the anticipation
+  // distance above the last depth (0.6 mm, or depth / 50 up to 7 mm beyond
+  // 30 mm deep); VARI 0 (chip breaking): back 1 mm at feed.
+  template <class At>
+  void deep_hole_drilling(const NamedWord& n, const std::vector<std::optional<double>>& a, double rfp, double sdis,
+                          double dp, const At& at) {
+    const double first = a[5] ? to_mm(*a[5]) : a[6] ? rfp - to_mm(*a[6]) : dp;
+    if (first > rfp || first < dp) stop("CYCLE83: FDEP must lie between RFP and DP", n.column);
+    const double dam = to_mm(a[7].value_or(0)), dtb = a[8].value_or(0), dts = a[9].value_or(0);
+    const double frf = a[10].value_or(1);
+    const int vari = to_int(a[11].value_or(0), n.column);
+    if (vari != 0 && vari != 1) unsupported(fmt::format("CYCLE83 VARI={}", vari), n.column);
+    if (frf <= 0 || frf > 1) stop("CYCLE83: FRF must lie in (0, 1]", n.column);
+    if (dam < 0) stop("CYCLE83: DAM must not be negative", n.column);
+    const double feed = state_.feed;
+    const double total = rfp - dp;
+    const double anticipation = total <= 30 ? 0.6 : std::min(7.0, total / 50);
+    double depth = first, step = rfp - first;
+    if (frf != 1) {
+      state_.feed = feed * frf;
+      emit(CallKind::feed_rate).v[0] = state_.feed;
+    }
+    move(CallKind::linear, at(depth));
+    if (frf != 1) {
+      state_.feed = feed;
+      emit(CallKind::feed_rate).v[0] = feed;
+    }
+    if (dtb > 0) emit(CallKind::dwell).v[0] = dtb;
+    std::size_t steps = 0;
+    while (depth > dp + 1e-9) {
+      if (++steps > o_.max_calls) stop("CYCLE83: more steps than the call budget allows", n.column);
+      if (dam > 0) step = std::max(step - dam, dam);
+      if (!(step > 1e-9)) stop("CYCLE83: the drilling depth does not advance", n.column);
+      const double next = std::max(depth - step, dp);
+      if (vari == 1) {
+        move(CallKind::rapid, at(rfp + sdis));
+        if (dts > 0) emit(CallKind::dwell).v[0] = dts;
+        move(CallKind::rapid, at(depth + anticipation));
+      } else {
+        move(CallKind::linear, at(depth + 1));
+      }
+      move(CallKind::linear, at(next));
+      if (dtb > 0) emit(CallKind::dwell).v[0] = dtb;
+      depth = next;
+    }
+  }
+
+  // CYCLE84(RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST, SST1):
+  // tapping synchronised to the spindle at SST with the pitch PIT (or the
+  // metric coarse pitch of the thread size MPIT; negative: left hand, M4),
+  // DTB at the bottom, out again at SST1 with the spindle reversed; SDAC is
+  // restored after the cycle.
+  template <class At>
+  void rigid_tapping(const NamedWord& n, const std::vector<std::optional<double>>& a, double start, double dp,
+                     const At& at) {
+    double pitch = 0;
+    if (a[8]) {
+      pitch = to_mm(*a[8]);
+    } else if (a[7]) {
+      // ISO metric coarse threads M3 to M48 (ISO 261).
+      static constexpr std::array<std::pair<int, double>, 21> coarse = {{{3, 0.5}, {4, 0.7}, {5, 0.8}, {6, 1}, {8, 1.25},
+          {10, 1.5}, {12, 1.75}, {14, 2}, {16, 2}, {18, 2.5}, {20, 2.5}, {22, 2.5}, {24, 3}, {27, 3}, {30, 3.5},
+          {33, 3.5}, {36, 4}, {39, 4}, {42, 4.5}, {45, 4.5}, {48, 5}}};
+      const auto it = std::find_if(coarse.begin(), coarse.end(), [&](const auto& e) { return e.first == std::abs(*a[7]); });
+      if (it == coarse.end()) stop(fmt::format("CYCLE84: MPIT {} is not a metric thread size from 3 to 48", *a[7]), n.column);
+      pitch = *a[7] < 0 ? -it->second : it->second;
+    } else {
+      stop("CYCLE84 needs PIT (the pitch) or MPIT (the thread size)", n.column);
+    }
+    if (pitch == 0) stop("CYCLE84: the pitch must not be zero", n.column);
+    const double in_speed = a[10].value_or(state_.spindle), out_speed = a[11].value_or(in_speed);
+    if (in_speed <= 0) stop("CYCLE84 needs SST, the tapping speed", n.column);
+    const bool right_hand = pitch > 0;
+    auto spindle = [&](double speed, bool clockwise) {
+      state_.spindle = speed;
+      emit(CallKind::spindle_speed).v[0] = speed;
+      state_.spindle_direction = clockwise ? 1 : -1;
+      emit(clockwise ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+    };
+    spindle(in_speed, right_hand);
+    emit(CallKind::feed_sync_start).v[0] = std::abs(pitch);
+    move(CallKind::linear, at(dp));
+    if (a[5].value_or(0) > 0) emit(CallKind::dwell).v[0] = *a[5];
+    spindle(out_speed, !right_hand);
+    move(CallKind::linear, at(start));
+    emit(CallKind::feed_sync_stop);
   }
 
   SavedModes save_modes() const {
@@ -962,10 +1190,14 @@ class Interpreter {
 
   void refuse_unsupported_g(int code, std::uint32_t column, const Words&) {
     switch (code) {
-      case 51: case 52: case 53: unsupported("G5.x splines", column);
-      case 330: case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
+      case 50: unsupported("G5 cubic splines", column);
+      case 52: case 53: unsupported("G5.2/G5.3 NURBS blocks", column);
+      case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
-      case 410: case 411: case 420: case 421: unsupported("G41/G42 cutter radius compensation", column);
+      case 410: case 411: case 420: case 421:
+        unsupported(c_.diameter_x ? "G41/G42 tool nose radius compensation (with its tip direction)"
+                                  : "G41/G42 cutter radius compensation",
+                    column);
       case 431: case 432: unsupported(fmt::format("G{:.1f} dynamic tool length offset", code / 10.0), column);
       case 520: unsupported("G52 local offset", column);
       case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
@@ -974,9 +1206,6 @@ class Interpreter {
       case 611: unsupported("G61.1 exact stop", column);
       case 4400: unsupported("G44 negative tool length offset", column);
       case 680: unsupported("G68 coordinate rotation", column);
-      case 7000: case 7100: case 7200: case 7300: case 7400: case 7500: case 7600:
-        unsupported(fmt::format("G{} {} cycle", code / 100, c_.diameter_x ? "multiple repetitive" : "fine boring"), column);
-      case 9200: unsupported("G92 threading cycle", column);
       default: break;
     }
   }
@@ -1040,16 +1269,50 @@ class Interpreter {
         move(CallKind::linear, end);
         return;
       }
+      case 51: quadratic_spline(w); return;
       case 20: case 30:
         if (machine_coordinates) stop("G53 with an arc");
         if (!inverse_time_ && state_.feed <= 0) stop("G2/G3 with zero feed rate");
         arc(w, motion_ == 20);
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
-      case 730: case 810: case 820: case 830: case 850: case 860: case 890: cycle(w, block); return;
-      case 9000: case 9400: single_cycle(w, block); return;
+      case 730: case 810: case 820: case 830: case 850: case 860: case 890:
+      case meaning_left_hand_tapping: case meaning_tapping: case meaning_fine_boring: cycle(w, block); return;
+      case meaning_turning_cycle: case meaning_threading_cycle: case meaning_facing_cycle: single_cycle(w, block); return;
+      case 330: {  // spindle-synchronised motion: LinuxCNC G33 K, Fanuc G32 F (the lead)
+        const char letter = c_.thread_pitch_letter;
+        const int code = letter == 'F' ? 32 : 33;
+        if (letter != 'F' && !w.has(letter)) stop(fmt::format("G{} needs {}, the distance per revolution", code, letter));
+        const double pitch = letter == 'F' ? state_.feed : to_mm(w.get(letter));
+        if (!(pitch > 0)) stop(fmt::format("G{} needs a lead above zero ({})", code, letter));
+        const auto end = target(w, machine_coordinates);
+        emit(CallKind::feed_sync_start).v[0] = pitch;
+        move(CallKind::linear, end);
+        emit(CallKind::feed_sync_stop);
+        return;
+      }
       default: unsupported(fmt::format("G{:g} motion", motion_ / 10.0));
     }
+  }
+
+  // G5.1 (LinuxCNC): a quadratic B-spline in XY from the current point
+  // through the control point start + (I, J) to X Y.
+  void quadratic_spline(const Words& w) {
+    if (plane_ != 17) stop("G5.1 outside the XY plane (G17)");
+    if (!w.has('I') && !w.has('J')) stop("G5.1 needs I or J, the control point from the start");
+    const double i = w.has('I') ? to_mm(w.get('I')) : 0, j = w.has('J') ? to_mm(w.get('J')) : 0;
+    if (i == 0 && j == 0) stop("G5.1 with I and J both zero", w.col(w.has('I') ? 'I' : 'J'));
+    if (inverse_time_) unsupported("G5.1 in inverse time (G93)");
+    if (state_.feed <= 0) stop("G5.1 with zero feed rate");
+    const auto start = program_position();
+    const auto end = target(w, false);
+    if (end[2] != start[2]) stop("G5.1 moves in X and Y only", w.col('Z'));
+    Call& call = emit(CallKind::quadratic_spline);
+    std::copy(end.begin(), end.end(), call.v.begin());
+    call.v[6] = start[0] + i;
+    call.v[7] = start[1] + j;
+    set_program_position(end);
+    last_move_ = end;
   }
 
   // G93 (RS274NGC 3.5.19): the block's F is 1/minutes; the feed printed is
@@ -1133,7 +1396,7 @@ class Interpreter {
   // ---- canned cycles (G73, G81-G83, G85, G86, G89), XY plane ----------------
 
   void cycle(const Words& w, const Block& block) {
-    const int code = motion_ / 10;
+    const int code = motion_ > 5000 ? motion_ / 100 : motion_ / 10;  // Fanuc's own cycles are G code x 100
     if (plane_ != 17) unsupported("canned cycles outside the XY plane (G18, G19)");
     const char r_letter = c_.repeat_letter;
     if (w.repeats && (*w.repeats < 1 || std::floor(*w.repeats) != *w.repeats || *w.repeats > 1e6))
@@ -1153,7 +1416,11 @@ class Interpreter {
     if (w.has('P')) cycle_p_ = w.get('P');
     if ((code == 73 || code == 83) && cycle_q_ <= 0) stop(fmt::format("G{} needs a positive Q", code));
     if ((code == 82 || code == 89) && !w.has('P') && cycle_p_ < 0) stop(fmt::format("G{} needs P", code));
-    if (code == 86 && state_.spindle_direction == 0) stop("G86 with the spindle not turning");
+    if ((code == 86 || code == 84 || code == 74 || code == 76) && state_.spindle_direction == 0)
+      stop(fmt::format("G{} with the spindle not turning", code));
+    if (code == 84 && state_.spindle_direction < 0) stop("G84 (right-hand tapping) with the spindle turning M4");
+    if (code == 74 && state_.spindle_direction > 0) stop("G74 (left-hand tapping) with the spindle turning M3");
+    if (code == 76 && !(cycle_q_ > 0)) stop("G76 needs a positive Q, the shift at the bottom");
     double r = to_mm(cycle_r_prog_), z = to_mm(cycle_z_prog_);
     if (incremental_) {  // R from the initial level, Z from R (LinuxCNC)
       r = cycle_initial_z_ + r;
@@ -1197,7 +1464,7 @@ class Interpreter {
         case 81: move(CallKind::linear, at(z)); move(CallKind::rapid, at(clear)); break;
         case 82:
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           move(CallKind::rapid, at(clear));
           break;
         case 73:
@@ -1214,7 +1481,7 @@ class Interpreter {
         case 86: {  // bore, stop the spindle, rapid out, restart it as it turned
           const auto direction = state_.spindle_direction;
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           state_.spindle_direction = 0;
           emit(CallKind::spindle_stop);
           move(CallKind::rapid, at(clear));
@@ -1224,9 +1491,43 @@ class Interpreter {
         }
         case 89:
           move(CallKind::linear, at(z));
-          emit(CallKind::dwell).v[0] = cycle_p_;
+          emit(CallKind::dwell).v[0] = cycle_dwell();
           move(CallKind::linear, at(clear));
           break;
+        case 74:
+        case 84: {  // Fanuc tapping: in, dwell P, the spindle reversed, out to R at feed, turning as before
+          const auto direction = state_.spindle_direction;
+          auto turn = [&](std::int8_t d) {
+            state_.spindle_direction = d;
+            emit(d > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          };
+          move(CallKind::linear, at(z));
+          if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+          turn(static_cast<std::int8_t>(-direction));
+          move(CallKind::linear, at(r));
+          turn(direction);
+          if (clear != r) move(CallKind::rapid, at(clear));
+          break;
+        }
+        case 76: {  // Fanuc fine boring: in, dwell P, oriented stop, shift Q off the wall, rapid out, back, restart
+          const auto direction = state_.spindle_direction;
+          move(CallKind::linear, at(z));
+          if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+          state_.spindle_direction = 0;
+          emit(CallKind::spindle_stop).text = "oriented";
+          auto shifted = [&](double zz) {
+            auto p = at(zz);
+            p[0] += c_.fine_boring_shift_x * cycle_q_;
+            p[1] += c_.fine_boring_shift_y * cycle_q_;
+            return p;
+          };
+          move(CallKind::rapid, shifted(z));
+          move(CallKind::rapid, shifted(clear));
+          move(CallKind::rapid, at(clear));
+          state_.spindle_direction = direction;
+          emit(direction > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+          break;
+        }
         default: break;
       }
     }
@@ -1234,50 +1535,375 @@ class Interpreter {
     result_.cycles.push_back(std::move(event));
   }
   bool cycle_r_set_ = false, cycle_z_set_ = false;
+  // A canned cycle's P: a dwell in ms on Fanuc (as G04 P), in s elsewhere.
+  double cycle_dwell() const { return c_.dwell_p_milliseconds ? cycle_p_ / 1000 : cycle_p_; }
   bool single_cycle_set_ = false;
-  std::array<double, 2> single_cycle_end_{};  // X (radius) and Z of the last G90/G94
+  std::array<double, 3> single_cycle_end_{};  // X (radius), Z and the taper R of the last G90/G92/G94
 
-  // ---- Fanuc lathe single cycles (0i-TF, G-code system A) ----------------
+  // ---- Fanuc lathe cycles (0i-TF, G-code system A) ------------------------
+  // The paths come from lathe_cycles.cpp; here the words are read, the
+  // contour is captured and the moves are emitted as a cycle event.
+
+  // The moves of a lathe path from the current position: X is a radius, Y
+  // and the rotary axes stay. Feeds of 0 keep the current feed; thread
+  // moves run synchronised to the spindle with `lead` per revolution.
+  void emit_path(const lathe::Path& path, double lead = 0) {
+    bool synchronised = false;
+    for (const lathe::Move& m : path) {
+      if ((m.kind == lathe::MoveKind::thread) != synchronised) {
+        synchronised = !synchronised;
+        if (synchronised) emit(CallKind::feed_sync_start).v[0] = lead;
+        else emit(CallKind::feed_sync_stop);
+      }
+      auto p = program_position();
+      p[0] = m.end.x;
+      p[2] = m.end.z;
+      if (m.feed > 0 && m.feed != state_.feed && m.kind != lathe::MoveKind::rapid) {
+        state_.feed = m.feed;
+        emit(CallKind::feed_rate).v[0] = m.feed;
+      }
+      switch (m.kind) {
+        case lathe::MoveKind::rapid: move(CallKind::rapid, p); break;
+        case lathe::MoveKind::feed:
+        case lathe::MoveKind::thread: move(CallKind::linear, p); break;
+        case lathe::MoveKind::arc: {
+          Call& call = emit(CallKind::arc);
+          call.plane = 18;
+          call.v = {p[2], p[0], m.centre.z, m.centre.x, m.ccw ? 1.0 : -1.0, p[1], p[3], p[4], p[5]};
+          set_program_position(p);
+          last_move_ = p;
+          break;
+        }
+      }
+    }
+    if (synchronised) emit(CallKind::feed_sync_stop);
+  }
+
+  CycleEvent begin_cycle(std::string name, const Words& w, std::string_view letters) {
+    CycleEvent event;
+    event.name = std::move(name);
+    event.line = line_;
+    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    for (const char c : letters)
+      if (w.has(c)) event.parameters.emplace_back(c, std::string_view("XZUWRIKQD").find(c) != std::string_view::npos ? to_mm(w.get(c)) : w.get(c));
+    return event;
+  }
+  void end_cycle(CycleEvent event) {
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
+
   // G90 (outer/inner diameter): rapid in X, feed along Z, feed out in X,
-  // rapid back in Z. G94 (end face): rapid in Z, feed along X, feed back in
-  // Z, rapid back in X. Both return to where they started; modal, so a
-  // block with only a new X (or Z) repeats the cycle.
-  void single_cycle(const Words& w, const Block& block) {
-    const bool face = motion_ == 9400;
-    if (w.has('R')) unsupported(fmt::format("G{} with a taper R", face ? 94 : 90), w.col('R'));
-    if (state_.feed <= 0) stop(fmt::format("G{} with zero feed rate", face ? 94 : 90));
+  // rapid back in Z. G92: the same with the cut synchronised to the spindle
+  // (F the lead) and a rapid out. G94 (end face): rapid in Z, feed along X,
+  // feed back in Z, rapid back in X. R tapers the cut: the X (G90, G92;
+  // radius) or Z (G94) where it starts, relative to the end point. All
+  // return to where they started and are modal: a block with only a new X
+  // (or Z) repeats the cycle.
+  void single_cycle(const Words& w, const Block&) {
+    const bool face = motion_ == meaning_facing_cycle, threading = motion_ == meaning_threading_cycle;
+    const int code = motion_ / 100;
+    if (state_.feed <= 0) stop(fmt::format("G{} with zero {}", code, threading ? "lead (F)" : "feed rate"));
     const auto start = program_position();
     auto end = target(w, false);
-    // The cycle's X and Z are modal: a block giving only one keeps the other.
+    double taper = w.has('R') ? to_mm(w.get('R')) : 0;
+    // The cycle's X, Z and R are modal: a block giving only one keeps the others.
     if (single_cycle_set_ && g_of(w, 1) == std::nullopt) {
       if (!w.has('X') && !w.has('U')) end[0] = single_cycle_end_[0];
       if (!w.has('Z') && !w.has('W')) end[2] = single_cycle_end_[1];
+      if (!w.has('R')) taper = single_cycle_end_[2];
     }
-    single_cycle_end_ = {end[0], end[2]};
+    single_cycle_end_ = {end[0], end[2], taper};
     single_cycle_set_ = true;
-    CycleEvent event;
-    event.name = face ? "G94" : "G90";
-    event.line = block.line;
-    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
-    event.parameters = {{'X', end[0] * 2}, {'Z', end[2]}, {'F', state_.feed}};
-    auto at = [&](double x, double z) {
-      auto p = start;
-      p[0] = x, p[2] = z;
-      return p;
-    };
-    if (face) {
-      move(CallKind::rapid, at(start[0], end[2]));
-      move(CallKind::linear, at(end[0], end[2]));
-      move(CallKind::linear, at(end[0], start[2]));
-      move(CallKind::rapid, at(start[0], start[2]));
-    } else {
-      move(CallKind::rapid, at(end[0], start[2]));
-      move(CallKind::linear, at(end[0], end[2]));
-      move(CallKind::linear, at(start[0], end[2]));
-      move(CallKind::rapid, at(start[0], start[2]));
+    CycleEvent event = begin_cycle(fmt::format("G{}", code), w, "");
+    event.parameters = {{'X', end[0] * 2}, {'Z', end[2]}, {'R', taper}, {'F', state_.feed}};
+    const lathe::Point a{start[0], start[2]}, b{end[0], end[2]};
+    using lathe::MoveKind, lathe::straight;
+    lathe::Path path;
+    if (face)
+      path = {straight(MoveKind::rapid, {a.x, b.z + taper}), straight(MoveKind::feed, b),
+              straight(MoveKind::feed, {b.x, a.z}), straight(MoveKind::rapid, a)};
+    else
+      path = {straight(MoveKind::rapid, {b.x + taper, a.z}), straight(threading ? MoveKind::thread : MoveKind::feed, b),
+              straight(threading ? MoveKind::rapid : MoveKind::feed, {a.x, b.z}), straight(MoveKind::rapid, a)};
+    emit_path(path, state_.feed);
+    end_cycle(std::move(event));
+  }
+
+  static bool is_repetitive_cycle(int meaning) {
+    return meaning >= meaning_finishing_cycle && meaning <= meaning_multiple_threading && meaning % 100 == 0;
+  }
+
+  // The path of the blocks N ns to N nf, run from the current position
+  // and then undone (state, position, calls): what G70-G73 cut along.
+  lathe::Contour capture_contour(const Words& w, const std::string& name) {
+    for (const char c : std::string_view("PQ"))
+      if (!w.has(c))
+        stop(fmt::format("{} needs {}: the N number of the contour's {} block", name, c, c == 'P' ? "first" : "last"));
+    const double ns = w.raw[slot('P')], nf = w.raw[slot('Q')];
+    const auto first = numbered_block(ns, 0);
+    if (!first) stop(fmt::format("{} P{}: no block N{}", name, ns, ns), w.col('P'));
+    const auto last = numbered_block(nf, *first);
+    if (!last || *last < *first) stop(fmt::format("{} Q{}: no block N{} at or after N{}", name, nf, nf, ns), w.col('Q'));
+    if (*first <= block_ && *last >= block_) stop(fmt::format("{}: the contour N{}-N{} holds the cycle itself", name, ns, nf));
+
+    const auto machine = machine_;
+    const auto last_move = last_move_;
+    const int motion = motion_;
+    const MotionState state = state_;
+    const bool incremental = incremental_, feed_per_rev = feed_per_rev_;
+    const int prepped = prepped_tool_;
+    const std::uint32_t block = block_, line = line_;
+    const std::size_t calls = result_.calls.size(), cycles = result_.cycles.size();
+    lathe::Contour contour;
+    const auto start = program_position();
+    contour.start = {start[0], start[2]};
+    capturing_ = true;
+    for (std::uint32_t i = *first; i <= *last; ++i) {
+      const Block& b = p_.blocks[i];
+      block_ = i;
+      line_ = b.line;
+      try {
+        if (b.error >= 0) {
+          result_.errors.push_back(p_.errors[static_cast<std::size_t>(b.error)]);
+          throw Reported{};
+        }
+        if (b.o.kind != OKind::none) stop(fmt::format("{}: GOTO, IF and WHILE are not allowed in a cycle's contour", name));
+        if (b.block_delete && o_.block_delete) continue;
+        execute(b);
+        if (ended_) stop(fmt::format("{}: a program end inside the contour", name));
+      } catch (const Stop& s) {
+        capturing_ = false;
+        error_at(b.line, s.column ? s.column : blamed_column(b), s.message);
+        throw Reported{};
+      }
     }
-    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
-    result_.cycles.push_back(std::move(event));
+    capturing_ = false;
+    for (std::size_t i = calls; i < result_.calls.size(); ++i) {
+      const Call& c = result_.calls[i];
+      lathe::Move m;
+      m.feed = c.state.feed;
+      if (c.kind == CallKind::rapid || c.kind == CallKind::linear) {
+        m.kind = c.kind == CallKind::rapid ? lathe::MoveKind::rapid : lathe::MoveKind::feed;
+        m.end = {c.v[0], c.v[2]};
+      } else if (c.kind == CallKind::arc) {
+        if (c.plane != 18 || std::abs(c.v[4]) != 1) stop(fmt::format("{}: contour arcs must be single turns in G18", name));
+        m.kind = lathe::MoveKind::arc;
+        m.end = {c.v[1], c.v[0]};
+        m.centre = {c.v[3], c.v[2]};
+        m.ccw = c.v[4] > 0;
+      } else {
+        continue;
+      }
+      contour.moves.push_back(m);
+    }
+    result_.calls.resize(calls);
+    result_.cycles.resize(cycles);
+    machine_ = machine;
+    last_move_ = last_move;
+    motion_ = motion;
+    state_ = state;
+    incremental_ = incremental;
+    feed_per_rev_ = feed_per_rev;
+    prepped_tool_ = prepped;
+    block_ = block;
+    line_ = line;
+    if (contour.moves.empty()) stop(fmt::format("{}: the contour N{}-N{} does not move", name, ns, nf));
+    // A contour that follows its cycle is not run again: the program goes
+    // on after N nf (a contour elsewhere is left where it is).
+    if (*first == block_ + 1) jump_ = *last + 1;
+    return contour;
+  }
+
+  // G70-G76 in both forms: the 0i's two blocks (the first, without P/Q or
+  // without an end point, sets depth, retract, ... as parameters) and the
+  // 0-T's one block (D, I, K words; the rest from the table's defaults).
+  void repetitive_cycle(int meaning, std::uint32_t column, const Words& w, const Block&) {
+    const int code = meaning / 100;
+    const std::string name = fmt::format("G{}", code);
+    if (capturing_) stop(fmt::format("{} inside the contour of another cycle", name), column);
+    const bool contour_cycle = meaning <= meaning_pattern_repeating;
+    const bool end_point = w.has('X') || w.has('Z') || w.has('U') || w.has('W');
+    const bool first_block = contour_cycle ? !w.has('P') && !w.has('Q') : !end_point;
+    if (first_block) {
+      repetitive_first_block(meaning, w, name, column);
+      return;
+    }
+    auto feed_needed = [&] {
+      if (state_.feed <= 0) stop(fmt::format("{} with zero feed rate", name), column);
+    };
+    CycleEvent event = begin_cycle(name, w, "");
+    for (const char c : std::string_view("PQXZUWRIKDAF"))
+      if (w.has(c)) event.parameters.emplace_back(c, cycle_word(meaning, w, c, false));
+    if (const auto it = first_block_words_.find(code); it != first_block_words_.end())
+      event.parameters.insert(event.parameters.begin(), it->second.begin(), it->second.end());
+    lathe::Path path;
+    std::string problem;
+    const std::size_t budget = o_.max_calls - std::min(o_.max_calls, result_.calls.size());
+    switch (meaning) {
+      case meaning_finishing_cycle: path = lathe::finish(capture_contour(w, name)); break;
+      case meaning_stock_removal_turning:
+      case meaning_stock_removal_facing: {
+        feed_needed();
+        const bool turning = meaning == meaning_stock_removal_turning;
+        double depth = 0;
+        if (w.has('D')) depth = increments(w, 'D');  // 0-T
+        else if (roughing_depth_) depth = *roughing_depth_;
+        else stop(fmt::format("{} needs the depth of cut: a {} {}.. R.. block before it (0i) or D (0-T)", name, name,
+                              turning ? 'U' : 'W'), column);
+        const lathe::Point allowance{w.has('U') ? to_mm(w.get('U')) / 2 : 0, w.has('W') ? to_mm(w.get('W')) : 0};
+        const auto contour = capture_contour(w, name);
+        problem = lathe::rough(contour, {depth, repetitive_.roughing_retract_mm, allowance, turning}, path, budget);
+        if (problem.starts_with("type II")) unsupported(fmt::format("{} {}", name, problem), column);
+        break;
+      }
+      case meaning_pattern_repeating: {
+        feed_needed();
+        lathe::Point relief{repetitive_.pattern_relief_x_mm, repetitive_.pattern_relief_z_mm};
+        int divisions = repetitive_.pattern_divisions;
+        if (w.has('I')) relief.x = to_mm(w.get('I'));  // 0-T
+        if (w.has('K')) relief.z = to_mm(w.get('K'));
+        if (w.has('D')) divisions = division_count(w, 'D');
+        const lathe::Point allowance{w.has('U') ? to_mm(w.get('U')) / 2 : 0, w.has('W') ? to_mm(w.get('W')) : 0};
+        const auto contour = capture_contour(w, name);
+        if (static_cast<double>(divisions) * static_cast<double>(contour.moves.size() + 1) > static_cast<double>(budget))
+          problem = "more moves than the call budget allows";
+        else
+          path = lathe::pattern_repeat(contour, allowance, relief, divisions);
+        break;
+      }
+      case meaning_end_face_peck_drilling:
+      case meaning_diameter_grooving: {
+        feed_needed();
+        const auto start = program_position(), end = target(w, false);
+        lathe::Pecking pecking;
+        pecking.start = {start[0], start[2]};
+        pecking.end = {end[0], end[2]};
+        pecking.along_z = meaning == meaning_end_face_peck_drilling;
+        // delta i (X) and delta k (Z): P and Q (0i) or I and K (0-T), in least increments
+        const double di = w.has('P') ? increments(w, 'P') : w.has('I') ? increments(w, 'I') : 0;
+        const double dk = w.has('Q') ? increments(w, 'Q') : w.has('K') ? increments(w, 'K') : 0;
+        pecking.peck = pecking.along_z ? dk : di;
+        pecking.step = pecking.along_z ? di : dk;
+        pecking.retract = repetitive_.peck_return_mm;
+        pecking.relief = w.has('D') ? increments(w, 'D') : w.has('R') ? to_mm(w.get('R')) : 0;
+        problem = lathe::peck(pecking, path, budget);
+        break;
+      }
+      case meaning_multiple_threading: {
+        if (state_.feed <= 0) stop(fmt::format("{} needs F, the lead", name), column);
+        const bool one_block = w.has('K') || w.has('D') || w.has('I');
+        if (one_block && w.has('P') && w.get('P') != 1)
+          unsupported(fmt::format("G76 P{} (an infeed other than one flank)", w.get('P')), w.col('P'));
+        const auto start = program_position(), end = target(w, false);
+        lathe::Threading t;
+        t.start = {start[0], start[2]};
+        t.end = {end[0], end[2]};
+        const char taper = one_block ? 'I' : 'R', height = one_block ? 'K' : 'P', first = one_block ? 'D' : 'Q';
+        t.taper = w.has(taper) ? to_mm(w.get(taper)) : 0;
+        if (!w.has(height)) stop(fmt::format("G76 needs {}, the thread height", height), column);
+        if (!w.has(first)) stop(fmt::format("G76 needs {}, the depth of the first cut", first), column);
+        t.height = increments(w, height);
+        t.first_depth = increments(w, first);
+        t.min_depth = repetitive_.thread_min_depth_mm;
+        t.finish_allowance = repetitive_.thread_finish_allowance_mm;
+        t.finish_passes = repetitive_.thread_finish_passes;
+        t.chamfer = repetitive_.thread_chamfer_leads * state_.feed;
+        t.angle_deg = w.has('A') ? thread_angle(w.get('A'), w.col('A')) : repetitive_.thread_angle_deg;
+        problem = lathe::thread(t, path, budget);
+        break;
+      }
+      default: break;
+    }
+    if (!problem.empty()) stop(fmt::format("{}: {}", name, problem), column);
+    emit_path(path, state_.feed);
+    end_cycle(std::move(event));
+  }
+
+  // The 0i's first blocks: G71 U(depth) R(retract), G72 W(depth) R(retract),
+  // G73 U(relief X) W(relief Z) R(divisions), G74/G75 R(return),
+  // G76 P(m r a) Q(min depth) R(finishing allowance).
+  void repetitive_first_block(int meaning, const Words& w, const std::string& name, std::uint32_t column) {
+    const int code = meaning / 100;
+    auto& words = first_block_words_[code];
+    words.clear();
+    for (const char c : std::string_view("PQRUW"))
+      if (w.has(c)) words.emplace_back(static_cast<char>(std::tolower(c)), cycle_word(meaning, w, c, true));
+    switch (meaning) {
+      case meaning_stock_removal_turning:
+      case meaning_stock_removal_facing: {
+        const char depth = meaning == meaning_stock_removal_turning ? 'U' : 'W';
+        if (!w.has(depth) && !w.has('R'))
+          stop(fmt::format("{} needs P and Q (the contour), or {} and R (the 0i first block)", name, depth), column);
+        if (w.has(depth)) {
+          if (!(w.get(depth) > 0)) stop(fmt::format("{} {}: the depth of cut must be above zero", name, depth), w.col(depth));
+          roughing_depth_ = to_mm(w.get(depth));
+        }
+        if (w.has('R')) repetitive_.roughing_retract_mm = non_negative(w, 'R', name);
+        return;
+      }
+      case meaning_pattern_repeating:
+        if (!w.has('U') && !w.has('W') && !w.has('R'))
+          stop(fmt::format("{} needs P and Q (the contour), or U, W and R (the 0i first block)", name), column);
+        if (w.has('U')) repetitive_.pattern_relief_x_mm = to_mm(w.get('U'));
+        if (w.has('W')) repetitive_.pattern_relief_z_mm = to_mm(w.get('W'));
+        if (w.has('R')) repetitive_.pattern_divisions = division_count(w, 'R');
+        return;
+      case meaning_end_face_peck_drilling:
+      case meaning_diameter_grooving:
+        if (!w.has('R')) stop(fmt::format("{} needs an end point (X, Z, U or W), or R (the 0i first block)", name), column);
+        repetitive_.peck_return_mm = non_negative(w, 'R', name);
+        return;
+      case meaning_multiple_threading: {
+        if (!w.has('P') && !w.has('Q') && !w.has('R'))
+          stop("G76 needs an end point (X, Z, U or W), or P, Q and R (the 0i first block)", column);
+        if (w.has('P')) {
+          const double p = w.get('P');
+          if (p < 0 || p > 999999 || p != std::floor(p)) stop("G76 P: six digits m r a", w.col('P'));
+          const int mra = static_cast<int>(p);
+          if (mra / 10000 < 1) stop("G76 P: the finishing passes m (first two digits) must be 01 to 99", w.col('P'));
+          repetitive_.thread_finish_passes = mra / 10000;
+          repetitive_.thread_chamfer_leads = (mra / 100 % 100) / 10.0;
+          repetitive_.thread_angle_deg = thread_angle(mra % 100, w.col('P'));
+        }
+        if (w.has('Q')) repetitive_.thread_min_depth_mm = non_negative(w, 'Q', name);
+        if (w.has('R')) repetitive_.thread_finish_allowance_mm = non_negative(w, 'R', name);
+        return;
+      }
+      default: return;  // G70 has one block only: needs P and Q
+    }
+  }
+
+  // A cycle word as the cycle reads it (for the cycle event): N numbers
+  // and counts as written, lengths in mm (least increments where the manual
+  // gives them without a point).
+  double cycle_word(int meaning, const Words& w, char c, bool first_block) const {
+    const bool contour_cycle = meaning <= meaning_pattern_repeating;
+    const bool threading = meaning == meaning_multiple_threading;
+    const bool one_block_threading = threading && (w.has('K') || w.has('D') || w.has('I'));
+    if (c == 'A' || c == 'F' || (contour_cycle && (c == 'P' || c == 'Q')) || (threading && first_block && c == 'P') ||
+        (one_block_threading && c == 'P') || (meaning == meaning_pattern_repeating && (c == 'D' || (first_block && c == 'R'))))
+      return w.raw[slot(c)];
+    if (c == 'P' || c == 'Q' || c == 'D') return increments(w, c);
+    return to_mm(w.get(c));
+  }
+
+  double non_negative(const Words& w, char c, const std::string& name) {
+    const double v = to_mm(w.get(c));
+    if (v < 0) stop(fmt::format("{} {}: must not be negative", name, c), w.col(c));
+    return v;
+  }
+  // G73 R (0i) / D (0-T): a count, whatever the decimal point says.
+  int division_count(const Words& w, char c) {
+    const double v = w.raw[slot(c)];
+    if (v < 1 || v > 10000 || v != std::floor(v)) stop(fmt::format("G73 {}: the number of divisions must be 1 to 10000", c), w.col(c));
+    return static_cast<int>(v);
+  }
+  // The tool angles the manual allows for G76 a.
+  static double thread_angle(double a, std::uint32_t column) {
+    for (const double allowed : {80.0, 60.0, 55.0, 30.0, 29.0, 0.0})
+      if (a == allowed) return a;
+    stop(fmt::format("G76 tool angle {} is not one of 80, 60, 55, 30, 29, 0", a), column);
   }
 
   // ---- coordinate systems --------------------------------------------------

@@ -13,11 +13,11 @@ namespace stepnc::gcode {
 namespace {
 
 std::string_view kind_name(CallKind kind) {
-  static constexpr std::array<std::string_view, 25> names = {
+  static constexpr std::array<std::string_view, 28> names = {
       "rapid", "linear", "arc", "dwell", "feed_rate", "spindle_speed", "spindle_clockwise",
       "spindle_counterclockwise", "spindle_stop", "select_tool", "change_tool", "tool_length_offset", "flood_on",
       "flood_off", "mist_on", "mist_off", "units", "plane", "g92_offset", "g5x_offset", "comment", "message",
-      "program_stop", "program_end", ""};
+      "program_stop", "program_end", "feed_sync_start", "feed_sync_stop", "quadratic_spline"};
   return names[static_cast<std::size_t>(kind)];
 }
 
@@ -35,9 +35,11 @@ std::size_t value_count(CallKind kind) {
   switch (kind) {
     case CallKind::rapid: case CallKind::linear: case CallKind::g92_offset: return 6;
     case CallKind::arc: return 9;
+    case CallKind::quadratic_spline: return 8;
     case CallKind::g5x_offset: return 7;
     case CallKind::dwell: case CallKind::feed_rate: case CallKind::spindle_speed: case CallKind::select_tool:
     case CallKind::change_tool: case CallKind::tool_length_offset: case CallKind::plane: case CallKind::program_stop:
+    case CallKind::feed_sync_start:
       return 1;
     default: return 0;
   }
@@ -89,8 +91,10 @@ std::string json_text(const Result& result) {
 }
 
 std::string plot_svg(const Result& result) {
-  const bool lathe = std::any_of(result.calls.begin(), result.calls.end(),
-                                 [](const Call& c) { return c.kind == CallKind::plane && c.v[0] == 18; });
+  // Every call carries the plane it runs in (a lathe is in G18 from the start, with no plane call).
+  const bool lathe = std::any_of(result.calls.begin(), result.calls.end(), [](const Call& c) {
+    return (c.kind == CallKind::rapid || c.kind == CallKind::linear || c.kind == CallKind::arc) && c.plane == 18;
+  });
   // Screen axes: XY, or Z across and X up for G18 work.
   auto project = [&](double x, double y, double z) { return lathe ? std::array{z, x} : std::array{x, y}; };
   struct Path {
@@ -105,6 +109,14 @@ std::string plot_svg(const Result& result) {
       if (paths.empty() || paths.back().rapid != rapid) paths.push_back({rapid, {project(at[0], at[1], at[2])}});
       at = {c.v[0], c.v[1], c.v[2]};
       paths.back().points.push_back(project(at[0], at[1], at[2]));
+    } else if (c.kind == CallKind::quadratic_spline) {  // XY: from here through the control point to the end
+      if (paths.empty() || paths.back().rapid) paths.push_back({false, {project(at[0], at[1], at[2])}});
+      for (int k = 1; k <= 16; ++k) {
+        const double t = k / 16.0, u = 1 - t;
+        paths.back().points.push_back(project(u * u * at[0] + 2 * u * t * c.v[6] + t * t * c.v[0],
+                                              u * u * at[1] + 2 * u * t * c.v[7] + t * t * c.v[1], c.v[2]));
+      }
+      at = {c.v[0], c.v[1], c.v[2]};
     } else if (c.kind == CallKind::arc) {
       // Plane axes as ARC_FEED orders them (first, second, normal).
       const std::array<int, 3> axes = c.plane == 18 ? std::array{2, 0, 1} : c.plane == 19 ? std::array{1, 2, 0} : std::array{0, 1, 2};

@@ -73,9 +73,9 @@ class LineReader {
         o_word(block.o);
         continue;
       }
-      if (c == 'O' && c_.o_program_number) {  // a program number, no action
+      if (c == 'O' && c_.o_program_number) {  // a program number: where M98 P finds it
         ++i_;
-        number();
+        block.program_number = number();
         continue;
       }
       if (c_.named_addresses && (c == '$' || (std::isalpha(static_cast<unsigned char>(c)) && is_identifier_start()))) {

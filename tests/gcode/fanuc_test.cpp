@@ -56,13 +56,13 @@ TEST_CASE("Fanuc mill: K repeats a canned cycle, macro variables take bare expre
 }
 
 TEST_CASE("Fanuc: what the table does not run yet is refused by name", "[gcode][fanuc]") {
-  const Result lathe = run("fanuc-lathe", "G00 X80. Z2.\nG71 U2. R1.\nM30\n");
+  const Result lathe = run("fanuc-lathe", "G00 X80. Z2.\nG41 G01 X70. F0.2\nM30\n");
   REQUIRE(lathe.unsupported());
-  CHECK(lathe.errors[0].message == "unsupported: G71 multiple repetitive cycle");
+  CHECK(lathe.errors[0].message == "unsupported: G41/G42 tool nose radius compensation (with its tip direction)");
   CHECK(lathe.errors[0].pos.line == 2);
-  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");  // subprograms live in other files
+  const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");  // no O1000 in this file
   REQUIRE(sub.unsupported());
-  CHECK(sub.errors[0].message == "unsupported: M98/M99 subprograms");
+  CHECK(sub.errors[0].message == "unsupported: subprogram O1000 outside this file");
   const Result word = run("fanuc-mill", "G01 E5.\nM30\n");
   REQUIRE(word.errors.size() == 1);
   CHECK(word.errors[0].message == "unknown word 'E' for fanuc-mill");
@@ -107,4 +107,52 @@ TEST_CASE("Fanuc lathe G90 and G94 single cycles expand to four moves and stay m
   CHECK(r.calls[r.cycles[2].first_call].v[2] == -2);
   CHECK(r.calls[r.cycles[2].first_call + 1].v[0] == 10);
   CHECK(r.calls[r.cycles[2].end_call - 1].v[0] == 31);
+}
+
+TEST_CASE("Fanuc mill G84/G74 tapping, G76 fine boring, cycle dwells P in milliseconds", "[gcode][fanuc]") {
+  const Result r = run("fanuc-mill",
+                       "G21 G90 G94 S500 M03\nG00 X10. Y10. Z20.\nG98 G84 Z-10. R2. P300 F750.\n"
+                       "G80 M04\nG99 G74 X30. Z-10. R2. P0 F750.\nG80 M03\nG98 G76 X50. Z-15. R2. Q0.5 P200 F100.\n"
+                       "G82 X70. Z-5. R2. P1500\nG80\nM30\n");
+  for (const auto& e : r.errors) INFO(e.to_string("mill.nc"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 4);
+  CHECK(r.cycles[0].name == "G84");
+  CHECK(r.cycles[1].name == "G74");
+  CHECK(r.cycles[2].name == "G76");
+  std::vector<std::array<double, 3>> moves;  // kind (0 rapid, 1 feed), X, Z of the G84
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i)
+    if (r.calls[i].kind == CallKind::rapid || r.calls[i].kind == CallKind::linear)
+      moves.push_back({r.calls[i].kind == CallKind::linear ? 1.0 : 0.0, r.calls[i].v[0], r.calls[i].v[2]});
+  // G98: down to R at rapid, tap to Z-10, back to R at feed with the spindle reversed, up to the initial Z20.
+  const std::vector<std::array<double, 3>> expected = {{0, 10, 20}, {0, 10, 2}, {1, 10, -10}, {1, 10, 2}, {0, 10, 20}};
+  CHECK(moves == expected);
+  const Call* out = nullptr;
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i)
+    if (r.calls[i].kind == CallKind::linear) out = &r.calls[i];
+  REQUIRE(out);
+  CHECK(out->state.spindle_direction == -1);  // out of the tap with the spindle reversed
+  CHECK(r.calls[r.cycles[0].end_call - 2].kind == CallKind::spindle_clockwise);
+  // G74 (M4): in counter-clockwise, out clockwise, G99 stays at R.
+  CHECK(r.calls[r.cycles[1].end_call - 1].kind == CallKind::spindle_counterclockwise);
+  // G76: an oriented stop at the bottom, 0.5 along +X off the wall, out, back over the hole.
+  std::vector<std::array<double, 2>> boring;
+  for (std::uint32_t i = r.cycles[2].first_call; i < r.cycles[2].end_call; ++i)
+    if (r.calls[i].kind == CallKind::rapid || r.calls[i].kind == CallKind::linear) boring.push_back({r.calls[i].v[0], r.calls[i].v[2]});
+  // (from R of the G99 G74 before it; G98 returns to the first cycle's initial Z20)
+  const std::vector<std::array<double, 2>> boring_expected = {{50, 2}, {50, -15}, {50.5, -15}, {50.5, 20}, {50, 20}};
+  CHECK(boring == boring_expected);
+  const auto dwells = of(r, CallKind::dwell);
+  REQUIRE(dwells.size() == 3);
+  CHECK(dwells[0]->v[0] == Approx(0.3));
+  CHECK(dwells[1]->v[0] == Approx(0.2));
+  CHECK(dwells[2]->v[0] == Approx(1.5));  // G82 P1500: 1.5 s
+  // G80 cancels the cycle's words on Fanuc: a G81 after it needs its own R and Z.
+  const Result cancelled = run("fanuc-mill", "G21 G94 F100.\nG81 X0 Y0 Z-5. R2.\nG80\nG81 X10.\nM30\n");
+  REQUIRE(cancelled.errors.size() == 1);
+  CHECK(cancelled.errors[0].message == "G81 needs R");
+  CHECK(cancelled.errors[0].pos.line == 4);
+  const Result wrong = run("fanuc-mill", "G21 G94 S500 M04\nG84 X0 Y0 Z-10. R2. F750.\nM30\n");
+  REQUIRE(wrong.errors.size() == 1);
+  CHECK(wrong.errors[0].message == "G84 (right-hand tapping) with the spindle turning M4");
 }

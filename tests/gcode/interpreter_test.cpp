@@ -157,3 +157,40 @@ TEST_CASE("the SVG plot draws rapids dashed and feeds solid", "[gcode][output]")
   CHECK(feeds == 1);  // the line and the arc join into one path
   CHECK(svg.find("20.0000,0.0000") != std::string::npos);
 }
+
+TEST_CASE("G5.1 quadratic spline and G33 spindle-synchronised motion", "[gcode][interpreter]") {
+  const Result r = interpret_text("G21 G17 G90 G94 F100\nG0 X1 Y2\nG1 Z-1\nG5.1 X10 Y2 I4 J6\nG91 G5.1 X-2 J3\nG90 G18\n"
+                                  "S500 M3\nG0 X10 Z5\nG33 Z-20 K1.5\nM2\n",
+                                  *controller("rs274ngc"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.ngc"));
+  REQUIRE(r.ok());
+  const auto splines = of(r, CallKind::quadratic_spline);
+  REQUIRE(splines.size() == 2);
+  // From (1, 2) through (1 + 4, 2 + 6) to (10, 2); then from there through (10, 5) to (8, 2).
+  CHECK(splines[0]->v[0] == 10);
+  CHECK(splines[0]->v[1] == 2);
+  CHECK(splines[0]->v[2] == -1);
+  CHECK(splines[0]->v[6] == 5);
+  CHECK(splines[0]->v[7] == 8);
+  CHECK(splines[1]->v[0] == 8);
+  CHECK(splines[1]->v[6] == 10);
+  CHECK(splines[1]->v[7] == 5);
+  const std::string listing = canonical_text(r);
+  CHECK(listing.find("NURBS_FEED(3, ...)") != std::string::npos);
+  CHECK(listing.find("START_SPEED_FEED_SYNC(1.500000,0)\n") != std::string::npos);
+  const auto sync = of(r, CallKind::feed_sync_start);
+  REQUIRE(sync.size() == 1);
+  const Call* thread = sync[0] + 1;
+  CHECK(thread->kind == CallKind::linear);
+  CHECK(thread->v[2] == -20);
+  CHECK((thread + 1)->kind == CallKind::feed_sync_stop);
+  const Result cubic = interpret_text("G21 F100\nG5 X1 Y1 I1 J0 P1 Q1\nM2\n", *controller("rs274ngc"));
+  REQUIRE(cubic.unsupported());
+  CHECK(cubic.errors[0].message == "unsupported: G5 cubic splines");
+}
+
+TEST_CASE("controller_names lists the table rows the CLI offers", "[gcode][interpreter]") {
+  const std::vector<std::string_view> expected = {"rs274ngc", "fanuc-mill", "fanuc-lathe", "siemens840d"};
+  CHECK(controller_names() == expected);
+  for (const std::string_view name : controller_names()) CHECK(controller(name).has_value());
+}

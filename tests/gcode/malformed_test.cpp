@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The malformed corpus: every tests/gcode/malformed/NAME.ngc has a
 // NAME.expected holding the one diagnostic the interpreter stops with
-// (file:line:col: error: message, then the block). To refresh after a
+// (file:line:col: error: message, then the block). NAME is read with the
+// rs274ngc table, or with the one its prefix names (`fanuc-lathe.g71_no_q`). To refresh after a
 // deliberate change of messages:
 //   STEPNC_UPDATE_GOLDEN=1 ./gcode_tests "[malformed]"   (then review the diff)
 #include <catch2/catch.hpp>
@@ -29,7 +30,11 @@ TEST_CASE("malformed programs: exact diagnostics with line and column, no crash"
   options.max_blocks = 100'000;
   for (const fs::path& file : files) {
     INFO(file.filename().string());
-    const Result result = interpret_text(stepnc_test::read_file(file), *controller("rs274ngc"), options);
+    const std::string stem = file.stem().string();
+    const auto dot = stem.find('.');
+    const auto table = controller(dot == std::string::npos ? "rs274ngc" : stem.substr(0, dot));
+    REQUIRE(table);
+    const Result result = interpret_text(stepnc_test::read_file(file), *table, options);
     REQUIRE(result.errors.size() == 1);
     const std::string actual = result.errors.front().to_string(file.filename().string()) + "\n";
     fs::path expected = file;

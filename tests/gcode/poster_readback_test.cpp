@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -31,15 +32,24 @@ namespace {
 // stand-in (Program::machine_safe), the front end where the offsets it
 // knows put them. So both sides leave them out: the calls of those blocks
 // from ours, the traverses to the stand-in from the poster's.
-bool machine_safe_block(std::string_view line) {
-  for (std::string_view word : {"G53", "G28", "SUPA", "G74"})
-    if (line.find(word) != std::string_view::npos) return true;
-  return false;
+// A block is machine-safe when its words say so, as the controller's table
+// reads them: a G code meaning G53 or G28 (840D G74 is a reference-point
+// approach), or 840D SUPA.
+bool machine_safe_block(const gcode::Program& program, const gcode::Controller& controller, std::uint32_t index) {
+  const gcode::Block& block = program.blocks.at(index);
+  for (std::uint32_t i = block.words_begin; i < block.words_end; ++i) {
+    const gcode::Word& word = program.words[i];
+    if (word.letter != 'G' || word.expr != gcode::Word::none) continue;
+    const auto entry = gcode::g_entry(controller, static_cast<int>(std::lround(word.literal * 10)));
+    if (entry && (entry->meaning == 530 || entry->meaning == 280)) return true;
+  }
+  return std::any_of(block.named.begin(), block.named.end(), [](const gcode::NamedWord& n) { return n.name == "SUPA"; });
 }
 
-gcode::Result without_machine_safe_retracts(gcode::Result result, std::string_view text) {
-  const gcode::Program lines = gcode::parse_program(std::string(text), *gcode::controller("rs274ngc"));
-  std::erase_if(result.calls, [&](const gcode::Call& call) { return machine_safe_block(lines.line_text(call.line)); });
+gcode::Result without_machine_safe_retracts(gcode::Result result, const gcode::Program& program,
+                                            const gcode::Controller& controller) {
+  std::erase_if(result.calls,
+                [&](const gcode::Call& call) { return machine_safe_block(program, controller, call.block); });
   return result;
 }
 
@@ -154,9 +164,12 @@ std::string read_back(const std::string& sample, post::Dialect dialect) {
                                                                    : "fanuc-mill";
 
   // Zero tool lengths: the poster's canonical form is in program coordinates.
-  const gcode::Result read = gcode::interpret_text(posted, *gcode::controller(name));
+  const gcode::Controller controller = *gcode::controller(name);
+  const gcode::Program program = gcode::parse_program(posted, controller);
+  const gcode::Result read = gcode::interpret(program, controller);
   if (!read.ok()) return fmt::format("{} as {}: {}", sample, name, read.errors.front().to_string("posted"));
-  const auto ours_listed = testing::canonical_moves(gcode::canonical_text(without_machine_safe_retracts(read, posted), 9));
+  const auto ours_listed =
+      testing::canonical_moves(gcode::canonical_text(without_machine_safe_retracts(read, program, controller), 9));
   auto theirs = testing::canonical_moves(without_machine_safe_traverses(poster_canonical, generated.program));
   if (dialect == post::Dialect::fanuc) theirs = one_turn_per_arc(theirs);
   theirs = straight_rapids_joined(theirs);

@@ -3,6 +3,8 @@
 // comments, G71 metric, G4 F seconds; cycles not expanded yet are refused.
 #include <catch2/catch.hpp>
 
+#include <array>
+
 #include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 
@@ -117,4 +119,89 @@ TEST_CASE("Fanuc lathe: G54 selects a workpiece coordinate system", "[gcode][fan
   const auto rapids = of(r, CallKind::rapid);
   REQUIRE(rapids.size() == 1);
   CHECK(rapids[0]->v[0] == Approx(20));
+}
+
+TEST_CASE("Siemens 840D CYCLE83 deep-hole drilling: chip removal and chip breaking", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "G17 G71 G90 G94\nS1000 M3\nF100\nG0 X10 Y10 Z50\n"
+      "CYCLE83(50,0,2,-20,,-5,,5,0.5,0,1,1)\n"      // VARI 1: out to RFP + SDIS after each depth
+      "G0 X30\nCYCLE83(50,0,2,-10,,-4,,0,,,0.5,0)\n"  // VARI 0: back 1 mm; FRF halves the first feed
+      "M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 2);
+  CHECK(r.cycles[0].name == "CYCLE83");
+  // Depths -5, -10, -15, -20 (DAM 5: steps of 5); back to Z2 at rapid and
+  // down to 0.6 mm (the anticipation distance for 20 mm deep) above the last depth.
+  std::vector<std::array<double, 2>> z;  // kind (0 rapid, 1 feed), Z
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i)
+    if (r.calls[i].kind == CallKind::rapid || r.calls[i].kind == CallKind::linear)
+      z.push_back({r.calls[i].kind == CallKind::linear ? 1.0 : 0.0, r.calls[i].v[2]});
+  const std::vector<std::array<double, 2>> expected = {{0, 2},  {1, -5}, {0, 2},  {0, -4.4},  {1, -10}, {0, 2},
+                                                       {0, -9.4}, {1, -15}, {0, 2}, {0, -14.4}, {1, -20}, {0, 50}};
+  REQUIRE(z.size() == expected.size());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    CHECK(z[i][0] == expected[i][0]);
+    CHECK(z[i][1] == Approx(expected[i][1]));
+  }
+  CHECK(of(r, CallKind::dwell).size() == 4);  // DTB 0.5 s at each depth
+  // VARI 0: -4 at F50, back to -3, -8, back to -7, -10.
+  std::vector<double> breaking;
+  for (std::uint32_t i = r.cycles[1].first_call; i < r.cycles[1].end_call; ++i)
+    if (r.calls[i].kind == CallKind::linear) breaking.push_back(r.calls[i].v[2]);
+  CHECK(breaking == std::vector<double>{-4, -3, -8, -7, -10});
+  CHECK(r.calls[r.cycles[1].first_call + 1].kind == CallKind::feed_rate);
+  CHECK(r.calls[r.cycles[1].first_call + 1].v[0] == Approx(50));
+}
+
+TEST_CASE("Siemens 840D CYCLE84 rigid tapping: synchronised in and out, SDAC restored", "[gcode][siemens]") {
+  const Result r = interpret_text("G17 G71 G90 G94\nS1000 M3\nG0 X30 Y10 Z50\n"
+                                  "CYCLE84(50,0,2,-15,,0.2,3,,1.5,,400,800)\n"
+                                  "CYCLE84(50,0,2,-15,,,4,-10,,,400,)\nM30\n",
+                                  *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 2);
+  const auto syncs = of(r, CallKind::feed_sync_start);
+  REQUIRE(syncs.size() == 2);
+  CHECK(syncs[0]->v[0] == Approx(1.5));
+  CHECK(syncs[1]->v[0] == Approx(1.5));  // MPIT -10: M10 coarse, left hand
+  const auto cw = of(r, CallKind::spindle_clockwise), ccw = of(r, CallKind::spindle_counterclockwise);
+  // In clockwise at 400, out counter-clockwise at 800; the left-hand tap the other way round.
+  const auto feeds = of(r, CallKind::linear);
+  REQUIRE(feeds.size() == 4);
+  CHECK(feeds[0]->v[2] == Approx(-15));
+  CHECK(feeds[0]->state.spindle == 400);
+  CHECK(feeds[0]->state.spindle_direction == 1);
+  CHECK(feeds[1]->v[2] == Approx(2));
+  CHECK(feeds[1]->state.spindle == 800);
+  CHECK(feeds[1]->state.spindle_direction == -1);
+  CHECK(feeds[2]->state.spindle_direction == -1);
+  CHECK(feeds[3]->state.spindle_direction == 1);
+  // SDAC 3 then 4: the spindle as each cycle leaves it.
+  CHECK(r.calls[r.cycles[0].end_call - 1].kind == CallKind::spindle_clockwise);
+  CHECK(r.calls[r.cycles[1].end_call - 1].kind == CallKind::spindle_counterclockwise);
+  CHECK(cw.size() + ccw.size() == 7);
+  const Result bad = interpret_text("G17 G71 G90\nS100 M3\nCYCLE84(50,0,2,-15,,,3,7,,,400,)\nM30\n", *controller("siemens840d"));
+  REQUIRE(bad.errors.size() == 1);
+  CHECK(bad.errors[0].message == "CYCLE84: MPIT 7 is not a metric thread size from 3 to 48");
+}
+
+TEST_CASE("Siemens 840D CYCLE86 with a lift-off: off the wall, up, back over the hole, out", "[gcode][siemens]") {
+  const Result r = interpret_text("G17 G71 G90 G94\nS800 M3\nF80\nG0 X20 Y30 Z50\nCYCLE86(50,0,2,-12,,0.5,3,-0.4,0.3,0.1)\nM30\n",
+                                  *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("t.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  std::vector<std::array<double, 3>> moves;
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i)
+    if (r.calls[i].kind == CallKind::rapid || r.calls[i].kind == CallKind::linear)
+      moves.push_back({r.calls[i].v[0], r.calls[i].v[1], r.calls[i].v[2]});
+  const std::vector<std::array<double, 3>> expected = {{20, 30, 2},   {20, 30, -12},  {19.6, 30.3, -11.9},
+                                                       {19.6, 30.3, 2}, {20, 30, 2}, {20, 30, 50}};
+  REQUIRE(moves.size() == expected.size());
+  for (std::size_t i = 0; i < moves.size(); ++i)
+    for (int k = 0; k < 3; ++k) CHECK(moves[i][static_cast<std::size_t>(k)] == Approx(expected[i][static_cast<std::size_t>(k)]));
+  CHECK(r.calls[r.cycles[0].end_call - 1].kind == CallKind::spindle_clockwise);
 }

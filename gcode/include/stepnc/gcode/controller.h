@@ -7,11 +7,28 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace stepnc::gcode {
 
 // Meanings that RS274NGC has no G code for.
 inline constexpr std::uint16_t meaning_spindle_clamp_or_set = 5000;  // Fanuc lathe G50: S clamps, X/Z set coordinates
+// Fanuc lathe multiple repetitive cycles (0i-TF/0-T, group 00, non-modal).
+inline constexpr std::uint16_t meaning_finishing_cycle = 7000;        // G70
+inline constexpr std::uint16_t meaning_stock_removal_turning = 7100;  // G71
+inline constexpr std::uint16_t meaning_stock_removal_facing = 7200;   // G72
+inline constexpr std::uint16_t meaning_pattern_repeating = 7300;      // G73
+inline constexpr std::uint16_t meaning_end_face_peck_drilling = 7400;  // G74
+inline constexpr std::uint16_t meaning_diameter_grooving = 7500;      // G75
+inline constexpr std::uint16_t meaning_multiple_threading = 7600;     // G76
+// Fanuc mill canned cycles RS274NGC (LinuxCNC 2.9) has no code for.
+inline constexpr std::uint16_t meaning_left_hand_tapping = 7410;      // Fanuc mill G74
+inline constexpr std::uint16_t meaning_fine_boring = 7610;            // Fanuc mill G76
+inline constexpr std::uint16_t meaning_tapping = 8410;                // Fanuc mill G84
+// Fanuc lathe single cycles (group 01, modal).
+inline constexpr std::uint16_t meaning_turning_cycle = 9000;          // G90
+inline constexpr std::uint16_t meaning_threading_cycle = 9200;        // G92
+inline constexpr std::uint16_t meaning_facing_cycle = 9400;           // G94
 
 // A G code of the controller (times 10: G92.1 is 921), its modal group
 // (the controller's own numbering, for "two codes of one group"; 0 =
@@ -27,6 +44,22 @@ struct GCodeEntry {
 struct MCodeEntry {
   std::uint16_t code;
   std::uint8_t group;
+};
+
+// Values a Fanuc lathe keeps in parameters, used when a multiple
+// repetitive cycle's block does not give them (the 0-T one-block forms
+// never do). The numbers are the 0i-TF parameters they stand for.
+struct RepetitiveCycleDefaults {
+  double roughing_retract_mm = 1.0;  // G71/G72 e (5133)
+  double pattern_relief_x_mm = 0;    // G73 delta i, radius (5135)
+  double pattern_relief_z_mm = 0;    // G73 delta k (5136)
+  int pattern_divisions = 1;         // G73 d (5137)
+  double peck_return_mm = 1.0;       // G74/G75 e (5139)
+  int thread_finish_passes = 1;      // G76 m (5142)
+  double thread_chamfer_leads = 0;   // G76 r, in leads (5130)
+  double thread_angle_deg = 60;      // G76 a (5143)
+  double thread_min_depth_mm = 0;    // G76 delta d min (5140)
+  double thread_finish_allowance_mm = 0;  // G76 d (5141)
 };
 
 struct Controller {
@@ -47,12 +80,19 @@ struct Controller {
   bool dwell_f_seconds = false;          // Siemens G4 F: seconds
   bool tool_offsets_on_machine = false;  // Siemens T/D offsets move the machine, not the program's coordinates
   bool feed_per_rev_default = false;     // power-on G99 (Fanuc lathe) rather than feed per minute
+  bool g80_clears_cycle_words = false;   // Fanuc: G80 cancels R, Z, P, Q (RS274NGC keeps them sticky)
   char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
   double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
+  char thread_pitch_letter = 'K';        // G33 (LinuxCNC K) / G32 (Fanuc F: the lead)
+  // Fanuc mill G76: the direction of the shift Q at the bottom (parameter 5101 RD1/RD2).
+  double fine_boring_shift_x = 1, fine_boring_shift_y = 0;
+  RepetitiveCycleDefaults repetitive{};
 };
 
 // The controllers we know: rs274ngc, fanuc-lathe, fanuc-mill, siemens840d.
 std::optional<Controller> controller(std::string_view name);
+// Their names, in table order (for command lines and messages).
+std::vector<std::string_view> controller_names();
 
 // The controller's entry for a G code (times 10), if it has one.
 std::optional<GCodeEntry> g_entry(const Controller& controller, int code10);

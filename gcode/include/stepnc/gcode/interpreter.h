@@ -40,6 +40,9 @@ enum class CallKind : std::uint8_t {
   message,           // MESSAGE(text)
   program_stop,      // M0/M1
   program_end,       // M2/M30
+  feed_sync_start,   // START_SPEED_FEED_SYNC(v[0] = pitch, mm per revolution): G33, Fanuc G32/G92/G76
+  feed_sync_stop,    // STOP_SPEED_FEED_SYNCH()
+  quadratic_spline,  // NURBS_FEED(3, ...) of a G5.1: v = end x y z a b c, control point x y
 };
 
 // The modal state every motion runs under.
@@ -66,8 +69,11 @@ struct Call {
 
 // A canned or multiple-repetitive cycle as programmed, and the calls it expanded to.
 struct CycleEvent {
-  std::string name;                                 // "G81", "G83", ...
-  std::vector<std::pair<char, double>> parameters;  // the words given (lengths in mm)
+  std::string name;                                 // "G81", "G83", "G71", "CYCLE81", ...
+  // The words given (lengths in mm; X as written, a diameter on a lathe).
+  // A two-block Fanuc cycle (0i) lists both blocks' words, the first
+  // block's under their letter in lower case (`u` depth, `r` retract).
+  std::vector<std::pair<char, double>> parameters;
   std::uint32_t line = 0;
   std::uint32_t first_call = 0, end_call = 0;       // [first, end) in Result::calls
 };

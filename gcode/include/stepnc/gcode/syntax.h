@@ -96,6 +96,7 @@ struct Block {
   bool block_delete = false;
   bool percent = false;                  // a `%` line
   double n = -1;                         // N number, -1 when absent
+  double program_number = -1;            // Fanuc `O1234`: the program (M98's target) starting here
   std::uint32_t words_begin = 0, words_end = 0;
   std::uint32_t assignments_begin = 0, assignments_end = 0;
   OStatement o;
