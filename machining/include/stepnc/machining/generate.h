@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stepnc/machining/description.h"
+#include "stepnc/machining/passes.h"
 #include "stepnc/machining/program.h"
 
 namespace stepnc::machining {
@@ -35,6 +36,8 @@ struct GenerateOptions {
   /// Above the security plane (mills) or beyond the safe corner (lathes):
   /// where listings and simulations put the machine-safe retract.
   double machine_safe_margin = 50;
+  /// Order of the roughing passes of a cutting-depth list (passes.h).
+  PassOrder pass_order = PassOrder::iso;
 };
 
 /// A program, and the problems found making it.
