@@ -313,9 +313,12 @@ class Planner {
         line.note = "n/a: the feed per revolution cannot be determined";
       } else if (tool.kind == machining::ToolKind::grooving_insert) {
         line.note = "n/a: a grooving insert's edge angles are not in the model";
+      } else if (!has_nose_radius(tool.source)) {
+        error(tool.source, fmt::format("turning tool has no nose_radius: the roughness of {} (#{}) cannot be computed",
+                                       e->source.name, e->source.id));
+        continue;
       } else if (const std::string problem = machining::roughness_input_problem(in); !problem.empty()) {
-        error(tool.source, fmt::format("cannot compute the roughness of {} (#{}): {}", e->source.name, e->source.id,
-                                       problem));
+        error(op.source, fmt::format("cannot compute the roughness with tool #{}: {}", tool.source.id, problem));
         continue;
       } else {
         if (!op.technology->feed_per_revolution)
@@ -325,6 +328,13 @@ class Planner {
       }
       result_.roughness.push_back(std::move(line));
     }
+  }
+
+  // Part 121 makes nose_radius optional; the description reads a missing one as 0.
+  bool has_nose_radius(const Source& tool) {
+    const auto* cutter = dynamic_cast<const ms::cutting_tool*>(instance(tool.id));
+    const auto* body = cutter ? dynamic_cast<const tt::turning_machine_tool_body*>(cutter->its_tool_body) : nullptr;
+    return body && body->dimension && body->dimension->nose_radius;
   }
 
   double measured(const machining::Roughness& r) const {
