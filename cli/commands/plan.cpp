@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // stepnc plan PROGRAM.stp -o PLANNED.stp [--roughness Rt|Ra=VALUE] [--tools LIBRARY.csv]
-// [--report REPORT.json]: turning process planning (seed 001): roughness
-// report, feeds reduced to a target, tools and technology bound late.
+// [--report REPORT.json] [--move WS --to-setup S [--before WS2]] [--order fewest-tool-changes]:
+// turning process planning (seed 001): re-sequencing, roughness report,
+// feeds reduced to a target, tools and technology bound late.
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,10 @@ struct PlanCommandOptions {
   std::string roughness;
   std::string tools;
   std::string report;
+  std::string move;
+  std::string to_setup;
+  std::string before;
+  std::string order;
 };
 
 std::string where(const machining::Source& source) { return fmt::format("#{} '{}'", source.id, source.name); }
@@ -43,7 +48,11 @@ std::string report_json(const planning::PlanResult& result) {
   nlohmann::ordered_json changes = nlohmann::ordered_json::array();
   for (const planning::Change& change : result.changes)
     changes.push_back({{"where", source(change.where)}, {"what", change.what}});
-  return nlohmann::ordered_json{{"roughness", roughness}, {"changes", changes}}.dump(2) + "\n";
+  return nlohmann::ordered_json{{"roughness", roughness},
+                                {"changes", changes},
+                                {"tool_changes", {{"before", result.tool_changes_before}, {"after", result.tool_changes_after}}}}
+             .dump(2) +
+         "\n";
 }
 
 int run_plan(const PlanCommandOptions& options) {
@@ -56,6 +65,8 @@ int run_plan(const PlanCommandOptions& options) {
       return exit_usage;
     }
   }
+  if (!options.move.empty()) plan_options.sequence.move = {options.move, options.to_setup, options.before};
+  plan_options.sequence.fewest_tool_changes = options.order == "fewest-tool-changes";
   planning::ToolLibrary library;
   if (!options.tools.empty()) {
     std::string csv;
@@ -107,7 +118,7 @@ int run_plan(const PlanCommandOptions& options) {
 
 void add_plan_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<PlanCommandOptions>();
-  CLI::App* command = app.add_subcommand("plan", "Plan a turning program: roughness report, feeds, late binding");
+  CLI::App* command = app.add_subcommand("plan", "Plan a turning program: re-sequencing, roughness report, feeds, late binding");
   add_input_option(*command, options->file, "ISO 14649 Part 21 file (tools and technology may be left out)");
   add_output_option(*command, options->output, "Planned Part 21 file, replaced atomically");
   command->add_option("--roughness", options->roughness,
@@ -117,6 +128,17 @@ void add_plan_command(CLI::App& app, Action& action) {
       ->option_text("LIBRARY.csv");
   command->add_option("--report", options->report, "Also write the roughness report and the changes (JSON)")
       ->option_text("FILE|-");
+  CLI::Option* move = command->add_option("--move", options->move, "Move this workingstep (#id or its_id) ...")
+                          ->option_text("WS");
+  CLI::Option* to_setup = command->add_option("--to-setup", options->to_setup, "... into this setup's workplan")
+                              ->option_text("SETUP");
+  command->add_option("--before", options->before, "... before this workingstep (default: at the end)")
+      ->option_text("WS2")
+      ->needs(move);
+  move->needs(to_setup);
+  to_setup->needs(move);
+  command->add_option("--order", options->order, "Reorder each setup's workingsteps, keeping precedence")
+      ->check(CLI::IsMember({"fewest-tool-changes"}));
   command->callback([&action, options] { action = [options] { return run_plan(*options); }; });
 }
 

@@ -102,6 +102,12 @@ class Planner {
   Planner(exchange::ModelFile& file, const PlanOptions& options) : model_(file.model), options_(options) {}
 
   PlanResult run() {
+    SequenceResult sequenced = resequence(model_, options_.sequence);
+    result_.diagnostics = std::move(sequenced.diagnostics);
+    for (SequenceChange& change : sequenced.changes) result_.changes.push_back({change.where, std::move(change.what)});
+    result_.tool_changes_before = sequenced.tool_changes_before;
+    result_.tool_changes_after = sequenced.tool_changes_after;
+    if (!result_.ok()) return std::move(result_);
     bind_late();
     if (!result_.ok()) return std::move(result_);
     machining::DescribeResult described = machining::describe_project(model_);

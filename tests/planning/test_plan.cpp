@@ -183,3 +183,110 @@ TEST_CASE("stepnc plan is deterministic and writes the report with the file", "[
   CHECK(run_stepnc("validate --strict " + (dir / "a.stp").string()).exit_code == 0);
   CHECK(run_stepnc("post -d fanuc " + (dir / "a.stp").string()).exit_code == 0);
 }
+
+namespace {
+
+std::unique_ptr<exchange::ModelFile> read_strict(const std::string& path) {
+  auto read = exchange::read_model_file(path, registry());
+  REQUIRE(read.ok());
+  return std::move(read.file);
+}
+
+std::vector<std::int64_t> workingstep_order(const planning::PlanResult& result) {
+  std::vector<std::int64_t> ids;
+  for (const auto& line : result.roughness) ids.push_back(line.workingstep.id);
+  return ids;
+}
+
+}  // namespace
+
+TEST_CASE("re-sequencing: a move between setups, written and read back (T001-19)", "[plan][sequence]") {
+  auto file = read_strict(data("shaft_two_setups.stp"));
+  planning::PlanOptions options;
+  options.sequence.move = planning::WorkingstepMove{"#45", "SETUP 1: THREE-JAW CHUCK", "#44"};
+  const planning::PlanResult result = planning::plan(*file, options);
+  for (const auto& d : result.diagnostics) INFO(d.to_string());
+  REQUIRE(result.ok());
+  CHECK(workingstep_order(result) == std::vector<std::int64_t>{40, 41, 43, 45, 44});
+  CHECK_THAT(result.changes.at(0).what, Catch::Contains("to workplan #3 'SETUP 1 WORKPLAN'"));
+  const std::string text = exchange::to_text(*file);
+  CHECK_THAT(text, Catch::Contains("#3=WORKPLAN('SETUP 1 WORKPLAN',(#40,#41,#42,#43,#45,#44)"));
+  CHECK_THAT(text, Catch::Contains("#4=WORKPLAN('SETUP 2 WORKPLAN',(),"));
+  // Reread, it plans to the same order.
+  auto reread = exchange::read_model_text(text, "moved.stp", registry());
+  REQUIRE(reread.ok());
+  CHECK(workingstep_order(planning::plan(*reread.file, {})) == workingstep_order(result));
+}
+
+TEST_CASE("re-sequencing: every precedence rule refuses a bad move with a message", "[plan][sequence]") {
+  struct Bad {
+    planning::WorkingstepMove move;
+    const char* message;
+  };
+  const Bad refused[] = {
+      // Roughing after finishing on the same feature.
+      {{"WS CONTOUR ROUGH", "#26", ""}, "finishing #44 'WS CONTOUR FINISH' would run before roughing #43"},
+      {{"#40", "#20", ""}, "finishing #41 'WS FACE FINISH' would run before roughing #40"},
+      // The setup must hold the feature's workpiece.
+      {{"#45", "SETUP 3: OTHER PART", ""}, "setup #27 'SETUP 3: OTHER PART' does not hold workpiece #10"},
+      // Names that are not there.
+      {{"#99", "#26", ""}, "no machining_workingstep '#99'"},
+      {{"#45", "NO SUCH SETUP", ""}, "no setup 'NO SUCH SETUP'"},
+      {{"#45", "#26", "#40"}, "'#40' is not a workingstep of workplan #4"},
+  };
+  for (const Bad& bad : refused) {
+    auto file = read_strict(data("shaft_two_setups.stp"));
+    const std::string before = exchange::to_text(*file);
+    planning::PlanOptions options;
+    options.sequence.move = bad.move;
+    const planning::PlanResult result = planning::plan(*file, options);
+    REQUIRE_FALSE(result.ok());
+    CHECK_THAT(result.diagnostics.at(0).message, Catch::Contains(bad.message));
+    CHECK(exchange::to_text(*file) == before);  // nothing changed
+  }
+  // The hole rule: drilling before centre drilling on one feature (a drilling
+  // operation added to the shaft's centre hole) is refused too.
+  {
+    std::string text = slurp(data("shaft_two_setups.stp"));
+    const std::string ws = "#45=MACHINING_WORKINGSTEP('WS RELIEF GROOVE',#22,#130,#230,$);";
+    REQUIRE(text.find(ws) != std::string::npos);
+    text.replace(text.find(ws), ws.size(),
+                 ws + "\n#46=MACHINING_WORKINGSTEP('WS DRILL',#22,#110,#211,$);\n"
+                      "#211=DRILLING($,$,'DRILL D5',5.000,$,#330,#410,#500,$,8.000,$,$,$,$);");
+    text.replace(text.find("(#45),$,#26,$)"), 14, "(#45,#46),$,#26,$)");
+    auto read = exchange::read_model_text(text, "drill.stp", registry());
+    REQUIRE(read.ok());
+    planning::PlanOptions options;
+    options.sequence.move = planning::WorkingstepMove{"WS DRILL", "#20", "#42"};
+    const planning::PlanResult result = planning::plan(*read.file, options);
+    REQUIRE_FALSE(result.ok());
+    CHECK_THAT(result.diagnostics.at(0).message, Catch::Contains("#46 'WS DRILL' would run before #42 'WS CENTRE DRILL'"));
+  }
+}
+
+TEST_CASE("fewest tool changes keeps precedence and never adds a tool change", "[plan][sequence]") {
+  for (const char* name : {"shaft_two_setups.stp", "seed001_roughing.stp"}) {
+    auto file = read_strict(data(name));
+    planning::PlanOptions options;
+    options.sequence.fewest_tool_changes = true;
+    const planning::PlanResult result = planning::plan(*file, options);
+    REQUIRE(result.ok());
+    CHECK(result.tool_changes_after <= result.tool_changes_before);
+    CHECK(planning::count_tool_changes(file->model) == result.tool_changes_after);
+  }
+  auto file = read_strict(data("shaft_two_setups.stp"));
+  planning::PlanOptions options;
+  options.sequence.fewest_tool_changes = true;
+  const planning::PlanResult result = planning::plan(*file, options);
+  // Roughing tool, finishing tool, centre drill, grooving tool: 6 -> 4, and
+  // each roughing still precedes its finishing.
+  CHECK(result.tool_changes_before == 6);
+  CHECK(result.tool_changes_after == 4);
+  CHECK(workingstep_order(result) == std::vector<std::int64_t>{40, 43, 41, 44, 45});
+  // The planned file posts.
+  auto reread = exchange::read_model_text(exchange::to_text(*file), "ordered.stp", registry());
+  REQUIRE(reread.ok());
+  const auto described = machining::describe_project(reread.file->model);
+  REQUIRE(described.ok());
+  CHECK(machining::generate(described.project).ok());
+}

@@ -15,6 +15,7 @@
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/machining/generate.h"
 #include "stepnc/machining/roughness.h"
+#include "stepnc/planning/sequence.h"
 #include "stepnc/planning/tool_library.h"
 
 namespace stepnc::planning {
@@ -33,6 +34,7 @@ std::optional<RoughnessTarget> parse_roughness_target(std::string_view text, std
 struct PlanOptions {
   std::optional<RoughnessTarget> roughness;  ///< reduce finishing feeds to meet it
   const ToolLibrary* tools = nullptr;        ///< for late binding; null: every operation must have its own
+  SequenceOptions sequence;                  ///< re-sequencing, applied first (sequence.h)
 };
 
 /// The roughness report of one turning workingstep (seed 001 Fig. 3).
@@ -57,6 +59,8 @@ struct PlanResult {
   std::vector<WorkingstepRoughness> roughness;       ///< turning workingsteps in executable order
   std::vector<Change> changes;                       ///< every edit, in the order made
   std::vector<machining::Diagnostic> diagnostics;    ///< errors stop planning; each names the `#id`
+  std::size_t tool_changes_before = 0;  ///< tool changes of the executable order as read
+  std::size_t tool_changes_after = 0;   ///< and as planned
   bool ok() const;  ///< no diagnostic is an error
 };
 
@@ -64,7 +68,7 @@ struct PlanResult {
 /// fill: the missing `its_tool` or `its_technology` of a machining operation.
 bool is_late_binding_gap(const meta::Model& model, const p21::Diagnostic& diagnostic);
 
-/// Plans `file` in place: binds missing tools and technology from the
+/// Plans `file` in place: re-sequences (sequence.h), binds missing tools and technology from the
 /// library, reports the roughness of every turning workingstep, reduces
 /// the feed of finishing workingsteps that miss the target (the largest
 /// feed, rounded down to 0.001 mm/rev, that meets it; a technology shared
