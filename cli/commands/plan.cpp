@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // stepnc plan PROGRAM.stp -o PLANNED.stp [--roughness Rt|Ra=VALUE] [--tools LIBRARY.csv]
-// [--report REPORT.json] [--move WS --to-setup S [--before WS2]] [--order fewest-tool-changes]:
+// [--report REPORT.json] [--toolpaths [--remainder-first]] [--move WS --to-setup S [--before WS2]] [--order fewest-tool-changes]:
 // turning process planning (seed 001): re-sequencing, roughness report,
 // feeds reduced to a target, tools and technology bound late.
 #include <fmt/format.h>
@@ -24,6 +24,8 @@ struct PlanCommandOptions {
   std::string to_setup;
   std::string before;
   std::string order;
+  bool toolpaths = false;
+  bool remainder_first = false;
 };
 
 std::string where(const machining::Source& source) { return fmt::format("#{} '{}'", source.id, source.name); }
@@ -67,6 +69,8 @@ int run_plan(const PlanCommandOptions& options) {
   }
   if (!options.move.empty()) plan_options.sequence.move = {options.move, options.to_setup, options.before};
   plan_options.sequence.fewest_tool_changes = options.order == "fewest-tool-changes";
+  plan_options.toolpaths = options.toolpaths;
+  if (options.remainder_first) plan_options.pass_order = machining::PassOrder::remainder_first;
   planning::ToolLibrary library;
   if (!options.tools.empty()) {
     std::string csv;
@@ -139,6 +143,10 @@ void add_plan_command(CLI::App& app, Action& action) {
   to_setup->needs(move);
   command->add_option("--order", options->order, "Reorder each setup's workingsteps, keeping precedence")
       ->check(CLI::IsMember({"fewest-tool-changes"}));
+  command->add_flag("--toolpaths", options->toolpaths,
+                    "Write each turning operation's motion as explicit cutter_location_trajectory toolpaths");
+  command->add_flag("--remainder-first", options->remainder_first,
+                    "With --toolpaths: the truncated roughing pass first (seed 001), not last (ISO 14649)");
   command->callback([&action, options] { action = [options] { return run_plan(*options); }; });
 }
 

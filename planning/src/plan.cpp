@@ -12,6 +12,7 @@
 #include "milling_machine_tool_schema.h"
 #include "milling_schema.h"
 #include "stepnc/machining/iso14649.h"
+#include "stepnc/machining/motion.h"
 #include "stepnc/meta/validate.h"
 #include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
@@ -411,9 +412,76 @@ class Planner {
       error({static_cast<std::int64_t>(problem.id), std::string(problem.entity)}, fmt::format("planned model: {}: {}", problem.attribute, problem.message));
     if (!result_.ok()) return;
     const machining::DescribeResult described = machining::describe_project(model_);
-    const machining::GenerateResult generated = machining::generate(described.project);
+    machining::GenerateOptions generate_options;
+    generate_options.pass_order = options_.pass_order;
+    const machining::GenerateResult generated = machining::generate(described.project, generate_options);
     for (const Diagnostic& d : generated.diagnostics)
       if (d.severity == Diagnostic::Severity::error) result_.diagnostics.push_back(d);
+    if (result_.ok() && options_.toolpaths) write_toolpaths(described.project, generated.program);
+  }
+
+  // ------------------------------------------------------ explicit toolpaths
+  // The generated motion of each workingstep, as runs of rapid and feed
+  // moves; the lathe frame is the setup's (x radius, z axis).
+  void write_toolpaths(const machining::MachiningProject& project, const machining::Program& program) {
+    std::map<std::int64_t, std::vector<const machining::Move*>> by_workingstep;
+    const std::vector<machining::Move> moves = machining::expand_motion(program);
+    for (const machining::Move& m : moves) {
+      const auto& provenance = program.provenance[program.blocks[m.block].provenance];
+      if (provenance.workingstep.id > 0) by_workingstep[provenance.workingstep.id].push_back(&m);
+    }
+    for (const machining::Executable* e : workingsteps_in_order(project.main_workplan)) {
+      const machining::Operation& op = project.operations[e->step.operation];
+      auto* typed = dynamic_cast<ms::machining_operation*>(instance(op.source.id));
+      if (!typed || typed->its_toolpath || op.tool < 0 || project.machine != machining::MachineKind::turning) continue;
+      const auto& ws_moves = by_workingstep[e->source.id];
+      const bool plain = std::all_of(ws_moves.begin(), ws_moves.end(), [](const machining::Move* m) {
+        return m->kind != machining::Move::Kind::arc && m->kind != machining::Move::Kind::dwell;
+      });
+      if (!plain) {
+        result_.changes.push_back({op.source, "toolpaths not written: its motion has arcs or dwells, which the "
+                                              "planner does not write as trajectories yet"});
+        continue;
+      }
+      // Runs of one kind, each starting where the last one ended, from
+      // after the tool change (the machine's own retract is not the path's).
+      auto start = ws_moves.begin();
+      for (auto it = ws_moves.begin(); it != ws_moves.end(); ++it)
+        if ((*it)->kind == machining::Move::Kind::tool_change) start = it + 1;
+      std::vector<std::pair<bool, std::vector<machining::Vec3>>> runs;  // rapid?, points
+      for (auto it = start; it != ws_moves.end(); ++it) {
+        const machining::Move* m = *it;
+        if (m->kind != machining::Move::Kind::rapid && m->kind != machining::Move::Kind::feed) continue;
+        const bool rapid = m->kind == machining::Move::Kind::rapid;
+        if (runs.empty()) runs.push_back({rapid, {}});
+        else if (runs.back().first != rapid) runs.push_back({rapid, {runs.back().second.back()}});
+        runs.back().second.push_back(m->to);
+      }
+      // A polyline needs two points: a lone first point joins the next run.
+      if (runs.size() > 1 && runs.front().second.size() == 1) runs.erase(runs.begin());
+      if (runs.empty()) continue;
+      auto& list = model_.create<ms::toolpath_list>();
+      std::size_t points = 0;
+      for (const auto& [rapid, run] : runs) {
+        auto& line = model_.create<ms::polyline>();
+        line.name = rapid ? "RAPID" : "FEED";
+        for (const machining::Vec3& p : run) {
+          auto& point = model_.create<ms::cartesian_point>();
+          point.coordinates = {p.x, p.y, p.z};
+          line.points.push_back(&point);
+        }
+        points += run.size();
+        auto& trajectory = model_.create<ms::cutter_location_trajectory>();
+        trajectory.its_priority = true;
+        trajectory.its_type = rapid ? ms::toolpath_type::non_contact : ms::toolpath_type::contact;
+        trajectory.basiccurve = &line;
+        list.its_list.push_back(&trajectory);
+      }
+      typed->its_toolpath = &list;
+      result_.changes.push_back({op.source, fmt::format("explicit toolpaths written: toolpath_list #{}, {} "
+                                                        "cutter_location_trajectory ({} points)",
+                                                        list.id(), list.its_list.size(), points)});
+    }
   }
 
   meta::Model& model_;

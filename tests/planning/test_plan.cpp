@@ -12,6 +12,7 @@
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/machining/iso14649.h"
+#include "stepnc/machining/motion.h"
 #include "stepnc/machining/simulation.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/planning/plan.h"
@@ -289,4 +290,35 @@ TEST_CASE("fewest tool changes keeps precedence and never adds a tool change", "
   const auto described = machining::describe_project(reread.file->model);
   REQUIRE(described.ok());
   CHECK(machining::generate(described.project).ok());
+}
+
+TEST_CASE("--toolpaths writes the generated motion as cutter_location_trajectory toolpaths", "[plan][toolpaths]") {
+  auto file = read_strict(data("seed001_roughing.stp"));
+  const auto feeds_of = [](const meta::Model& model) {
+    const auto described = machining::describe_project(model);
+    REQUIRE(described.ok());
+    const auto generated = machining::generate(described.project);
+    REQUIRE(generated.ok());
+    CHECK(machining::simulate_turning(described.project, generated.program).text() == "");
+    std::vector<std::pair<double, double>> feeds;
+    for (const auto& m : machining::expand_motion(generated.program))
+      if (m.kind == machining::Move::Kind::feed) feeds.emplace_back(m.to.x, m.to.z);
+    return feeds;
+  };
+  const auto implicit = feeds_of(file->model);
+  planning::PlanOptions options;
+  options.toolpaths = true;
+  const planning::PlanResult result = planning::plan(*file, options);
+  REQUIRE(result.ok());
+  const std::string text = exchange::to_text(*file);
+  CHECK_THAT(text, Catch::Contains("CUTTER_LOCATION_TRAJECTORY(.T.,.CONTACT.,"));
+  CHECK_THAT(text, Catch::Contains("#20=CONTOURING_ROUGH(#"));  // its_toolpath is set
+  auto reread = exchange::read_model_text(text, "toolpaths.stp", registry());
+  REQUIRE(reread.ok());
+  const auto explicit_feeds = feeds_of(reread.file->model);
+  REQUIRE(explicit_feeds.size() == implicit.size());
+  for (std::size_t i = 0; i < implicit.size(); ++i) {
+    CHECK(explicit_feeds[i].first == Approx(implicit[i].first).margin(1e-9));
+    CHECK(explicit_feeds[i].second == Approx(implicit[i].second).margin(1e-9));
+  }
 }

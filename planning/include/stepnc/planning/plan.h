@@ -35,6 +35,12 @@ struct PlanOptions {
   std::optional<RoughnessTarget> roughness;  ///< reduce finishing feeds to meet it
   const ToolLibrary* tools = nullptr;        ///< for late binding; null: every operation must have its own
   SequenceOptions sequence;                  ///< re-sequencing, applied first (sequence.h)
+  /// Write the generated motion of every turning operation that has none
+  /// as explicit toolpaths (`toolpath_list` of `cutter_location_trajectory`
+  /// polylines in setup coordinates: contact at feed, non_contact at
+  /// rapid), so any controller can run them.
+  bool toolpaths = false;
+  machining::PassOrder pass_order = machining::PassOrder::iso;  ///< roughing pass order (passes.h)
 };
 
 /// The roughness report of one turning workingstep (seed 001 Fig. 3).
@@ -73,7 +79,7 @@ bool is_late_binding_gap(const meta::Model& model, const p21::Diagnostic& diagno
 /// the feed of finishing workingsteps that miss the target (the largest
 /// feed, rounded down to 0.001 mm/rev, that meets it; a technology shared
 /// with another operation is copied first), then checks that the result
-/// validates and posts.
+/// validates and posts; with `toolpaths`, writes the motion out.
 PlanResult plan(exchange::ModelFile& file, const PlanOptions& options);
 
 }  // namespace stepnc::planning
