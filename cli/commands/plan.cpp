@@ -143,10 +143,13 @@ void add_plan_command(CLI::App& app, Action& action) {
   to_setup->needs(move);
   command->add_option("--order", options->order, "Reorder each setup's workingsteps, keeping precedence")
       ->check(CLI::IsMember({"fewest-tool-changes"}));
-  command->add_flag("--toolpaths", options->toolpaths,
-                    "Write each turning operation's motion as explicit cutter_location_trajectory toolpaths");
-  command->add_flag("--remainder-first", options->remainder_first,
-                    "With --toolpaths: the truncated roughing pass first (seed 001), not last (ISO 14649)");
+  CLI::Option* toolpaths =
+      command->add_flag("--toolpaths", options->toolpaths,
+                        "Write each turning operation's motion as explicit cutter_location_trajectory toolpaths");
+  command
+      ->add_flag("--remainder-first", options->remainder_first,
+                 "With --toolpaths: the truncated roughing pass first (seed 001), not last (ISO 14649)")
+      ->needs(toolpaths);
   command->callback([&action, options] { action = [options] { return run_plan(*options); }; });
 }
 

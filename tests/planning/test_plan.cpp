@@ -322,3 +322,34 @@ TEST_CASE("--toolpaths writes the generated motion as cutter_location_trajectory
     CHECK(explicit_feeds[i].second == Approx(implicit[i].second).margin(1e-9));
   }
 }
+
+TEST_CASE("stepnc plan --toolpaths --remainder-first writes the paper's pass order; refusals exit 1", "[plan][cli]") {
+  const fs::path dir = fs::temp_directory_path() / "stepnc_planning_cli";
+  fs::create_directories(dir);
+  const std::string out = (dir / "paper.stp").string();
+  REQUIRE(run_stepnc("plan " + data("seed001_roughing.stp") + " --toolpaths --remainder-first -o " + out).exit_code == 0);
+  auto planned = read_strict(out);
+  const auto described = machining::describe_project(planned->model);
+  REQUIRE(described.ok());
+  const auto generated = machining::generate(described.project);
+  REQUIRE(generated.ok());
+  double first_pass = 0;
+  for (const auto& m : machining::expand_motion(generated.program)) {
+    if (m.kind == machining::Move::Kind::feed && m.to.z < m.from.z - 1) {
+      first_pass = m.to.x;
+      break;
+    }
+  }
+  CHECK(37.5 - first_pass == Approx(0.96));
+  CHECK(machining::simulate_turning(described.project, generated.program).text() == "");
+
+  const std::string moved = (dir / "moved.stp").string();
+  const auto refused = run_stepnc("plan " + data("shaft_two_setups.stp") + " --move '#43' --to-setup '#26' -o " + moved);
+  CHECK(refused.exit_code == 1);
+  CHECK_THAT(refused.out, Catch::Contains("#43 'WS CONTOUR ROUGH': error: move refused: finishing #44"));
+  CHECK_FALSE(fs::exists(moved));
+  const auto ordered = run_stepnc("plan " + data("shaft_two_setups.stp") + " --order fewest-tool-changes -o " + moved);
+  CHECK(ordered.exit_code == 0);
+  CHECK_THAT(ordered.out, Catch::Contains("reordered for fewest tool changes: 6 -> 4"));
+  CHECK(run_stepnc("plan " + data("shaft_two_setups.stp") + " --before '#44' -o " + moved).exit_code == 2);
+}

@@ -34,8 +34,8 @@ std::vector<Point> tool_polygon(double r, double kr_deg, double kpr_deg) {
   polygon.push_back({minor_tangent.x - 5 * std::cos(kpr), minor_tangent.y + 5 * std::sin(kpr)});
   // Arc from the minor edge's tangent point to the major edge's, through -90 degrees.
   const double from = -pi / 2 - kpr, to = -pi / 2 + kr;
-  for (int i = 0; i <= 4000; ++i) {
-    const double a = from + (to - from) * i / 4000;
+  for (int i = 0; i <= 1000; ++i) {
+    const double a = from + (to - from) * i / 1000;
     polygon.push_back({r * std::cos(a), r + r * std::sin(a)});
   }
   const Point major_tangent{r * std::sin(kr), r - r * std::cos(kr)};
