@@ -60,12 +60,13 @@ bool is_finishing(const ms::machining_operation* op) {
          dynamic_cast<const milling_schema::plane_finish_milling*>(op) ||
          dynamic_cast<const milling_schema::bottom_and_side_finish_milling*>(op);
 }
-// Hole work: centre drilling (0), drilling (1), then the rest (2).
+// Hole work: centre drilling (0), drilling (1), then the rest (2): counter
+// sinking, reaming, boring, tapping, internal contouring.
 int hole_stage(const ms::machining_operation* op) {
   if (dynamic_cast<const milling_schema::center_drilling*>(op)) return 0;
-  if (dynamic_cast<const milling_schema::drilling_type_operation*>(op) &&
-      !dynamic_cast<const milling_schema::boring_operation*>(op))
-    return 1;
+  if (dynamic_cast<const milling_schema::drilling_operation*>(op) &&
+      !dynamic_cast<const milling_schema::counter_sinking*>(op))
+    return 1;  // drilling, multistep drilling
   return 2;
 }
 

@@ -136,6 +136,7 @@ TEST_CASE("bad input: #id messages and a non-zero exit", "[plan]") {
     return (dir / name).string();
   };
   const std::string out = (dir / "out.stp").string();
+  fs::remove(out);
   // No nose radius on the finishing tool.
   const auto no_nose = run_stepnc("plan " + variant("no_nose.stp", "$,$,$,$,1.000,9.525", "$,$,$,$,$,9.525") + " -o " + out);
   CHECK(no_nose.exit_code == 1);
@@ -344,6 +345,7 @@ TEST_CASE("stepnc plan --toolpaths --remainder-first writes the paper's pass ord
   CHECK(machining::simulate_turning(described.project, generated.program).text() == "");
 
   const std::string moved = (dir / "moved.stp").string();
+  fs::remove(moved);
   const auto refused = run_stepnc("plan " + data("shaft_two_setups.stp") + " --move '#43' --to-setup '#26' -o " + moved);
   CHECK(refused.exit_code == 1);
   CHECK_THAT(refused.out, Catch::Contains("#43 'WS CONTOUR ROUGH': error: move refused: finishing #44"));
