@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
   add_plot_command(app, action);
   add_gcode_command(app, action);
   add_kb_command(app, action);
+  add_roughness_command(app, action);
+  add_plan_command(app, action);
 
   if (argc == 2 && std::strcmp(argv[1], "--bash-completion") == 0) {  // for the build, not listed in --help
     fmt::print("{}", bash_completion(app));

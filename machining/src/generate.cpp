@@ -8,6 +8,7 @@
 #include <map>
 
 #include "geometry.h"
+#include "stepnc/machining/passes.h"
 #include "stepnc/machining/roughness.h"
 #include "regions.h"
 #include "siemens_cycles.h"
@@ -115,20 +116,6 @@ std::vector<double> depth_levels(double from, double to, std::optional<double> s
   std::vector<double> levels;
   for (int i = 1; i <= n; ++i) levels.push_back(from - total * i / n);
   return levels;
-}
-
-// Cumulative depths of a cutting-depth list (ISO 14649-12, seed 001 5.2):
-// each entry is the thickness of one pass, the last repeats until `total`
-// is reached, and the final pass takes what is left.
-std::vector<double> depth_list_passes(const std::vector<double>& depths, double total) {
-  std::vector<double> cumulative;
-  double done = 0;
-  for (std::size_t i = 0; done < total - eps; ++i) {
-    const double d = depths[std::min(i, depths.size() - 1)];
-    done = std::min(total, done + d);
-    cumulative.push_back(done);
-  }
-  return cumulative;
 }
 
 struct ResolvedTechnology {
@@ -1474,7 +1461,9 @@ void Generator::facing(const Job& job) {
   // one pass at the face, after roughing left only its allowance.
   std::vector<double> cumulative{front - target};
   if (auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy); rough && uni && !uni->cutting_depths.empty()) {
-    cumulative = depth_list_passes(uni->cutting_depths, front - target);
+    const PassPlan plan = plan_passes(uni->cutting_depths, front - target, uni->allow_multiple_passes, options_.pass_order);
+    if (!plan.error.empty()) return error(op.source, plan.error);
+    cumulative = plan.cumulative;
   } else if (rough) {
     cumulative.clear();
     for (const double z : depth_levels(front, target, op.axial_cutting_depth)) cumulative.push_back(front - z);
@@ -1518,15 +1507,19 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
     error(op.source, "contouring supports unidirectional_turning and contour_turning strategies");
     return;
   }
-  if (depths.empty()) depths.push_back(op.axial_cutting_depth.value_or(stock - min_radius));
-  if (std::any_of(depths.begin(), depths.end(), [](double d) { return d <= eps; })) {
-    error(op.source, "cutting depths must be positive");
+  const auto* uni = std::get_if<UnidirectionalTurning>(&op.strategy);
+  std::optional<bool> allow_multiple_passes;
+  if (depths.empty())
+    depths.push_back(op.axial_cutting_depth.value_or(stock - min_radius));
+  else if (uni)
+    allow_multiple_passes = uni->allow_multiple_passes;
+  const PassPlan plan = plan_passes(depths, stock - min_radius, allow_multiple_passes, options_.pass_order);
+  if (!plan.error.empty()) {
+    error(op.source, plan.error);
     return;
   }
-  const auto cumulative = depth_list_passes(depths, stock - min_radius);
-  const double lift = std::get_if<UnidirectionalTurning>(&op.strategy)
-                          ? std::get<UnidirectionalTurning>(op.strategy).lift_height
-                          : options_.safety_distance;
+  const auto& cumulative = plan.cumulative;
+  const double lift = uni ? uni->lift_height : options_.safety_distance;
 
   std::optional<std::size_t> cycle;
   if (!contour_strategy) {

@@ -1036,7 +1036,7 @@ class Describer {
     std::vector<double> depths;
     if (s && s->cutting_depth) depths = *s->cutting_depth;
     if (auto* uni = as<ts::unidirectional_turning>(s)) {
-      out.strategy = UnidirectionalTurning{depths, uni->lift_height};
+      out.strategy = UnidirectionalTurning{depths, uni->lift_height, uni->allow_multiple_passes};
     } else if (as<ts::contour_turning>(s)) {
       out.strategy = ContourTurning{depths};
     } else if (s && !as<ts::grooving_strategy>(s)) {

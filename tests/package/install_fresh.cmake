@@ -13,7 +13,7 @@ foreach(file
     lib/cmake/stepnc/stepncTargets.cmake lib/cmake/stepnc/StepncGenerate.cmake
     lib/pkgconfig/stepnc.pc bin/expressc bin/stepnc
     include/stepnc/version.h include/stepnc/meta/model.h include/stepnc/exchange/model_file.h
-    include/stepnc/machining/generate.h include/stepnc/iso14649/machining_schema.h)
+    include/stepnc/machining/generate.h include/stepnc/planning/plan.h include/stepnc/iso14649/machining_schema.h)
   if(NOT EXISTS "${PREFIX}/${file}")
     message(FATAL_ERROR "not installed: ${file}")
   endif()

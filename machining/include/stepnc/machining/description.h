@@ -268,6 +268,7 @@ struct ContourParallel {
 struct UnidirectionalTurning {
   std::vector<double> cutting_depths;  ///< seed 001 5.2: last entry repeats
   double lift_height = 2;              ///< vertical lift after each pass
+  std::optional<bool> allow_multiple_passes;  ///< as the file gives it; omitted: inferred (passes.h)
 };
 /// Passes that follow the contour (ISO 14649-12 contour_turning).
 struct ContourTurning {

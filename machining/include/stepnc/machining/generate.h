@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stepnc/machining/description.h"
+#include "stepnc/machining/passes.h"
 #include "stepnc/machining/program.h"
 
 namespace stepnc::machining {
@@ -42,6 +43,8 @@ struct GenerateOptions {
   /// offset, and the lift-off runs along -X.
   double boring_orientation_deg = 0;
   double boring_lift_off = 0.2;  ///< mm off the wall after the oriented stop (see boring_orientation_deg)
+  /// Order of the roughing passes of a cutting-depth list (passes.h).
+  PassOrder pass_order = PassOrder::iso;
 };
 
 /// A program, and the problems found making it.

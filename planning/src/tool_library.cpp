@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "stepnc/planning/tool_library.h"
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace stepnc::planning {
+namespace {
+
+// ISO 5608 holder style (third letter of PCLNR): the approach angle K_r.
+const std::map<char, double> holder_kr = {{'A', 90}, {'B', 75}, {'D', 45}, {'F', 90}, {'G', 90}, {'J', 93},
+                                          {'K', 75}, {'L', 95}, {'N', 63}, {'R', 75}, {'S', 45}, {'V', 72.5}};
+// ISO 1832 insert shape (first letter of CNMG): the corner angle.
+const std::map<char, double> insert_corner = {{'C', 80}, {'D', 55}, {'S', 90}, {'T', 60}, {'V', 35}, {'W', 80}};
+
+const std::set<std::string_view> columns = {
+    "tool",   "kind",   "name",        "diameter",        "corner_radius", "length",  "flutes",
+    "holder", "insert", "nose_radius", "cutting_edge_length", "side_cutting_edge_angle",
+    "end_cutting_edge_angle", "hand", "width", "available", "life_minutes", "used_minutes"};
+
+std::vector<std::string_view> split(std::string_view line) {
+  std::vector<std::string_view> cells;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    std::string_view cell = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
+    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t' || cell.back() == '\r')) cell.remove_suffix(1);
+    cells.push_back(cell);
+    if (comma == std::string_view::npos) return cells;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
+ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) {
+  ToolLibrary library;
+  std::vector<std::string> header;
+  std::set<int> numbers;
+  int line_number = 0;
+  for (std::size_t start = 0; start < csv.size();) {
+    const std::size_t end = std::min(csv.find('\n', start), csv.size());
+    const std::string_view line = csv.substr(start, end - start);
+    start = end + 1;
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
+    const auto cells = split(line);
+    // Column of cell i, 1-based, for messages.
+    const auto column_of = [&](std::size_t i) {
+      std::size_t column = 1;
+      for (std::size_t k = 0; k < i; ++k) column = line.find(',', column - 1) + 2;
+      return column;
+    };
+    const auto fail = [&](std::size_t i, const std::string& message) {
+      library.errors.push_back(fmt::format("{}:{}:{}: error: {}", file_name, line_number, column_of(i), message));
+    };
+    if (header.empty()) {
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        if (!columns.count(cells[i])) fail(i, fmt::format("unknown column '{}'", cells[i]));
+        header.emplace_back(cells[i]);
+      }
+      if (std::find(header.begin(), header.end(), "tool") == header.end()) fail(0, "no 'tool' column");
+      if (!library.ok()) return library;
+      continue;
+    }
+    LibraryTool tool;
+    tool.line = line_number;
+    std::string holder, insert;
+    bool ok = true;
+    for (std::size_t i = 0; i < cells.size() && i < header.size(); ++i) {
+      const std::string_view cell = cells[i];
+      if (cell.empty()) continue;
+      const std::string& column = header[i];
+      const auto number = [&]() -> std::optional<double> {
+        double value = 0;
+        const auto [ptr, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
+        if (ec != std::errc() || ptr != cell.data() + cell.size() || value < 0) {
+          fail(i, fmt::format("'{}' is not a non-negative number ({})", cell, column));
+          ok = false;
+          return std::nullopt;
+        }
+        return value;
+      };
+      if (column == "tool") {
+        // T2, T0202 -> 2 (tool-list.md): the leading T and a Fanuc offset pair.
+        std::string_view digits = cell;
+        if (!digits.empty() && (digits.front() == 'T' || digits.front() == 't')) digits.remove_prefix(1);
+        if (digits.size() == 4) digits = digits.substr(0, 2);
+        int value = 0;
+        const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (ec != std::errc() || ptr != digits.data() + digits.size() || value <= 0) {
+          fail(i, fmt::format("'{}' is not a tool number", cell));
+          ok = false;
+        }
+        tool.number = value;
+      } else if (column == "kind") tool.kind = cell;
+      else if (column == "name") tool.name = cell;
+      else if (column == "hand") tool.hand = cell;
+      else if (column == "holder") holder = cell;
+      else if (column == "insert") insert = cell;
+      else if (column == "available") tool.available = cell != "no";
+      else if (column == "diameter") tool.diameter = number();
+      else if (column == "corner_radius") tool.corner_radius = number();
+      else if (column == "length") tool.length = number();
+      else if (column == "flutes") { if (auto v = number()) tool.flutes = static_cast<int>(*v); }
+      else if (column == "nose_radius") tool.nose_radius = number();
+      else if (column == "cutting_edge_length") tool.cutting_edge_length = number();
+      else if (column == "side_cutting_edge_angle") tool.side_cutting_edge_angle = number();
+      else if (column == "end_cutting_edge_angle") tool.end_cutting_edge_angle = number();
+      else if (column == "width") tool.width = number();
+      else number();  // life_minutes, used_minutes: checked, not used by planning
+    }
+    if (!ok) continue;
+    const auto column_index = [&](std::string_view name) {
+      return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    // Explicit cells win over decoded codes (tool-list.md).
+    if (!holder.empty()) {
+      const auto kr = holder.size() >= 3 ? holder_kr.find(holder[2]) : holder_kr.end();
+      if (kr == holder_kr.end()) fail(column_index("holder"), fmt::format("holder '{}': unknown ISO 5608 style", holder));
+      else if (!tool.side_cutting_edge_angle) tool.side_cutting_edge_angle = kr->second;
+    }
+    if (!insert.empty()) {
+      const auto corner = insert_corner.find(insert.front());
+      int radius = -1;
+      if (insert.size() >= 10) std::from_chars(insert.data() + 8, insert.data() + 10, radius);
+      if (corner == insert_corner.end() || radius < 0) {
+        fail(column_index("insert"), fmt::format("insert '{}': not an ISO 1832 designation this library decodes", insert));
+      } else {
+        if (!tool.nose_radius) tool.nose_radius = radius / 10.0;
+        if (!tool.end_cutting_edge_angle && tool.side_cutting_edge_angle)
+          tool.end_cutting_edge_angle = 180 - *tool.side_cutting_edge_angle - corner->second;
+      }
+    }
+    if (tool.number > 0 && !numbers.insert(tool.number).second)
+      fail(column_index("tool"), fmt::format("tool {} is listed twice", tool.number));
+    library.tools.push_back(std::move(tool));
+  }
+  if (header.empty()) library.errors.push_back(fmt::format("{}: error: no header row", file_name));
+  return library;
+}
+
+}  // namespace stepnc::planning

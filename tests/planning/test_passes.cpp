@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: Apache-2.0
+// Pass planning (seed 001 5.2.2, SEEDS-SPEC 1.3 T001-13 to -18): the
+// cutting-depth rule generation and the planner share, on the fixture
+// tests/planning/data/seed001_roughing.stp (the paper's numbers; the outline
+// is ours and recorded in the file), posted and simulated.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <catch2/catch.hpp>
+
+#include "machining_schema.h"
+#include "stepnc/exchange/model_file.h"
+#include "stepnc/machining/iso14649.h"
+#include "stepnc/machining/motion.h"
+#include "stepnc/machining/passes.h"
+#include "stepnc/machining/simulation.h"
+#include "stepnc/meta/registry.h"
+#include "stepnc/post/dialect.h"
+
+using namespace stepnc::machining;
+
+namespace {
+
+const std::string fixture = std::string(STEPNC_TEST_DATA_DIR) + "/planning/data/seed001_roughing.stp";
+
+MachiningProject read_fixture() {
+  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
+  auto read = stepnc::exchange::read_model_file(fixture, registry);
+  REQUIRE(read.ok());
+  DescribeResult described = describe_project(read.file->model);
+  REQUIRE(described.ok());
+  return std::move(described.project);
+}
+
+}  // namespace
+
+TEST_CASE("cutting-depth lists: ISO order, the last entry repeats, remainder first as an option", "[passes]") {
+  // T001-13: (3.0), allow_multiple_passes omitted, 15.96 deep.
+  const PassPlan iso = plan_passes({3.0}, 15.96);
+  CHECK(iso.error.empty());
+  CHECK(iso.multiple_passes);
+  CHECK(iso.inferred);
+  REQUIRE(iso.thicknesses.size() == 6);
+  CHECK(iso.thicknesses.front() == Approx(3.0));
+  CHECK(iso.thicknesses.back() == Approx(0.96));
+  CHECK(iso.cumulative.back() == 15.96);
+  // T001-15: the paper's order puts the remainder first.
+  const PassPlan paper = plan_passes({3.0}, 15.96, std::nullopt, PassOrder::remainder_first);
+  REQUIRE(paper.thicknesses.size() == 6);
+  CHECK(paper.thicknesses.front() == Approx(0.96));
+  CHECK(paper.cumulative.front() == Approx(0.96));
+  CHECK(paper.cumulative.back() == 15.96);
+  // T001-14: the paper's list (0.96, 3, 3, 3, 3) sums to 12.96; the last entry repeats.
+  const PassPlan listed = plan_passes({0.96, 3, 3, 3, 3}, 15.96);
+  REQUIRE(listed.thicknesses.size() == 6);
+  CHECK(listed.thicknesses.back() == Approx(3.0));
+  // FALSE with more to remove than one pass, and bad lists, are refused.
+  CHECK_THAT(plan_passes({3.0}, 15.96, false).error, Catch::Contains("allow_multiple_passes is FALSE"));
+  CHECK_FALSE(plan_passes({3.0}, 2.5, std::nullopt).multiple_passes);
+  CHECK_THAT(plan_passes({3.0, 0}, 15.96).error, Catch::Contains("positive"));
+  CHECK_THAT(plan_passes({}, 15.96).error, Catch::Contains("empty"));
+}
+
+TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at the allowance", "[passes]") {
+  MachiningProject project = read_fixture();
+  CHECK(project.workpiece.stock_radius == 37.5);
+  CHECK(project.workpiece.stock_length == 175);
+  const Operation& rough = project.operations[0];
+  REQUIRE(rough.kind == OperationKind::contouring_rough);
+  CHECK(rough.allowance == 0.5);
+  CHECK(rough.retract_plane == 30.0);
+  const auto& strategy = std::get<UnidirectionalTurning>(rough.strategy);
+  CHECK(strategy.lift_height == 2.0);
+  CHECK_FALSE(strategy.allow_multiple_passes);
+
+  // Only the roughing workingstep, so the simulation sees what it leaves.
+  project.main_workplan.children.resize(1);
+  for (const PassOrder order : {PassOrder::iso, PassOrder::remainder_first}) {
+    GenerateOptions options;
+    options.pass_order = order;
+    const GenerateResult generated = generate(project, options);
+    REQUIRE(generated.ok());
+    const auto moves = expand_motion(generated.program);
+    // Passes: feeds along -z at a constant radius inside the stock.
+    std::vector<double> pass_radii;
+    for (const Move& m : moves) {
+      if (m.kind == Move::Kind::feed && std::abs(m.from.x - m.to.x) < 1e-9 && m.to.z < m.from.z - 1 &&
+          m.to.x < 37.5 - 1e-9 && (pass_radii.empty() || std::abs(pass_radii.back() - m.to.x) > 1e-9))
+        pass_radii.push_back(m.to.x);
+    }
+    // The passes come first; the contour pass at the allowance follows them.
+    REQUIRE(pass_radii.size() >= 6);
+    const std::vector<double> passes(pass_radii.begin(), pass_radii.begin() + 6);
+    CHECK(37.5 - passes.back() == Approx(15.96));
+    CHECK(37.5 - passes.front() == Approx(order == PassOrder::iso ? 3.0 : 0.96));
+    // The contour pass: feeds through every outline point offset by the allowance.
+    for (const auto& p : std::get<TurningProfile>(project.features[0].shape).points) {
+      const bool visited = std::any_of(moves.begin(), moves.end(), [&](const Move& m) {
+        return m.kind == Move::Kind::feed && std::abs(m.to.z - p.x) < 1e-9 && std::abs(m.to.x - (p.y + 0.5)) < 1e-9;
+      });
+      CHECK(visited);
+    }
+
+    // Simulated: no rapid through material, nothing cut inside the part ...
+    const SimulationReport report = simulate_turning(project, generated.program);
+    CHECK(report.text() == "");
+    // ... and what remains is the profile plus the allowance: the tool
+    // (its tip, the quadrant behind and above it) swept along every feed.
+    const auto& outline = std::get<TurningProfile>(project.features[0].shape).points;
+    for (double z = -139.5; z <= -0.5; z += 0.5) {
+      double remaining = 37.5;
+      for (const Move& m : moves) {
+        if (m.kind != Move::Kind::feed) continue;
+        const double z0 = std::min(m.from.z, m.to.z), z1 = std::max(m.from.z, m.to.z);
+        if (z < z0 - 1e-9 || z > z1 + 1e-9) continue;
+        const double x = z1 - z0 < 1e-12 ? std::min(m.from.x, m.to.x)
+                                         : m.from.x + (m.to.x - m.from.x) * (z - m.from.z) / (m.to.z - m.from.z);
+        remaining = std::min(remaining, x);
+      }
+      double wanted = 0;
+      for (std::size_t i = 0; i + 1 < outline.size(); ++i) {
+        if (z <= outline[i].x && z >= outline[i + 1].x)
+          wanted = outline[i].y + (outline[i + 1].y - outline[i].y) * (z - outline[i].x) / (outline[i + 1].x - outline[i].x);
+      }
+      INFO("z " << z);
+      CHECK(remaining == Approx(wanted + 0.5).margin(0.01));
+    }
+
+    // Posted: every dialect prints it.
+    for (const auto dialect : {stepnc::post::Dialect::fanuc, stepnc::post::Dialect::rs274ngc})
+      CHECK_FALSE(stepnc::post::print(generated.program, dialect).text.empty());
+  }
+}
