@@ -37,6 +37,7 @@ void add_dump_command(CLI::App& app, Action& action);
 void add_post_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
 void add_gcode_command(CLI::App& app, Action& action);
+void add_run_command(CLI::App& app, Action& action);
 
 // The FILE argument every subcommand reads: an existing file, or `-` for
 // standard input.

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   add_post_command(app, action);
   add_plot_command(app, action);
   add_gcode_command(app, action);
+  add_run_command(app, action);
 
   if (argc == 2 && std::strcmp(argv[1], "--bash-completion") == 0) {  // for the build, not listed in --help
     fmt::print("{}", bash_completion(app));

@@ -41,14 +41,20 @@ bool report(const std::filesystem::path& path, const std::vector<machining::Diag
 
 }  // namespace
 
-std::optional<PostedProject> post_file(const std::filesystem::path& path) {
+std::optional<machining::MachiningProject> describe_file(const std::filesystem::path& path) {
   const auto file = load(path);
   if (!file) return std::nullopt;
   machining::DescribeResult described = machining::describe_project(file->model);
   if (!report(path, described.diagnostics)) return std::nullopt;
-  machining::GenerateResult generated = machining::generate(described.project);
+  return std::move(described.project);
+}
+
+std::optional<PostedProject> post_file(const std::filesystem::path& path) {
+  std::optional<machining::MachiningProject> described = describe_file(path);
+  if (!described) return std::nullopt;
+  machining::GenerateResult generated = machining::generate(*described);
   if (!report(path, generated.diagnostics)) return std::nullopt;
-  return PostedProject{std::move(described.project), std::move(generated.program)};
+  return PostedProject{std::move(*described), std::move(generated.program)};
 }
 
 }  // namespace stepnc::cli

@@ -19,4 +19,8 @@ struct PostedProject {
 // Null after printing why the file could not be posted.
 std::optional<PostedProject> post_file(const std::filesystem::path& path);
 
+// The file's machining description without a program (a scheduler orders
+// its selective and non_sequential structures); null after printing why.
+std::optional<machining::MachiningProject> describe_file(const std::filesystem::path& path);
+
 }  // namespace stepnc::cli
