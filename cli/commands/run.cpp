@@ -100,7 +100,7 @@ void add_run_command(CLI::App& app, Action& action) {
   status->excludes(file)->excludes(magazine);
   command->callback([&action, options, file, magazine, status] {
     if (status->count() == 0 && (file->count() == 0 || magazine->count() == 0))
-      throw CLI::RequiredError("run needs FILE and --magazine, or --status RUN.db");
+      throw CLI::RequiredError("run needs FILE and --magazine, or --status RUN.db", CLI::ExitCodes::RequiredError);
     action = [options] { return run_program(*options); };
   });
 }

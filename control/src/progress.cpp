@@ -12,7 +12,7 @@ void Progress::activate(int node) {
   State& s = state_[static_cast<std::size_t>(node)];
   if (s.dropped || s.done) return;
   if (graph_->is_leaf(node)) {
-    ready_.insert(node);
+    add(node);
     return;
   }
   if (n.children.empty()) {
@@ -60,7 +60,7 @@ void Progress::finish(int node) {
 }
 
 void Progress::start(int leaf, std::vector<int>* dropped) {
-  ready_.erase(leaf);
+  remove(leaf);
   int child = leaf;
   for (int node = leaf; node >= 0; child = node, node = graph_->nodes[static_cast<std::size_t>(node)].parent) {
     State& s = state_[static_cast<std::size_t>(node)];
@@ -83,7 +83,7 @@ void Progress::drop_subtree(int node, std::vector<int>* dropped) {
   if (s.dropped) return;
   s.dropped = true;
   if (graph_->is_leaf(node)) {
-    ready_.erase(node);
+    remove(node);
     if (dropped) dropped->push_back(node);
     return;
   }

@@ -6,6 +6,7 @@
 // share it: one definition of the graph's order.
 #pragma once
 
+#include <functional>
 #include <set>
 #include <vector>
 
@@ -35,9 +36,11 @@ class Progress {
   // Removes a selective's branch (seed 003 4.2, SO); its leaves go to `dropped`.
   void drop(int branch, std::vector<int>* dropped = nullptr);
   // Removes a ready leaf from the ready set without starting it (queued 'Q').
-  void hold(int leaf) { ready_.erase(leaf); }
+  void hold(int leaf) { remove(leaf); }
   // Puts a held leaf back.
-  void release(int leaf) { ready_.insert(leaf); }
+  void release(int leaf) { add(leaf); }
+  // Called with (leaf, true) when a leaf enters the ready set, (leaf, false) when it leaves.
+  void observe(std::function<void(int, bool)> observer) { observer_ = std::move(observer); }
   // The graph grew (a leaf was split into a sequence of two new leaves):
   // `node` has become a sequence whose first child is running now.
   void split(int node);
@@ -54,10 +57,17 @@ class Progress {
   void activate(int node);
   void finish(int node);
   void drop_subtree(int node, std::vector<int>* dropped);
+  void add(int leaf) {
+    if (ready_.insert(leaf).second && observer_) observer_(leaf, true);
+  }
+  void remove(int leaf) {
+    if (ready_.erase(leaf) && observer_) observer_(leaf, false);
+  }
 
   const Graph* graph_;
   std::vector<State> state_;
   std::set<int> ready_;
+  std::function<void(int, bool)> observer_;
   bool finished_ = false;
 };
 

@@ -365,6 +365,11 @@ class Controller {
       if (!program_.tool(entry.number)) program_.tools.push_back(entry);
     for (std::size_t i = first; i < end; ++i) {
       m::Block block = step.program.blocks[i];
+      // The tool already in the spindle is not changed again.
+      if (auto* change = std::get_if<m::ToolChange>(&block.statement)) {
+        if (change->number == spindle_tool_) continue;
+        spindle_tool_ = change->number;
+      }
       if (block.provenance != 0) {
         program_.provenance.push_back(step.program.provenance[block.provenance]);
         block.provenance = static_cast<std::uint32_t>(program_.provenance.size() - 1);
@@ -439,6 +444,7 @@ class Controller {
       scheduler_->interrupt(leaf, fmt::format("tool {} broke at unit feature {}", tool_name, k), decisions);
       emit(decisions);
       program_.blocks.push_back({m::ProgramStop{}, 0});
+      spindle_tool_ = -1;  // the replacement is loaded again
       next_unit_[leaf] = k;
       return true;
     }
@@ -499,6 +505,7 @@ class Controller {
   std::set<int> split_from_;
   m::Program& program_ = result_.program;
   bool started_ = false, program_started_ = false;
+  int spindle_tool_ = -1;
   std::string current_node_;
   int current_unit_ = -1;
   double clock_ = 0;

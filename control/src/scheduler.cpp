@@ -2,6 +2,8 @@
 #include "stepnc/control/scheduler.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -45,17 +47,79 @@ bool default_tie_break(const Candidate& a, const Candidate& b, const TieBreakCon
   return a.order < b.order;
 }
 
+namespace detail {
+
+// The ready nodes by (tool, setup), tool, setup and overall, each in listed
+// order: the default tie-break's winner is the first of the first non-empty
+// of those four, so a step costs a few lookups however many nodes are ready.
+struct ReadyIndex {
+  using Ordered = std::set<std::pair<int, int>>;  // (order, node)
+  std::map<std::pair<std::string, int>, Ordered> by_tool_setup;
+  std::map<std::string, Ordered, std::less<>> by_tool;
+  std::map<int, Ordered> by_setup;
+  Ordered all;
+  std::vector<char> member;
+
+  void change(const Graph& graph, const std::vector<std::string>& tools, int node, bool add) {
+    if (member.size() < graph.nodes.size()) member.resize(graph.nodes.size(), 0);
+    if ((member[static_cast<std::size_t>(node)] != 0) == add) return;
+    member[static_cast<std::size_t>(node)] = add;
+    const Node& n = graph.nodes[static_cast<std::size_t>(node)];
+    const std::string& tool = tools[static_cast<std::size_t>(node)];
+    const std::pair<int, int> key{n.order, node};
+    for (Ordered* set : {&by_tool_setup[{tool, n.setup}], &by_tool[tool], &by_setup[n.setup], &all}) {
+      if (add) set->insert(key);
+      else set->erase(key);
+    }
+  }
+};
+
+}  // namespace detail
+
 Scheduler::Scheduler(Graph graph, Available available, TieBreak tie_break)
     : graph_(std::move(graph)),
       available_(std::move(available)),
       tie_break_(std::move(tie_break)),
-      progress_(std::make_unique<detail::Progress>(graph_)),
       marks_(graph_.nodes.size(), Mark::none),
-      tools_(graph_.nodes.size()) {}
+      tools_(graph_.nodes.size()) {
+  using Function = bool (*)(const Candidate&, const Candidate&, const TieBreakContext&);
+  const Function* target = tie_break_.target<Function>();
+  if (target && *target == &default_tie_break) index_ = std::make_unique<detail::ReadyIndex>();
+  progress_ = std::make_unique<detail::Progress>(graph_);
+  if (index_) {
+    for (int node : progress_->ready()) index_->change(graph_, tools_, node, true);
+    progress_->observe([this](int node, bool added) { index_->change(graph_, tools_, node, added); });
+  }
+}
+
+// The default tie-break's best ready node other than `exclude`.
+std::optional<int> Scheduler::best(int exclude) const {
+  auto first = [&](const detail::ReadyIndex::Ordered* set) -> std::optional<int> {
+    if (set)
+      for (const auto& [order, node] : *set)
+        if (node != exclude) return node;
+    return std::nullopt;
+  };
+  auto find = [](const auto& map, const auto& key) -> const detail::ReadyIndex::Ordered* {
+    const auto it = map.find(key);
+    return it == map.end() ? nullptr : &it->second;
+  };
+  if (!now_tool_.empty()) {
+    if (auto n = first(find(index_->by_tool_setup, std::pair<std::string, int>{now_tool_, now_.setup}))) return n;
+    if (auto n = first(find(index_->by_tool, now_tool_))) return n;
+  }
+  if (auto n = first(find(index_->by_setup, now_.setup))) return n;
+  return first(&index_->all);
+}
 
 Scheduler::~Scheduler() = default;
 
-void Scheduler::set_tool(int node, std::string tool) { tools_[static_cast<std::size_t>(node)] = std::move(tool); }
+void Scheduler::set_tool(int node, std::string tool) {
+  const bool indexed = index_ && progress_->ready().count(node);
+  if (indexed) index_->change(graph_, tools_, node, false);
+  tools_[static_cast<std::size_t>(node)] = std::move(tool);
+  if (indexed) index_->change(graph_, tools_, node, true);
+}
 std::string_view Scheduler::tool(int node) const { return tools_[static_cast<std::size_t>(node)]; }
 void Scheduler::set_mark(int node, Mark mark) { marks_[static_cast<std::size_t>(node)] = mark; }
 
@@ -78,13 +142,18 @@ std::optional<int> Scheduler::select(std::vector<Decision>& decisions) {
     };
     // The best ready node by the tie-break, and the runner-up to explain it.
     std::optional<Candidate> best, second;
-    for (int node : progress_->ready()) {
-      const Candidate c = candidate(node);
-      if (!best || tie_break_(c, *best, now_)) {
-        second = best;
-        best = c;
-      } else if (!second || tie_break_(c, *second, now_)) {
-        second = c;
+    if (index_) {
+      best = candidate(*this->best(-1));
+      if (const auto runner_up = this->best(best->node)) second = candidate(*runner_up);
+    } else {
+      for (int node : progress_->ready()) {
+        const Candidate c = candidate(node);
+        if (!best || tie_break_(c, *best, now_)) {
+          second = best;
+          best = c;
+        } else if (!second || tie_break_(c, *second, now_)) {
+          second = c;
+        }
       }
     }
     if (!available_(best->node)) {

@@ -163,3 +163,27 @@ TEST_CASE("The tie-break is pluggable and deterministic", "[control][scheduler]"
 
 }  // namespace
 }  // namespace stepnc_control_test
+
+namespace stepnc_control_test {
+namespace {
+
+TEST_CASE("The indexed default tie-break decides as the same rule scanned", "[control][scheduler]") {
+  // A lambda around default_tie_break takes the scanning path; default_tie_break itself the index.
+  const control::TieBreak scanned = [](const control::Candidate& a, const control::Candidate& b,
+                                       const control::TieBreakContext& now) {
+    return control::default_tie_break(a, b, now);
+  };
+  for (Fig7Graph g : {Fig7Graph::psg_a, Fig7Graph::psg_b}) {
+    for (const std::set<std::string>& missing : std::vector<std::set<std::string>>{
+             {}, {"SLOTCUTTER"}, {"DRILL8"}, {"ENDMILL"}, {"DRILL6"}, {"FACEMILL"}}) {
+      Bench indexed(g, missing);
+      Bench scanning(g, missing, scanned);
+      CHECK(indexed.run() == scanning.run());
+      REQUIRE(indexed.decisions.size() == scanning.decisions.size());
+      for (std::size_t i = 0; i < indexed.decisions.size(); ++i) CHECK(indexed.decisions[i].text == scanning.decisions[i].text);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace stepnc_control_test

@@ -21,6 +21,7 @@ namespace stepnc::control {
 
 namespace detail {
 class Progress;
+struct ReadyIndex;
 }
 
 /// A node's mark (seed 003 4.2; SEEDS-SPEC T003-10).
@@ -135,11 +136,13 @@ class Scheduler {
   void set_mark(int node, Mark mark);
   void backward(int node, std::vector<Decision>& decisions);
   void eliminate(const std::vector<int>& leaves);
+  std::optional<int> best(int exclude) const;
 
   Graph graph_;
   Available available_;
   TieBreak tie_break_;
   std::unique_ptr<detail::Progress> progress_;
+  std::unique_ptr<detail::ReadyIndex> index_;  // the default tie-break without scanning every ready node
   std::vector<Mark> marks_;
   std::vector<std::string> tools_;
   TieBreakContext now_;
