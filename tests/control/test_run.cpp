@@ -137,7 +137,7 @@ TEST_CASE("Tool breakage at unit feature k: retract, 'Q', regenerate from k only
   CHECK(fig7_ids(result.executed) == "1-3-4-8-2-7");
   const std::vector<int> units = units_of(result, "WS2 POCKET");
   REQUIRE(units.size() >= 3);
-  // Units 0 and 1 before the breakage, then 1.. after it: 1 is cut again (it was interrupted), 0 never.
+  // Unit 0 before the breakage; unit 1 breaks as it starts; after the replacement 1.. run: each once, 0 never again.
   CHECK(units[0] == 0);
   CHECK(std::count(units.begin(), units.end(), 0) == 1);
   for (std::size_t i = 1; i < units.size(); ++i) CHECK(units[i] == static_cast<int>(i));
