@@ -8,7 +8,6 @@
 #include "command.h"
 #include "posting.h"
 #include "stepnc/control/run.h"
-#include "stepnc/io/input.h"
 #include "stepnc/post/dialect.h"
 
 namespace stepnc::cli {
@@ -24,16 +23,6 @@ struct RunCommandOptions {
   std::string status;
   bool json = false;
 };
-
-// A whole input file, or an error printed and nullopt.
-std::optional<std::string> read_input(const std::string& path) {
-  std::string text;
-  if (const auto error = io::read_text(path, text)) {
-    fmt::print(stderr, "{}: {}\n", io::is_standard_stream(path) ? io::standard_input_name : path, *error);
-    return std::nullopt;
-  }
-  return text;
-}
 
 int print_status(const RunCommandOptions& options) {
   std::string error;
@@ -61,9 +50,14 @@ int run_program(const RunCommandOptions& options) {
 
   control::RunOptions run_options;
   run_options.journal = options.journal;
+  run_options.events_file = options.events;
   run_options.inputs_digest = control::digest(*program_text + '\0' + *magazine_text + '\0' + *events_text);
   const control::RunResult result = control::run(*project, std::move(magazine.magazine), events.events, run_options);
-  for (const std::string& e : result.errors) fmt::print(stderr, "{}: {}\n", options.file, e);
+  report_diagnostics(options.file, result.diagnostics);
+  // Bad events name the events file; a run that cannot finish names the program.
+  for (const std::string& e : result.errors)
+    if (result.status == control::RunStatus::invalid_input) fmt::print(stderr, "{}\n", e);
+    else fmt::print(stderr, "{}: {}\n", options.file, e);
   const std::string report = options.json ? control::report_json(result) : control::report_text(result);
   if (result.status == control::RunStatus::invalid_input) return exit_invalid_input;
   if (result.status != control::RunStatus::finished) {

@@ -72,8 +72,11 @@ class Controller {
 
   void prepare() {
     GraphResult built = build_graph(project_.main_workplan);
-    for (const m::Diagnostic& d : built.errors) invalid(d.to_string());
-    if (!built.ok()) return;
+    if (!built.ok()) {
+      result_.status = RunStatus::invalid_input;
+      result_.diagnostics = std::move(built.errors);
+      return;
+    }
     // T numbers are the magazine's pockets; tools it lacks get numbers above them.
     int next_number = 1;
     for (const MagazineTool& t : magazine_.tools) next_number = std::max(next_number, t.number + 1);
@@ -90,9 +93,10 @@ class Controller {
     for (const Event& e : events_) {
       for (const std::string* node : {&e.node, &e.before})
         if (!node->empty() && !labels.count(*node))
-          invalid(fmt::format("events:{}: unknown node '{}'", e.line, *node));
+          invalid(fmt::format("{}:{}: unknown node '{}'", options_.events_file, e.line, *node));
       if (!e.tool.empty() && !magazine_.find(e.tool) && !program_tool(e.tool))
-        invalid(fmt::format("events:{}: unknown tool '{}' (neither in the magazine nor in the program)", e.line, e.tool));
+        invalid(fmt::format("{}:{}: unknown tool '{}' (neither in the magazine nor in the program)", options_.events_file,
+                           e.line, e.tool));
     }
     if (result_.status == RunStatus::invalid_input) return;
     scheduler_ = std::make_unique<Scheduler>(std::move(built.graph), [this](int node) { return available(node); },
@@ -255,13 +259,9 @@ class Controller {
   }
 
   bool matches(const std::string& label, int leaf) const {
+    auto named = [&](int n) { return graph().label(n) == label || fmt::format("#{}", node(n).source.id) == label; };
     // Parts of a split node answer to the original node's name.
-    for (int n = leaf; n >= 0; n = node(n).parent) {
-      if (graph().label(n) == label || fmt::format("#{}", node(n).source.id) == label) return true;
-      if (n == leaf && !split_from_.count(leaf)) break;
-      if (n != leaf) break;
-    }
-    return false;
+    return named(leaf) || (split_from_.count(leaf) && named(node(leaf).parent));
   }
 
   // --------------------------------------------------------- interference --

@@ -43,8 +43,12 @@ StepProgram generate_step(const m::MachiningProject& project, const m::Executabl
   out.program = std::move(generated.program);
   const std::vector<m::Block>& blocks = out.program.blocks;
 
-  // The program start: blocks before the first one of the executable.
-  while (out.start_end < blocks.size() && blocks[out.start_end].provenance == 0) ++out.start_end;
+  // The program start: the leading comments and tolerance of the program
+  // itself (an NC function's own blocks carry no provenance either).
+  while (out.start_end < blocks.size() && blocks[out.start_end].provenance == 0 &&
+         (std::holds_alternative<m::Comment>(blocks[out.start_end].statement) ||
+          std::holds_alternative<m::Tolerance>(blocks[out.start_end].statement)))
+    ++out.start_end;
   out.epilogue_begin = blocks.size();
   while (out.epilogue_begin > out.start_end && blocks[out.epilogue_begin - 1].provenance == 0) --out.epilogue_begin;
 

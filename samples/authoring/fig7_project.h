@@ -19,7 +19,7 @@ enum class Fig7Graph { psg_a, psg_b };
 // Creates the project in `model`; ids are numbered by the model in creation order.
 void build_fig7(stepnc::meta::Model& model, Fig7Graph graph);
 
-// The header of samples/milling/fig7_psg_a.stp and fig7_psg_b.stp.
+// The header of samples/control/fig7_psg_a.stp and fig7_psg_b.stp.
 stepnc::meta::FileHeader fig7_header(Fig7Graph graph);
 
 }  // namespace stepnc_samples

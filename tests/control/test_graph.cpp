@@ -110,8 +110,8 @@ TEST_CASE("Fig. 7: the samples are the authoring output; written and read back, 
     stepnc_samples::build_fig7(model, g);
     const std::string text = meta::to_text(model, stepnc_samples::fig7_header(g));
     const std::string file = g == Fig7Graph::psg_a ? "fig7_psg_a.stp" : "fig7_psg_b.stp";
-    CHECK(stepnc_test::read_file(std::string(STEPNC_SOURCE_DIR) + "/samples/milling/" + file) == text);
-    const machining::DescribeResult read = testing::describe_sample("milling/" + file);
+    CHECK(stepnc_test::read_file(std::string(STEPNC_SOURCE_DIR) + "/samples/control/" + file) == text);
+    const machining::DescribeResult read = testing::describe_sample("control/" + file);
     REQUIRE(read.ok());
     const control::GraphResult reread = control::build_graph(read.project.main_workplan);
     REQUIRE(reread.ok());
@@ -129,6 +129,19 @@ TEST_CASE("Fig. 7: the samples are the authoring output; written and read back, 
 }
 
 TEST_CASE("Structures the scheduler cannot evaluate are refused naming the #id", "[control][graph]") {
+  // Through run(): invalid input, nothing run.
+  machining::MachiningProject project = fig7(Fig7Graph::psg_a);
+  machining::Executable loop;
+  loop.kind = machining::ExecutableKind::unsupported;
+  loop.entity_name = "while_statement";
+  loop.source = {99, "WHILE TOOL OK"};
+  project.main_workplan.children.push_back(loop);
+  const control::RunResult refused = control::run(project, fig7_magazine(), {});
+  CHECK(refused.status == control::RunStatus::invalid_input);
+  REQUIRE(refused.diagnostics.size() == 1);
+  CHECK(refused.diagnostics[0].where.id == 99);
+  CHECK(refused.records.empty());
+
   machining::Executable main;
   main.kind = machining::ExecutableKind::workplan;
   machining::Executable condition;

@@ -316,3 +316,32 @@ TEST_CASE("Bad input: unknown nodes and tools in events, bad magazines and event
 
 }  // namespace
 }  // namespace stepnc_control_test
+
+namespace stepnc_control_test {
+namespace {
+
+TEST_CASE("NC functions are nodes: messages, pallet exchange, rapid movement and stops run in order", "[control][run]") {
+  machining::DescribeResult described = testing::describe_sample("milling/nested_setup_functions.stp");
+  REQUIRE(described.ok());
+  const control::RunResult result =
+      control::run(described.project, magazine(sample("control/nested_setup_magazine.csv")), {});
+  for (const auto& e : result.errors) INFO(e);
+  REQUIRE(result.status == control::RunStatus::finished);
+  const control::GraphResult graph = control::build_graph(described.project.main_workplan);
+  REQUIRE(graph.ok());
+  std::size_t nc_functions = 0;
+  for (int leaf : graph.graph.leaves) nc_functions += graph.graph.nodes[static_cast<std::size_t>(leaf)].kind == control::NodeKind::nc_function;
+  CHECK(nc_functions >= 3);
+  CHECK(result.executed.size() == graph.graph.leaves.size());
+  CHECK(control::check_sequence(graph.graph, result.executed).feasible);
+  std::size_t messages = 0, stops = 0;
+  for (const auto& b : result.program.blocks) {
+    messages += std::holds_alternative<machining::Message>(b.statement);
+    stops += std::holds_alternative<machining::ProgramStop>(b.statement);
+  }
+  CHECK(messages >= 1);
+  CHECK(stops >= 2);  // optional stop and the pallet exchange
+}
+
+}  // namespace
+}  // namespace stepnc_control_test

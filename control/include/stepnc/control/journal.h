@@ -48,7 +48,7 @@ class Journal {
   /// Opens (creating when missing) the journal at `path`; an error message
   /// when the file cannot be opened or is not a journal.
   static std::unique_ptr<Journal> open(const std::string& path, std::string& error);
-  ~Journal();
+  ~Journal();  ///< closes the connection
   Journal(const Journal&) = delete;             ///< one connection per journal
   Journal& operator=(const Journal&) = delete;  ///< one connection per journal
 

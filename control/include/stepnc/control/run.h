@@ -20,6 +20,7 @@
 #include "stepnc/control/magazine.h"
 #include "stepnc/control/scheduler.h"
 #include "stepnc/machining/description.h"
+#include "stepnc/machining/generate.h"
 #include "stepnc/machining/program.h"
 
 namespace stepnc::control {
@@ -72,6 +73,8 @@ struct RunOptions {
   /// The digest of the inputs (program, magazine, events), stored in a new
   /// journal and compared when resuming: a journal of other inputs is refused.
   std::string inputs_digest;
+  /// The events file's name in messages about bad events ("events:3: unknown node").
+  std::string events_file = "events";
   TieBreak tie_break = default_tie_break;  ///< the scheduler's tie-break
   /// Called before (`committed` false) and after (true) each journal
   /// transaction, with the record's 1-based number (progress; tests kill here).
@@ -82,6 +85,7 @@ struct RunOptions {
 struct RunResult {
   RunStatus status = RunStatus::finished;       ///< how it ended
   std::vector<std::string> errors;              ///< why it did not finish (one a line)
+  std::vector<machining::Diagnostic> diagnostics;  ///< program structures the graph refuses, naming the `#id`
   std::vector<Record> records;                  ///< every decision, event, unit feature and alarm, in order
   std::vector<std::string> executed;            ///< labels of the nodes completed, in order
   machining::Program program;                   ///< the program in executed order

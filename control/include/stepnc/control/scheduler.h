@@ -91,7 +91,7 @@ class Scheduler {
 
   /// Takes the graph; `available` answers resource checks.
   Scheduler(Graph graph, Available available, TieBreak tie_break = default_tie_break);
-  ~Scheduler();
+  ~Scheduler();  ///< releases the progress and its index
   Scheduler(const Scheduler&) = delete;             ///< the progress refers to the graph it holds
   Scheduler& operator=(const Scheduler&) = delete;  ///< the progress refers to the graph it holds
 

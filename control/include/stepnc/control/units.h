@@ -28,10 +28,10 @@ struct UnitFeature {
 /// A single executable's program divided into unit features.
 struct StepProgram {
   machining::Program program;                    ///< generate()'s program for the executable alone
-  std::size_t start_end = 0;                     ///< blocks [0, start_end): the program start (units, plane)
+  std::size_t start_end = 0;                     ///< blocks [0, start_end): the program start (its name, tolerance)
   std::size_t prologue_end = 0;                  ///< blocks [start_end, prologue_end): tool change, spindle, coolant
   std::vector<UnitFeature> units;                ///< the unit features, in order
-  std::size_t epilogue_begin = 0;                ///< blocks [epilogue_begin, end): spindle off, retract
+  std::size_t epilogue_begin = 0;                ///< blocks [epilogue_begin, end): spindle off, retract; an NC function's own blocks
   std::vector<machining::Diagnostic> diagnostics;  ///< generate()'s diagnostics
   bool ok() const;                               ///< no error diagnostic
 };
