@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <initializer_list>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -44,10 +45,14 @@ void add_gcode_command(CLI::App& app, Action& action);
 void add_kb_command(CLI::App& app, Action& action);
 void add_roughness_command(CLI::App& app, Action& action);
 void add_plan_command(CLI::App& app, Action& action);
+void add_run_command(CLI::App& app, Action& action);
 
 // The FILE argument every subcommand reads: an existing file, or `-` for
 // standard input.
 CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::string& description);
+// A whole input file (`-`: standard input), or nullopt after printing why
+// it could not be read.
+std::optional<std::string> read_input(const std::string& path);
 // `-o,--output`: a file, or `-` (the default) for standard output.
 CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description);
 

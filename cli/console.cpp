@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "command.h"
+#include "stepnc/io/input.h"
 
 namespace stepnc::cli {
 namespace {
@@ -23,6 +24,15 @@ CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::s
       [](const std::string& value) { return io::is_standard_stream(value) ? std::string() : CLI::ExistingFile(value); },
       "FILE|-");
   return command.add_option("FILE", file, description + " ('-': standard input)")->required()->check(existing_or_stdin);
+}
+
+std::optional<std::string> read_input(const std::string& path) {
+  std::string text;
+  if (const auto error = io::read_text(path, text)) {
+    fmt::print(stderr, "{}: {}\n", io::is_standard_stream(path) ? io::standard_input_name : path, *error);
+    return std::nullopt;
+  }
+  return text;
 }
 
 CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description) {

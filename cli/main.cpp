@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   add_kb_command(app, action);
   add_roughness_command(app, action);
   add_plan_command(app, action);
+  add_run_command(app, action);
 
   if (argc == 2 && std::strcmp(argv[1], "--bash-completion") == 0) {  // for the build, not listed in --help
     fmt::print("{}", bash_completion(app));

@@ -10,12 +10,9 @@
 #include "stepnc/machining/iso14649.h"
 
 namespace stepnc::cli {
-namespace {
 
-// Prints posting diagnostics as file:line:col of the instance they name;
-// true when none is an error. The file is indexed again only to find those
-// lines.
-bool report(const std::filesystem::path& path, const std::vector<machining::Diagnostic>& diagnostics) {
+// The file is indexed again only to find the lines of the instances named.
+bool report_diagnostics(const std::filesystem::path& path, const std::vector<machining::Diagnostic>& diagnostics) {
   bool ok = true;
   std::optional<p21::ReadResult> index;
   for (const machining::Diagnostic& diagnostic : diagnostics) {
@@ -39,16 +36,20 @@ bool report(const std::filesystem::path& path, const std::vector<machining::Diag
   return ok;
 }
 
-}  // namespace
-
-std::optional<PostedProject> post_file(const std::filesystem::path& path) {
+std::optional<machining::MachiningProject> describe_file(const std::filesystem::path& path) {
   const auto file = load(path);
   if (!file) return std::nullopt;
   machining::DescribeResult described = machining::describe_project(file->model);
-  if (!report(path, described.diagnostics)) return std::nullopt;
-  machining::GenerateResult generated = machining::generate(described.project);
-  if (!report(path, generated.diagnostics)) return std::nullopt;
-  return PostedProject{std::move(described.project), std::move(generated.program)};
+  if (!report_diagnostics(path, described.diagnostics)) return std::nullopt;
+  return std::move(described.project);
+}
+
+std::optional<PostedProject> post_file(const std::filesystem::path& path) {
+  std::optional<machining::MachiningProject> described = describe_file(path);
+  if (!described) return std::nullopt;
+  machining::GenerateResult generated = machining::generate(*described);
+  if (!report_diagnostics(path, generated.diagnostics)) return std::nullopt;
+  return PostedProject{std::move(*described), std::move(generated.program)};
 }
 
 }  // namespace stepnc::cli

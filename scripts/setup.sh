@@ -12,7 +12,7 @@ packages=(
   catch2                              # unit tests (v2, header-only)
   libcli11-dev                        # command-line parsing for expressc and stepnc
   nlohmann-json3-dev                  # JSON model dump and its tests
-  libsqlite3-dev                      # the knowledge room's case base and CNC logs (one file, WAL, R*Tree)
+  libsqlite3-dev                      # every store: the knowledge case base, the control run journal
   python3                             # benchmark input generator, the tutorial test runner
   clang libclang-rt-14-dev            # libFuzzer and sanitizers for the reader
   linuxcnc-uspace                     # LinuxCNC's rs274 interpreter checks posted programs

@@ -8,7 +8,6 @@
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
 #include "stepnc/gcode/tool_list.h"
-#include "stepnc/io/input.h"
 
 namespace stepnc::cli {
 namespace {
@@ -23,16 +22,6 @@ struct GcodeOptions {
   std::string output = "-";
 };
 
-// `-`: standard input.
-std::optional<std::string> read_text(const std::string& path) {
-  std::string text;
-  if (const auto error = io::read_text(path, text)) {
-    fmt::print(stderr, "{}: {}\n", io::is_standard_stream(path) ? io::standard_input_name : path, *error);
-    return std::nullopt;
-  }
-  return text;
-}
-
 int run_gcode(const GcodeOptions& options) {
   const auto controller = gcode::controller(options.controller);
   if (!controller) {
@@ -41,14 +30,14 @@ int run_gcode(const GcodeOptions& options) {
   }
   gcode::Options run;
   if (!options.tools.empty()) {
-    const auto csv = read_text(options.tools);
+    const auto csv = read_input(options.tools);
     if (!csv) return exit_failure;
     auto list = gcode::read_tool_list(*csv);
     for (const auto& e : list.errors) fmt::print(stderr, "{}\n", e.to_string(options.tools));
     if (!list.ok()) return exit_invalid_input;
     run.tools = std::move(list.tools);
   }
-  auto text = read_text(options.file);
+  auto text = read_input(options.file);
   if (!text) return exit_failure;
   const gcode::Result result = gcode::interpret_text(std::move(*text), *controller, run);
   for (const auto& e : result.errors) fmt::print(stderr, "{}\n", e.to_string(options.file));
