@@ -266,8 +266,9 @@ TEST_CASE("posted programs of every milling sample, read back, pass the height-m
       const std::string name = dialect == post::Dialect::rs274ngc      ? "rs274ngc"
                                : dialect == post::Dialect::siemens840d ? "siemens840d"
                                                                        : "fanuc-mill";
-      const gcode::Result read =
-          without_machine_safe_retracts(gcode::interpret_text(printed.text, *gcode::controller(name)), printed.text);
+      const gcode::Controller controller = *gcode::controller(name);
+      const gcode::Program program = gcode::parse_program(printed.text, controller);
+      const gcode::Result read = without_machine_safe_retracts(gcode::interpret(program, controller), program, controller);
       // Not expanded by the front end yet: the 840D feature cycles Example 1
       // posts (CYCLE71, POCKET1); the motion they stand for is checked on
       // the program itself (test_safe_motion.cpp).

@@ -262,7 +262,7 @@ MachiningProject shaft() {
   p.operations.push_back(operation(21, "FACE FINISH", K::facing_finish, 1, css(71, 250, 0.1), std::nullopt));  // 1
   p.operations.push_back(operation(22, "CENTRE DRILL", K::lathe_drilling, 3, drill_tech, std::nullopt));        // 2
   Operation rough = operation(23, "CONTOUR ROUGH", K::contouring_rough, 0, css(70, 200, 0.3), std::nullopt);
-  rough.strategy = UnidirectionalTurning{{3, 3, 3, 3, 3, 2.5, 1.5}, 2};
+  rough.strategy = UnidirectionalTurning{{3, 3, 3, 3, 3, 2.5, 1.5}, 2, std::nullopt};
   rough.allowance = 0.5;
   p.operations.push_back(rough);  // 3
   Operation finish = operation(24, "CONTOUR FINISH", K::contouring_finish, 1, css(71, 250, 0.1), std::nullopt);
