@@ -8,9 +8,11 @@
 #include "stepnc/rules/evaluate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -275,7 +277,34 @@ bool like(std::string_view s, std::string_view p) {
 
 // ---------------------------------------------------------------- the interpreter
 
+// Slot vectors of finished frames and argument lists, kept for the next
+// call: every FUNCTION call would otherwise allocate one.
+class SlotPool {
+ public:
+  std::vector<Value> take(std::size_t size) {
+    std::vector<Value> slots;
+    if (!spare_.empty()) {
+      slots = std::move(spare_.back());
+      spare_.pop_back();
+    }
+    slots.resize(size);
+    return slots;
+  }
+  void give(std::vector<Value>&& slots) {
+    slots.clear();
+    if (spare_.size() < 64) spare_.push_back(std::move(slots));
+  }
+
+ private:
+  std::vector<std::vector<Value>> spare_;
+};
+
 struct Frame {
+  Frame(SlotPool& slot_pool, std::size_t size) : pool(slot_pool), slots(slot_pool.take(size)) {}
+  Frame(const Frame&) = delete;
+  Frame& operator=(const Frame&) = delete;
+  ~Frame() { pool.give(std::move(slots)); }
+  SlotPool& pool;
   std::vector<Value> slots;
   Value self;
   Value result;
@@ -291,8 +320,7 @@ class Interpreter {
   explicit Interpreter(const meta::Model& model) : model_(model) {}
 
   Value evaluate(const meta::DomainRuleInfo& rule, Value self) {
-    Frame frame;
-    frame.slots.resize(rule.frame);
+    Frame frame(pool_, rule.frame);
     frame.self = std::move(self);
     steps_ = 0;
     return eval(rule.expression.nodes, rule.expression.root, frame);
@@ -305,9 +333,9 @@ class Interpreter {
 
   // A global rule: runs its body, then reports each domain rule's result.
   std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule) {
-    Frame frame;
-    frame.slots.resize(rule.frame);
+    Frame frame(pool_, rule.frame);
     steps_ = 0;
+    forget_results();
     execute(rule.body.nodes, rule.body.root, frame);
     std::vector<Truth> results;
     for (const meta::DomainRuleInfo& where : rule.where)
@@ -315,12 +343,17 @@ class Interpreter {
     return results;
   }
 
+  /// Drops the kept FUNCTION results: called before each instance is checked.
+  void forget_results() { results_.clear(); }
+
   Value attribute_of(meta::Instance& instance, std::string_view name) { return attribute(Value::of_instance(&instance), name); }
 
  private:
   const meta::Model& model_;
+  SlotPool pool_;
   std::unique_ptr<query::ReferenceIndex> references_;
-  std::map<const meta::EntityInfo*, Elements> populations_;
+  // Shared with the values that hold them: an assignment copies on write.
+  std::map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
   int depth_ = 0;
   std::uint64_t steps_ = 0;
 
@@ -338,6 +371,46 @@ class Interpreter {
     }
   };
   std::unordered_map<Key, const meta::AttributeInfo*, KeyHash> attribute_cache_;
+
+  // FUNCTION results, kept while one instance is checked (forget_results).
+  // Sound because a FUNCTION changes nothing outside its own frame (it has
+  // no VAR parameters, ISO 10303-11 9.5.1), the model does not change
+  // during a check, and a result depends only on its arguments and the
+  // model. Kept only for calls whose arguments are all instances or `?`
+  // (pointers: an exact key, no hashing of values), and never a result
+  // holding a constructed value, whose identity `:=:` would see. A call that
+  // throws (not evaluable) is not kept.
+  struct CallKey {
+    const meta::AlgorithmInfo* algorithm;
+    std::array<const meta::Instance*, 3> arguments;
+    bool operator==(const CallKey&) const = default;
+  };
+  struct CallKeyHash {
+    std::size_t operator()(const CallKey& k) const noexcept {
+      std::size_t h = std::hash<const void*>()(k.algorithm);
+      for (const meta::Instance* i : k.arguments) h = h * 31 + std::hash<const void*>()(i);
+      return h;
+    }
+  };
+  std::unordered_map<CallKey, Value, CallKeyHash> results_;
+
+  static std::optional<CallKey> call_key(const meta::AlgorithmInfo& algorithm, const std::vector<Value>& arguments) {
+    if (algorithm.kind != meta::AlgorithmInfo::Kind::Function || algorithm.var_parameters != 0 || arguments.size() > 3)
+      return std::nullopt;
+    CallKey key{&algorithm, {}};
+    for (std::size_t i = 0; i < arguments.size(); ++i) {
+      if (arguments[i].kind == Value::Kind::Instance)
+        key.arguments[i] = arguments[i].instance;
+      else if (!arguments[i].indeterminate())
+        return std::nullopt;
+    }
+    return key;
+  }
+
+  static bool holds_partial(const Value& v) {
+    if (v.kind == Value::Kind::Partial) return true;
+    return v.kind == Value::Kind::Aggregate && std::any_of(v.elements->begin(), v.elements->end(), holds_partial);
+  }
 
   const query::ReferenceIndex& references() {
     if (!references_) references_ = std::make_unique<query::ReferenceIndex>(model_);
@@ -386,8 +459,7 @@ class Interpreter {
         return {};
       case meta::AttributeKind::Derived: {
         if (!a->derivation) throw Unevaluable(fmt::format("derived attribute '{}' has no derivation", a->name));
-        Frame frame;
-        frame.slots.resize(a->derivation->frame);
+        Frame frame(pool_, a->derivation->frame);
         frame.self = base;
         const Node* nodes = a->derivation->expression.nodes;
         return eval(nodes, a->derivation->expression.root, frame);
@@ -405,12 +477,18 @@ class Interpreter {
     return {};
   }
 
-  const Elements& population(const meta::EntityInfo& entity) {
+  Value population(const meta::EntityInfo& entity) {
     auto [it, fresh] = populations_.try_emplace(&entity);
-    if (fresh)
+    if (fresh) {
+      it->second = std::make_shared<Elements>();
       for (meta::Instance* i : model_.instances())
-        if (is_a(*i, entity)) it->second.push_back(Value::of_instance(i));
-    return it->second;
+        if (is_a(*i, entity)) it->second->push_back(Value::of_instance(i));
+    }
+    Value v;
+    v.kind = Value::Kind::Aggregate;
+    v.integer = 1;
+    v.elements = it->second;
+    return v;
   }
 
   // ------------------------------------------------------------ expressions
@@ -438,7 +516,7 @@ class Interpreter {
         v.type = n.type;
         return v;
       }
-      case NodeKind::Population: return Value::of_elements(population(*n.entity));
+      case NodeKind::Population: return population(*n.entity);
       case NodeKind::Attribute: return attribute(operand(0), n.text);
       case NodeKind::Group: {
         Value base = operand(0);
@@ -447,9 +525,18 @@ class Interpreter {
       }
       case NodeKind::Index: return index_of(operand(0), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
       case NodeKind::Call: {
-        std::vector<Value> arguments;
+        std::vector<Value> arguments = pool_.take(0);
         for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(operand(i));
-        return invoke(*n.algorithm, arguments);
+        const std::optional<CallKey> key = call_key(*n.algorithm, arguments);
+        if (key)
+          if (auto it = results_.find(*key); it != results_.end()) {
+            pool_.give(std::move(arguments));
+            return it->second;
+          }
+        Value result = invoke(*n.algorithm, arguments);
+        pool_.give(std::move(arguments));
+        if (key && !holds_partial(result)) results_.emplace(*key, result);
+        return result;
       }
       case NodeKind::Builtin: return builtin(nodes, n, frame);
       case NodeKind::Construct: {
@@ -572,6 +659,14 @@ class Interpreter {
     // building the set of names.
     if (n.op == Operator::In && nodes[n.first + 1].kind == NodeKind::Builtin &&
         nodes[n.first + 1].builtin == Builtin::Typeof && nodes[n.first + 1].count == 1) {
+      const Node& name_node = nodes[n.first];
+      if (name_node.kind == NodeKind::String) {  // a constant name: no copy of it
+        Value subject = eval(nodes, nodes[n.first + 1].first, frame);
+        if (subject.kind == Value::Kind::Instance)
+          return Value::of_bool(has_type_name(subject.instance->entity_info(), name_node.text));
+        if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
+        return Value::of_truth(member(Value::of_string(std::string(name_node.text)), type_of(subject)));
+      }
       Value name = eval(nodes, n.first, frame);
       Value subject = eval(nodes, nodes[n.first + 1].first, frame);
       if (name.kind == Value::Kind::String && subject.kind == Value::Kind::Instance)
@@ -650,7 +745,8 @@ class Interpreter {
     auto contains = [](const Elements& list, const Value& v) {
       return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
     };
-    const Elements right = b.kind == K::Aggregate ? *b.elements : Elements{b};
+    const Elements single = b.kind == K::Aggregate ? Elements{} : Elements{b};
+    const Elements& right = b.kind == K::Aggregate ? *b.elements : single;
     switch (op) {
       case Operator::Add:
         if (a.kind != K::Aggregate) {
@@ -742,10 +838,9 @@ class Interpreter {
   }
 
   // USEDIN(T, R) and ROLESOF(V) (ISO 10303-11 15.26, 15.20).
-  Value used_in(const Value& target, const Value& role) {
-    if (target.kind != Value::Kind::Instance || role.kind != Value::Kind::String) return {};
+  Value used_in(const Value& target, std::string_view r) {
+    if (target.kind != Value::Kind::Instance) return {};
     Elements users;
-    std::string_view r = role.text;
     std::string_view entity_part, attribute_part;
     if (!r.empty()) {
       const auto dot = r.rfind('.');
@@ -843,7 +938,11 @@ class Interpreter {
         return v.kind == Value::Kind::Binary ? Value::of_integer(static_cast<std::int64_t>(v.text.size())) : Value{};
       }
       case Builtin::Typeof: return type_of(arg(0));
-      case Builtin::Usedin: return used_in(arg(0), arg(1));
+      case Builtin::Usedin: {
+        if (n.count > 1 && nodes[n.first + 1].kind == NodeKind::String) return used_in(arg(0), nodes[n.first + 1].text);
+        Value target = arg(0), role = arg(1);
+        return role.kind == Value::Kind::String ? used_in(target, role.text) : Value{};
+      }
       case Builtin::Rolesof: return roles_of(arg(0));
       case Builtin::Value: {
         Value v = arg(0);
@@ -887,9 +986,9 @@ class Interpreter {
   Value invoke(const meta::AlgorithmInfo& algorithm, std::vector<Value>& arguments) {
     if (depth_ >= max_depth) throw Unevaluable(fmt::format("calls nested deeper than {} in '{}'", max_depth, algorithm.name));
     ++depth_;
-    Frame frame;
-    frame.slots.resize(std::max<std::size_t>(algorithm.frame, arguments.size()));
-    for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters; ++i) frame.slots[i] = arguments[i];
+    Frame frame(pool_, std::max<std::size_t>(algorithm.frame, arguments.size()));
+    // Moved: a caller reads back only VAR parameters, which are copied back below.
+    for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters; ++i) frame.slots[i] = std::move(arguments[i]);
     execute(algorithm.body.nodes, algorithm.body.root, frame);
     --depth_;
     for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters && i < 32; ++i)
@@ -935,6 +1034,37 @@ class Interpreter {
     return nullptr;
   }
 
+  // `v := v + e` on an aggregate `v` (how schemas build their results, as
+  // in `results := results + result_bag[i]`): appends to v's elements
+  // instead of copying them into a new aggregate, unless they are shared.
+  // The value is the one `+` gives (aggregate_operation): lower index 1.
+  bool append_in_place(const Node* nodes, const Node& assign, Frame& frame) {
+    const Node& target = nodes[assign.first];
+    const Node& sum = nodes[assign.first + 1];
+    if (target.kind != NodeKind::Variable || sum.kind != NodeKind::Operation || sum.op != Operator::Add) return false;
+    const Node& left = nodes[sum.first];
+    if (left.kind != NodeKind::Variable || left.slot != target.slot) return false;
+    if (frame.slots.at(target.slot).kind != Value::Kind::Aggregate) return false;
+    Value item = eval(nodes, sum.first + 1, frame);
+    Value& slot = frame.slots.at(target.slot);  // still an aggregate: expressions assign no variable
+    if (item.indeterminate()) {
+      slot = Value{};
+      return true;
+    }
+    std::shared_ptr<Elements> elements = std::move(slot.elements);
+    if (elements.use_count() > 1) elements = std::make_shared<Elements>(*elements);
+    if (item.kind == Value::Kind::Aggregate)
+      elements->insert(elements->end(), item.elements->begin(), item.elements->end());
+    else
+      elements->push_back(std::move(item));
+    Value result;
+    result.kind = Value::Kind::Aggregate;
+    result.integer = 1;
+    result.elements = std::move(elements);
+    slot = std::move(result);
+    return true;
+  }
+
   Flow execute(const Node* nodes, std::uint32_t index, Frame& frame) {
     const Node& n = nodes[index];
     switch (n.kind) {
@@ -946,6 +1076,7 @@ class Interpreter {
         frame.result = n.count ? eval(nodes, n.first, frame) : Value{};
         return Flow::Return;
       case NodeKind::Assign: {
+        if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);
         Value* target = place(nodes, n.first, frame);
         if (!target) throw Unevaluable("an assignment to something that holds no value");
@@ -1099,6 +1230,7 @@ class Checker {
   }
 
   void check_instance(meta::Instance& instance) {
+    interpreter_.forget_results();
     const meta::EntityInfo& info = instance.entity_info();
     for (const meta::Upcast& up : info.upcasts) {
       note_schema(up.entity->schema);
@@ -1186,6 +1318,7 @@ class Checker {
         for (meta::Instance* instance : model_.in_id_order(order)) {
           if (full()) return;
           if (!instance->entity_info().is_a(*entity)) continue;
+          interpreter_.forget_results();
           std::string key;
           bool any_indeterminate = false;
           try {
