@@ -126,3 +126,32 @@ TEST_CASE("every FUNCTION of the ISO 14649 schemas is evaluable", "[rules][refer
         "REPRESENTATION_ITEM||GEOMETRIC_REPRESENTATION_ITEM||VECTOR("
         "REPRESENTATION_ITEM||GEOMETRIC_REPRESENTATION_ITEM||DIRECTION([-0.8,0,0.6]),1)");
 }
+
+// representation_item.wr1 through using_representations, using_items (a
+// recursion with a growing SET), bag_to_set and USEDIN: points used
+// through a polyline of a representation hold it, points only in a
+// polyline outside any do not. The evaluator keeps FUNCTION results while
+// one instance is checked and appends `v := v + e` in place; the list and
+// its order are the ones the evaluator gave before either (same run of
+// `stepnc validate`), and a limit stops evaluation at its first entries.
+TEST_CASE("representation_item.wr1 through polylines, in order, and the limit", "[rules][reference]") {
+  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
+  auto result = stepnc::exchange::read_model_text(
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
+      "#2=CARTESIAN_POINT('',(1.,0.,0.));\n#3=POLYLINE('p',(#1,#2));\n#4=CARTESIAN_POINT('',(2.,0.,0.));\n"
+      "#5=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n#6=SHAPE_REPRESENTATION('s',(#3,#4),#5);\n"
+      "#7=CARTESIAN_POINT('',(3.,0.,0.));\n#8=POLYLINE('q',(#7,#7,#1));\n#9=CARTESIAN_POINT('',(4.,0.));\n"
+      "ENDSEC;\nEND-ISO-10303-21;\n",
+      "polylines.stp", registry);
+  REQUIRE(result.ok());
+  std::vector<std::string> all;
+  for (const Violation& v : stepnc::rules::check(result.file->model)) all.push_back(v.to_string());
+  CHECK(all == std::vector<std::string>{"#7: representation_item.wr1 violated", "#8: representation_item.wr1 violated",
+                                        "#9: representation_item.wr1 violated",
+                                        "rule dependent_instantiable_representation_item.wr1 violated",
+                                        "rule dependent_instantiable_shape_representation.wr1 violated"});
+  std::vector<std::string> first;
+  for (const Violation& v : stepnc::rules::check(result.file->model, 2)) first.push_back(v.to_string());
+  CHECK(first == std::vector<std::string>{all[0], all[1]});
+}

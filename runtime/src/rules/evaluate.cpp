@@ -385,14 +385,8 @@ class Interpreter {
     std::array<const meta::Instance*, 3> arguments;
     bool operator==(const CallKey&) const = default;
   };
-  struct CallKeyHash {
-    std::size_t operator()(const CallKey& k) const noexcept {
-      std::size_t h = std::hash<const void*>()(k.algorithm);
-      for (const meta::Instance* i : k.arguments) h = h * 31 + std::hash<const void*>()(i);
-      return h;
-    }
-  };
-  std::unordered_map<CallKey, Value, CallKeyHash> results_;
+  std::vector<std::pair<CallKey, Value>> results_;  // a few per instance: searched in order
+  static constexpr std::size_t max_results = 64;
 
   static std::optional<CallKey> call_key(const meta::AlgorithmInfo& algorithm, const std::vector<Value>& arguments) {
     if (algorithm.kind != meta::AlgorithmInfo::Kind::Function || algorithm.var_parameters != 0 || arguments.size() > 3)
@@ -493,6 +487,14 @@ class Interpreter {
 
   // ------------------------------------------------------------ expressions
 
+  // A variable's value where it is, anything else evaluated into `scratch`:
+  // for operands that are only read.
+  const Value& peek(const Node* nodes, std::uint32_t index, Frame& frame, Value& scratch) {
+    if (nodes[index].kind == NodeKind::Variable) return frame.slots.at(nodes[index].slot);
+    scratch = eval(nodes, index, frame);
+    return scratch;
+  }
+
   Value eval(const Node* nodes, std::uint32_t index, Frame& frame) {
     const Node& n = nodes[index];
     auto operand = [&](std::uint32_t i) { return eval(nodes, n.first + i, frame); };
@@ -523,19 +525,25 @@ class Interpreter {
         if (base.kind == Value::Kind::Instance && !is_a(*base.instance, *n.entity)) return {};
         return base;
       }
-      case NodeKind::Index: return index_of(operand(0), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
+      case NodeKind::Index:
+        if (n.count == 2 && nodes[n.first].kind == NodeKind::Variable) {  // `v[i]`: no copy of v
+          Value at = operand(1);
+          return index_of(frame.slots.at(nodes[n.first].slot), at, Value{}, false);
+        }
+        return index_of(operand(0), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
       case NodeKind::Call: {
         std::vector<Value> arguments = pool_.take(0);
         for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(operand(i));
         const std::optional<CallKey> key = call_key(*n.algorithm, arguments);
         if (key)
-          if (auto it = results_.find(*key); it != results_.end()) {
-            pool_.give(std::move(arguments));
-            return it->second;
-          }
+          for (const auto& [kept, value] : results_)
+            if (kept == *key) {
+              pool_.give(std::move(arguments));
+              return value;
+            }
         Value result = invoke(*n.algorithm, arguments);
         pool_.give(std::move(arguments));
-        if (key && !holds_partial(result)) results_.emplace(*key, result);
+        if (key && results_.size() < max_results && !holds_partial(result)) results_.emplace_back(*key, result);
         return result;
       }
       case NodeKind::Builtin: return builtin(nodes, n, frame);
@@ -590,10 +598,12 @@ class Interpreter {
         return Value::of_truth(both(a, b));
       }
       case NodeKind::Query: {
-        Value source = operand(0);
+        Value scratch;
+        const Value& source = peek(nodes, n.first, frame, scratch);
         if (source.kind != Value::Kind::Aggregate) return {};
+        const std::shared_ptr<Elements> elements = source.elements;  // alive whatever the predicate assigns
         Elements kept;
-        for (const Value& element : *source.elements) {
+        for (const Value& element : *elements) {
           frame.slots.at(n.slot) = element;
           if (truth_of(eval(nodes, n.first + 1, frame)) == Truth::True) kept.push_back(element);
         }
@@ -913,7 +923,8 @@ class Interpreter {
       }
       case Builtin::Sizeof:
       case Builtin::Hiindex: {
-        Value v = arg(0);
+        Value scratch;
+        const Value& v = n.count ? peek(nodes, n.first, frame, scratch) : scratch;
         if (v.kind != Value::Kind::Aggregate) return {};
         const auto size = static_cast<std::int64_t>(v.elements->size());
         return Value::of_integer(n.builtin == Builtin::Sizeof ? size : v.integer + size - 1);
@@ -993,7 +1004,7 @@ class Interpreter {
     --depth_;
     for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters && i < 32; ++i)
       if (algorithm.var_parameters & (1u << i)) arguments[i] = frame.slots[i];
-    return frame.result;
+    return std::move(frame.result);  // a member: not moved implicitly
   }
 
   void step() {
@@ -1194,9 +1205,12 @@ class Checker {
   Interpreter interpreter_;
   std::size_t limit_;
   std::vector<Violation> violations_;
+  std::size_t errors_ = 0, warnings_ = 0;
   std::vector<const meta::SchemaInfo*> schemas_;
 
-  bool full() const { return violations_.size() >= limit_; }
+  // Evaluation stops once `limit` rules are violated; rules that cannot be
+  // evaluated (warnings) are kept up to `limit` too, without stopping it.
+  bool full() const { return errors_ >= limit_; }
 
   static Violation violation(Violation::Kind kind, std::uint32_t id, std::string_view owner,
                              std::string_view attribute = {}) {
@@ -1209,7 +1223,12 @@ class Checker {
   }
 
   void report(Violation v) {
-    if (!full()) violations_.push_back(std::move(v));
+    if (full()) return;
+    if (v.kind != Violation::Kind::Unevaluated)
+      ++errors_;
+    else if (warnings_++ >= limit_)
+      return;
+    violations_.push_back(std::move(v));
   }
 
   // Evaluates one rule; FALSE is a violation, and a rule that cannot be

@@ -53,7 +53,9 @@ struct Violation {
   std::string to_string() const;
 };
 
-/// Every violation, in instance order (global rules last), up to `limit`.
+/// Every violation, in instance order (global rules last): evaluation
+/// stops at the `limit`-th violated rule; rules that could not be
+/// evaluated are listed up to `limit` too.
 std::vector<Violation> check(const meta::Model& model, std::size_t limit = 1000);
 
 /// Evaluates every rule on `model`, read from `path`, and adds each
@@ -61,8 +63,10 @@ std::vector<Violation> check(const meta::Model& model, std::size_t limit = 1000)
 /// (`file:line:col: error: #id: entity.label violated`), with the rule's
 /// text when `with_text`; a rule that cannot be evaluated is a warning.
 /// The file is read again only when there is something to locate, to find
-/// the records (standard input cannot be: no positions then). Returns the
-/// number of violations.
+/// the records (standard input cannot be: no positions then). Stops
+/// evaluating at `limit` violations, like a read at its error limit (the
+/// caller says so: `diagnostics.limit_reached()`). Returns the number of
+/// violations.
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, std::size_t limit = 1000);
 
