@@ -41,7 +41,8 @@ void run_one(const std::uint8_t* data, std::size_t size) {
     // The rule evaluator finishes on whatever the schema allows, and the
     // same model gives the same verdicts.
     const auto verdicts = rules::check(result.file->model, 50);
-    check(verdicts.size() <= 50, "the violation limit holds");
+    // At most 50 violated rules and 50 that could not be evaluated.
+    check(verdicts.size() <= 100, "the violation limit holds");
     const auto twice = rules::check(result.file->model, 50);
     check(twice.size() == verdicts.size(), "rule evaluation is deterministic");
     for (std::size_t i = 0; i < verdicts.size(); ++i)
