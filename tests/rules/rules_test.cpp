@@ -40,6 +40,20 @@ std::vector<std::string> violations(const std::string& data) {
   return out;
 }
 
+const stepnc::meta::Registry& machining_registry() {
+  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
+  return registry;
+}
+
+// A file of the ISO 14649 schemas whose DATA section is `data`.
+stepnc::exchange::ModelReadResult read_machining(const std::string& data, const char* name) {
+  return stepnc::exchange::read_model_text(
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n" +
+          data + "ENDSEC;\nEND-ISO-10303-21;\n",
+      name, machining_registry());
+}
+
 const std::string good_parts =
     "#1=PART('bolt','B1',4.0,$,.RED.);\n"
     "#2=PART('nut','N1',5.0,POSITIVE_LENGTH(1.5),.GREEN.);\n"
@@ -94,17 +108,14 @@ TEST_CASE("derived and inverse attributes, functions, and the rules a schema lis
 // runs to its end on `?` arguments (no construct the evaluator cannot
 // follow), and the geometric ones compute the standard's values.
 TEST_CASE("every FUNCTION of the ISO 14649 schemas is evaluable", "[rules][reference]") {
-  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
-  auto result = stepnc::exchange::read_model_text(
-      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(1.,2.,3.));\n"
-      "#2=DIRECTION('',(3.,0.,4.));\n#3=DIRECTION('',(0.,1.,0.));\n"
-      "#4=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n#5=SHAPE_REPRESENTATION('s',(#1,#2,#3),#4);\nENDSEC;\nEND-ISO-10303-21;\n",
-      "geometry.stp", registry);
+  auto result = read_machining(
+      "#1=CARTESIAN_POINT('',(1.,2.,3.));\n#2=DIRECTION('',(3.,0.,4.));\n#3=DIRECTION('',(0.,1.,0.));\n"
+      "#4=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n#5=SHAPE_REPRESENTATION('s',(#1,#2,#3),#4);\n",
+      "geometry.stp");
   REQUIRE(result.ok());
   const stepnc::meta::Model& model = result.file->model;
   std::size_t functions = 0;
-  for (const stepnc::meta::SchemaInfo* schema : registry.schemas())
+  for (const stepnc::meta::SchemaInfo* schema : machining_registry().schemas())
     for (const stepnc::meta::AlgorithmInfo* function : schema->algorithms) {
       if (function->kind != stepnc::meta::AlgorithmInfo::Kind::Function) continue;
       ++functions;
@@ -135,15 +146,12 @@ TEST_CASE("every FUNCTION of the ISO 14649 schemas is evaluable", "[rules][refer
 // its order are the ones the evaluator gave before either (same run of
 // `stepnc validate`), and a limit stops evaluation at its first entries.
 TEST_CASE("representation_item.wr1 through polylines, in order, and the limit", "[rules][reference]") {
-  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(machining_schema::meta_schema);
-  auto result = stepnc::exchange::read_model_text(
-      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
-      "#2=CARTESIAN_POINT('',(1.,0.,0.));\n#3=POLYLINE('p',(#1,#2));\n#4=CARTESIAN_POINT('',(2.,0.,0.));\n"
-      "#5=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n#6=SHAPE_REPRESENTATION('s',(#3,#4),#5);\n"
-      "#7=CARTESIAN_POINT('',(3.,0.,0.));\n#8=POLYLINE('q',(#7,#7,#1));\n#9=CARTESIAN_POINT('',(4.,0.));\n"
-      "ENDSEC;\nEND-ISO-10303-21;\n",
-      "polylines.stp", registry);
+  auto result = read_machining(
+      "#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=CARTESIAN_POINT('',(1.,0.,0.));\n#3=POLYLINE('p',(#1,#2));\n"
+      "#4=CARTESIAN_POINT('',(2.,0.,0.));\n#5=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n"
+      "#6=SHAPE_REPRESENTATION('s',(#3,#4),#5);\n#7=CARTESIAN_POINT('',(3.,0.,0.));\n"
+      "#8=POLYLINE('q',(#7,#7,#1));\n#9=CARTESIAN_POINT('',(4.,0.));\n",
+      "polylines.stp");
   REQUIRE(result.ok());
   std::vector<std::string> all;
   for (const Violation& v : stepnc::rules::check(result.file->model)) all.push_back(v.to_string());
