@@ -989,7 +989,9 @@ class Interpreter {
   }
 
   void siemens_drilling(const NamedWord& n, const Block& block) {
-    auto [a, event] = cycle_arguments(n, block, 12);
+    CycleArguments arguments = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
+    auto& a = arguments.a;
+    auto& event = arguments.event;
     auto need = [&](std::size_t i, const char* name) {
       if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
       return *a[i];
@@ -1076,7 +1078,9 @@ class Interpreter {
   void siemens_feature_cycle(const NamedWord& n, const Block& block) {
     const bool face = n.name == "CYCLE71";
     const bool circular = n.name == "POCKET2";
-    auto [a, event] = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
+    CycleArguments arguments = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
+    auto& a = arguments.a;
+    auto& event = arguments.event;
     auto need = [&](std::size_t i, const char* name) {
       if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
       return *a[i];
@@ -1124,7 +1128,7 @@ class Interpreter {
         f.angle_deg += 90;
         f.width = -std::exchange(f.length, f.width);
       }
-      paths.push_back(milling::face_path(f, start_z, error));
+      paths.push_back(milling::face_path(f, start_z, budget(), error));
       fail(error);
     } else {
       const std::size_t tail = circular ? 8 : 11;  // FFD's place; MID, CDIR, FAL, VARI, MIDF, FFP2, SSF follow FFP1
@@ -1159,14 +1163,14 @@ class Interpreter {
       p.finish_feed = a[tail + 7] ? to_mm(*a[tail + 7]) : p.feed;
       p.tool_radius = radius;
       if (vari != 2) {  // roughing leaves FAL on the walls
-        paths.push_back(milling::pocket_path(p, start_z, error));
+        paths.push_back(milling::pocket_path(p, start_z, budget(), error));
         fail(error);
       }
       if (vari != 1) {
         p.finish = true;
         p.allowance = 0;
         finish_path = paths.size();
-        paths.push_back(milling::pocket_path(p, start_z, error));
+        paths.push_back(milling::pocket_path(p, start_z, budget(), error));
         fail(error);
       }
     }
@@ -1195,6 +1199,9 @@ class Interpreter {
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
   }
+
+  // What is left of the call budget, for a cycle that builds its path first.
+  std::size_t budget() const { return o_.max_calls > result_.calls.size() ? o_.max_calls - result_.calls.size() : 0; }
 
   void emit_milling_path(const milling::Path& path) {
     for (const milling::Move& m : path) {

@@ -40,10 +40,18 @@ struct Emitter {
 
 }  // namespace
 
+// How many equal steps of at most `step` span `total` (1 for no step).
+static double step_count(double total, double step) { return total > eps && step > eps ? std::ceil(total / step - 1e-9) : 1; }
+
+static bool over_budget(double moves, std::size_t budget, std::string& error) {
+  if (!(moves <= static_cast<double>(budget))) error = "more moves than the call budget allows";
+  return !error.empty();
+}
+
 std::vector<double> depth_levels(double top, double bottom, double step) {
   const double total = top - bottom;
   if (total <= eps) return {bottom};
-  const int n = step > eps ? static_cast<int>(std::ceil(total / step - 1e-9)) : 1;
+  const int n = static_cast<int>(step_count(total, step));
   std::vector<double> levels;
   for (int i = 1; i <= n; ++i) levels.push_back(i == n ? bottom : top - total * i / n);
   return levels;
@@ -56,7 +64,7 @@ std::vector<double> depth_levels(double top, double bottom, double step) {
 // finishing (VARI 2) runs the last ring at each MIDF level and clears the
 // whole floor at DP, all at FFP2. Between levels the tool rises SDIS and
 // returns over the centre; at the end it rapids to RTP.
-Path pocket_path(const Pocket& p, double start_z, std::string& error) {
+Path pocket_path(const Pocket& p, double start_z, std::size_t budget, std::string& error) {
   const double r = p.tool_radius;
   const double inset = r + p.allowance;
   const double a0 = p.length / 2 - inset, b0 = p.width / 2 - inset;
@@ -68,7 +76,9 @@ Path pocket_path(const Pocket& p, double start_z, std::string& error) {
   else if (p.plunge_feed <= 0 || p.feed <= 0 || (p.finish && p.finish_feed <= 0)) error = "needs FFD and FFP1 (FFP2 to finish)";
   if (!error.empty()) return {};
   const double m = std::max(0.0, std::min(a0, b0));
-  const int rings = m > eps ? static_cast<int>(std::ceil(m / r - 1e-9)) : 0;
+  const double step = p.finish && p.finish_depth > 0 ? p.finish_depth : p.max_depth;
+  if (over_budget(step_count(p.planes.rfp - p.planes.dp, step) * (step_count(m, r) + 1) * 10, budget, error)) return {};
+  const int rings = m > eps ? static_cast<int>(step_count(m, r)) : 0;
   const Frame frame(p.cx, p.cy, p.angle_deg);
   Emitter out{{}, frame};
   const double sign = p.ccw ? 1 : -1;  // clockwise: the same ring mirrored in v
@@ -90,7 +100,7 @@ Path pocket_path(const Pocket& p, double start_z, std::string& error) {
     }
     out.straight(MoveKind::feed, a, 0, z, feed);
   };
-  const auto levels = depth_levels(p.planes.rfp, p.planes.dp, p.finish && p.finish_depth > 0 ? p.finish_depth : p.max_depth);
+  const auto levels = depth_levels(p.planes.rfp, p.planes.dp, step);
   const double above = p.planes.rfp + p.planes.sdis;
   out.straight(MoveKind::rapid, 0, 0, std::max(start_z, p.planes.rtp));
   out.straight(MoveKind::rapid, 0, 0, above);
@@ -119,7 +129,7 @@ Path pocket_path(const Pocket& p, double start_z, std::string& error) {
 // rapid. Levels of at most _MID from RFP down to DP + _FALD (roughing) or
 // DP (finishing); each level starts beside the face, fed down from RFP +
 // SDIS; at the end a rapid to RTP.
-Path face_path(const Face& f, double start_z, std::string& error) {
+Path face_path(const Face& f, double start_z, std::size_t budget, std::string& error) {
   const double r = f.tool_radius;
   if (r <= 0) error = "needs the tool radius (a tool list or $TC_DP6)";
   else if (f.stepover <= 0 || f.stepover > 2 * r + eps) error = fmt::format("_MIDA {:g} must lie in (0, the tool diameter]", f.stepover);
@@ -127,6 +137,10 @@ Path face_path(const Face& f, double start_z, std::string& error) {
   else if (f.feed <= 0) error = "needs _FFP1";
   else if (f.length == 0 || f.width == 0) error = "_LENG and _WID must not be zero";
   if (!error.empty()) return {};
+  const double bottom = f.planes.dp + (f.finish ? 0 : f.bottom_allowance);
+  if (over_budget(step_count(f.planes.rfp - bottom, f.max_depth) * (step_count(std::abs(f.width), f.stepover) + 2) * 4,
+                  budget, error))
+    return {};
   const Frame frame(f.corner_x, f.corner_y, f.angle_deg);
   Emitter out{{}, frame};
   const double u_lo = std::min(0.0, f.length) - r - f.overrun, u_hi = std::max(0.0, f.length) + r + f.overrun;
@@ -135,11 +149,11 @@ Path face_path(const Face& f, double start_z, std::string& error) {
   if (v_last <= v_first + eps) {
     passes.push_back(f.width / 2);
   } else {
-    const int n = static_cast<int>(std::ceil((v_last - v_first) / f.stepover - 1e-9));
+    const int n = static_cast<int>(step_count(v_last - v_first, f.stepover));
     for (int i = 0; i <= n; ++i) passes.push_back(v_first + (v_last - v_first) * i / n);
   }
   const double above = f.planes.rfp + f.planes.sdis;
-  const auto levels = depth_levels(f.planes.rfp, f.planes.dp + (f.finish ? 0 : f.bottom_allowance), f.max_depth);
+  const auto levels = depth_levels(f.planes.rfp, bottom, f.max_depth);
   out.straight(MoveKind::rapid, u_lo, passes.front(), std::max(start_z, f.planes.rtp));
   for (const double z : levels) {
     out.straight(MoveKind::rapid, u_lo, passes.front(), above);

@@ -6,6 +6,7 @@
 // Pure geometry: the interpreter reads the parameters and emits the moves.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,8 +59,9 @@ struct Face {
 // Depth levels from top down to bottom, equal steps of at most `step`.
 std::vector<double> depth_levels(double top, double bottom, double step);
 
-// The path from (start) or an error message (empty path).
-Path pocket_path(const Pocket& pocket, double start_z, std::string& error);
-Path face_path(const Face& face, double start_z, std::string& error);
+// The path from a tool at start_z, or an error message (empty path); a
+// path of more than `budget` moves is an error, never built.
+Path pocket_path(const Pocket& pocket, double start_z, std::size_t budget, std::string& error);
+Path face_path(const Face& face, double start_z, std::size_t budget, std::string& error);
 
 }  // namespace stepnc::gcode::milling
