@@ -7,11 +7,13 @@
 #include <fmt/format.h>
 
 #include "lathe_cycles.h"
+#include "milling_cycles.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
+#include <utility>
 
 namespace stepnc::gcode {
 
@@ -951,6 +953,8 @@ class Interpreter {
       } else if (n.call && (n.name == "CYCLE81" || n.name == "CYCLE82" || n.name == "CYCLE83" || n.name == "CYCLE84" ||
                             n.name == "CYCLE85" || n.name == "CYCLE86")) {
         siemens_drilling(n, block);
+      } else if (n.call && (n.name == "CYCLE71" || n.name == "POCKET1" || n.name == "POCKET2")) {
+        siemens_feature_cycle(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
       } else {
@@ -962,26 +966,41 @@ class Interpreter {
   // 840D drilling cycles at the current XY (Siemens "Cycles" manual):
   // RTP retract plane, RFP reference plane, SDIS safety distance, DP depth
   // (or DPR below RFP). G0 to RFP + SDIS, the body, G0 to RTP.
-  void siemens_drilling(const NamedWord& n, const Block& block) {
+  // An 840D cycle call's arguments by position (empty: left out), at least
+  // `count` of them, and its event with the values given.
+  struct CycleArguments {
     std::vector<std::optional<double>> a;
-    for (std::uint32_t arg : n.args) a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
-    a.resize(std::max<std::size_t>(a.size(), 12));
+    CycleEvent event;
+  };
+  CycleArguments cycle_arguments(const NamedWord& n, const Block& block, std::size_t count) {
+    CycleArguments out;
+    for (std::uint32_t arg : n.args) out.a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
+    if (out.a.size() > std::max<std::size_t>(count, 12))
+      stop(fmt::format("{} takes at most {} parameters, not {}", n.name, std::max<std::size_t>(count, 12), out.a.size()),
+           n.column);
+    out.a.resize(std::max<std::size_t>(out.a.size(), count));
+    if (plane_ != 17) unsupported(fmt::format("{} outside G17", n.name), n.column);
+    out.event.name = n.name;
+    out.event.line = block.line;
+    out.event.first_call = static_cast<std::uint32_t>(result_.calls.size());
+    for (std::size_t i = 0; i < n.args.size(); ++i)
+      if (out.a[i]) out.event.parameters.emplace_back(static_cast<char>('1' + i), *out.a[i]);
+    return out;
+  }
+
+  void siemens_drilling(const NamedWord& n, const Block& block) {
+    CycleArguments arguments = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
+    auto& a = arguments.a;
+    auto& event = arguments.event;
     auto need = [&](std::size_t i, const char* name) {
       if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
       return *a[i];
     };
-    if (plane_ != 17) unsupported(fmt::format("{} outside G17", n.name), n.column);
     const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
     const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
     if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
     if (n.name != "CYCLE85" && n.name != "CYCLE84" && state_.feed <= 0)
       stop(fmt::format("{} with zero feed rate", n.name), n.column);
-    CycleEvent event;
-    event.name = n.name;
-    event.line = block.line;
-    event.first_call = static_cast<std::uint32_t>(result_.calls.size());
-    for (std::size_t i = 0; i < n.args.size(); ++i)
-      if (a[i]) event.parameters.emplace_back(static_cast<char>('1' + i), *a[i]);
     auto at = [&](double z) {
       auto p = program_position();
       p[2] = z;
@@ -1045,6 +1064,162 @@ class Interpreter {
     }
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
+  }
+
+  // 840D feature cycles (parameter lists as the "Cycles" manual gives them):
+  // POCKET1(RTP, RFP, SDIS, DP, DPR, LENG, WID, CRAD, CPA, CPO, STA1, FFD,
+  //         FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF),
+  // POCKET2(RTP, RFP, SDIS, DP, DPR, PRAD, CPA, CPO, FFD, FFP1, MID, CDIR,
+  //         FAL, VARI, MIDF, FFP2, SSF),
+  // CYCLE71(_RTP, _RFP, _SDIS, _DP, _PA, _PO, _LENG, _WID, _STA, _MID,
+  //         _MIDA, _FDP, _FALD, _FFP1, _VARI, _FDP1).
+  // The path is the one milling_cycles.cpp states; the tool radius comes
+  // from $TC_DP6 or the tool list. The modal feed is restored afterwards.
+  void siemens_feature_cycle(const NamedWord& n, const Block& block) {
+    const bool face = n.name == "CYCLE71";
+    const bool circular = n.name == "POCKET2";
+    CycleArguments arguments = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
+    auto& a = arguments.a;
+    auto& event = arguments.event;
+    auto need = [&](std::size_t i, const char* name) {
+      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
+      return *a[i];
+    };
+    auto length = [&](std::size_t i, const char* name) { return to_mm(need(i, name)); };
+    auto fail = [&](const std::string& error) {
+      if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
+    };
+    double radius = 0;
+    if (const auto it = siemens_tools_.find(state_.tool); it != siemens_tools_.end() && it->second.diameter > 0)
+      radius = it->second.diameter / 2;
+    else if (const auto t = o_.tools.find(state_.tool); t != o_.tools.end())
+      radius = t->second.diameter / 2;
+    milling::Planes planes;
+    planes.rtp = length(0, "RTP");
+    planes.rfp = length(1, "RFP");
+    planes.sdis = a[2] ? to_mm(*a[2]) : 0;
+    const double start_z = program_position()[2];
+    std::vector<milling::Path> paths;
+    std::optional<std::size_t> finish_path;  // POCKET1/2 VARI 0 or 2: SSF applies to it
+    std::string error;
+    if (face) {
+      milling::Face f;
+      planes.dp = length(3, "_DP");
+      f.planes = planes;
+      f.corner_x = length(4, "_PA");
+      f.corner_y = length(5, "_PO");
+      f.length = length(6, "_LENG");
+      f.width = length(7, "_WID");
+      f.angle_deg = a[8].value_or(0);
+      f.max_depth = length(9, "_MID");
+      f.stepover = length(10, "_MIDA");
+      f.overrun = a[11] ? to_mm(*a[11]) : 0;
+      f.bottom_allowance = a[12] ? to_mm(*a[12]) : 0;
+      f.feed = length(13, "_FFP1");
+      f.side_overrun = a[15] ? to_mm(*a[15]) : f.overrun;
+      f.tool_radius = radius;
+      const int vari = to_int(need(14, "_VARI"), n.column);
+      const int units = vari % 10, tens = vari / 10;
+      if (vari < 0 || units < 1 || units > 2 || tens < 1 || tens > 4)
+        stop(fmt::format("CYCLE71: _VARI {} (units 1 rough, 2 finish; tens 1-4 the pass pattern)", vari), n.column);
+      f.finish = units == 2;
+      f.zigzag = tens >= 3;
+      if (tens % 2 == 0) {  // passes parallel to the ordinate: the frame turned by 90 degrees
+        f.angle_deg += 90;
+        f.width = -std::exchange(f.length, f.width);
+      }
+      paths.push_back(milling::face_path(f, start_z, budget(), error));
+      fail(error);
+    } else {
+      const std::size_t tail = circular ? 8 : 11;  // FFD's place; MID, CDIR, FAL, VARI, MIDF, FFP2, SSF follow FFP1
+      milling::Pocket p;
+      planes.dp = a[3] ? to_mm(*a[3]) : planes.rfp - length(4, "DP or DPR");
+      p.planes = planes;
+      p.circular = circular;
+      if (circular) {
+        p.length = p.width = 2 * length(5, "PRAD");
+        p.corner_radius = p.length / 2;
+        p.cx = length(6, "CPA");
+        p.cy = length(7, "CPO");
+      } else {
+        p.length = length(5, "LENG");
+        p.width = length(6, "WID");
+        p.corner_radius = a[7] ? to_mm(*a[7]) : 0;
+        p.cx = length(8, "CPA");
+        p.cy = length(9, "CPO");
+        p.angle_deg = a[10].value_or(0);
+      }
+      p.plunge_feed = length(tail, "FFD");
+      p.feed = length(tail + 1, "FFP1");
+      p.max_depth = length(tail + 2, "MID");
+      const int cdir = to_int(need(tail + 3, "CDIR"), n.column);
+      if (cdir < 0 || cdir > 3) stop(fmt::format("{}: CDIR {} (0 climb, 1 conventional, 2 G2, 3 G3)", n.name, cdir), n.column);
+      // Climb inside a pocket with the spindle clockwise (M3) runs G3.
+      p.ccw = cdir == 3 || (cdir < 2 && (cdir == 0) == (state_.spindle_direction >= 0));
+      p.allowance = a[tail + 4] ? to_mm(*a[tail + 4]) : 0;
+      const int vari = to_int(a[tail + 5].value_or(0), n.column);
+      if (vari < 0 || vari > 2) stop(fmt::format("{}: VARI {} (0 complete, 1 rough, 2 finish)", n.name, vari), n.column);
+      p.finish_depth = a[tail + 6] ? to_mm(*a[tail + 6]) : p.max_depth;
+      p.finish_feed = a[tail + 7] ? to_mm(*a[tail + 7]) : p.feed;
+      p.tool_radius = radius;
+      if (vari != 2) {  // roughing leaves FAL on the walls
+        paths.push_back(milling::pocket_path(p, start_z, budget(), error));
+        fail(error);
+      }
+      if (vari != 1) {
+        p.finish = true;
+        p.allowance = 0;
+        finish_path = paths.size();
+        paths.push_back(milling::pocket_path(p, start_z, budget(), error));
+        fail(error);
+      }
+    }
+    const double feed = state_.feed, speed = state_.spindle;
+    const double finish_speed = face ? 0 : a[circular ? 16 : 19].value_or(0);
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      if (finish_path == i && finish_speed > 0 && finish_speed != state_.spindle) {
+        state_.spindle = finish_speed;
+        emit(CallKind::spindle_speed).v[0] = state_.spindle;
+      }
+      if (program_position()[2] < planes.rtp) {
+        auto p = program_position();
+        p[2] = planes.rtp;
+        move(CallKind::rapid, p);
+      }
+      emit_milling_path(paths[i]);
+    }
+    if (state_.spindle != speed) {
+      state_.spindle = speed;
+      emit(CallKind::spindle_speed).v[0] = speed;
+    }
+    if (state_.feed != feed) {
+      state_.feed = feed;
+      emit(CallKind::feed_rate).v[0] = feed;
+    }
+    event.end_call = static_cast<std::uint32_t>(result_.calls.size());
+    result_.cycles.push_back(std::move(event));
+  }
+
+  // What is left of the call budget, for a cycle that builds its path first.
+  std::size_t budget() const { return o_.max_calls > result_.calls.size() ? o_.max_calls - result_.calls.size() : 0; }
+
+  void emit_milling_path(const milling::Path& path) {
+    for (const milling::Move& m : path) {
+      if (m.kind != milling::MoveKind::rapid && m.feed != state_.feed) {
+        state_.feed = m.feed;
+        emit(CallKind::feed_rate).v[0] = m.feed;
+      }
+      auto p = program_position();
+      p[0] = m.x, p[1] = m.y, p[2] = m.z;
+      if (m.kind == milling::MoveKind::arc) {
+        Call& call = emit(CallKind::arc);
+        call.v = {m.x, m.y, m.cx, m.cy, m.ccw ? 1.0 : -1.0, m.z, p[3], p[4], p[5]};
+        set_program_position(p);
+        last_move_ = p;
+      } else {
+        move(m.kind == milling::MoveKind::rapid ? CallKind::rapid : CallKind::linear, p);
+      }
+    }
   }
 
   // CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF, VARI)

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The Siemens 840D table: names (DIAMON, LIMS=, $TC_DP, CYCLE832), `;`
-// comments, G71 metric, G4 F seconds; cycles not expanded yet are refused.
+// comments, G71 metric, G4 F seconds; drilling and feature cycles expanded,
+// the cycles not expanded yet refused.
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
+#include <set>
 
 #include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
@@ -39,15 +42,149 @@ TEST_CASE("Siemens 840D: DIAMON, G96 with LIMS=, tool data, CYCLE832 as an event
   CHECK(dwell->v[0] == Approx(0.5));
 }
 
-TEST_CASE("Siemens 840D: feature cycles and unknown names are refused with their column", "[gcode][siemens]") {
-  const Result pocket = interpret_text("N10 G17 G71\nN20 POCKET1(10,0,2,-5,,40,20,5,50,50,0,3,1,0,1000,200,0,2)\nN30 M30\n",
+TEST_CASE("Siemens 840D: cycles not expanded and unknown names are refused with their column", "[gcode][siemens]") {
+  const Result pocket = interpret_text("N10 G17 G71\nN20 POCKET3(10,0,2,-5,,40,20,5,50,50,0,3,1,0,1000,200,0,2)\nN30 M30\n",
                                        *controller("siemens840d"));
   REQUIRE(pocket.unsupported());
-  CHECK(pocket.errors[0].to_string("p.mpf").starts_with("p.mpf:2:5: error: unsupported: POCKET1 (siemens840d cycle)"));
+  CHECK(pocket.errors[0].to_string("p.mpf").starts_with("p.mpf:2:5: error: unsupported: POCKET3 (siemens840d cycle)"));
   const Result unknown = interpret_text("N10 G17 G71\nN20 FOO=3\nN30 M30\n", *controller("siemens840d"));
   REQUIRE(unknown.errors.size() == 1);
   CHECK(unknown.errors[0].message == "unknown address FOO for siemens840d");
   CHECK(unknown.errors[0].pos.column == 5);
+}
+
+namespace {
+
+// The XY extent of the feed moves and arc ends of a result, and its plunges.
+struct Extent {
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+};
+Extent cut_extent(const Result& r) {
+  Extent e;
+  for (const Call& c : r.calls)
+    if (c.kind == CallKind::linear || c.kind == CallKind::arc) {
+      e.x0 = std::min(e.x0, c.v[0]), e.x1 = std::max(e.x1, c.v[0]);
+      e.y0 = std::min(e.y0, c.v[1]), e.y1 = std::max(e.y1, c.v[1]);
+    }
+  return e;
+}
+// Straight feed moves that go down, as (x, y, z, feed).
+std::vector<std::array<double, 4>> plunges(const Result& r) {
+  std::vector<std::array<double, 4>> out;
+  double z = 0;
+  for (const Call& c : r.calls) {
+    if (c.kind == CallKind::linear && c.v[2] < z - 1e-9) out.push_back({c.v[0], c.v[1], c.v[2], c.state.feed});
+    if (c.kind == CallKind::rapid || c.kind == CallKind::linear) z = c.v[2];
+    if (c.kind == CallKind::arc) z = c.v[5];
+  }
+  return out;
+}
+
+}  // namespace
+
+// POCKET1 80 x 50, CRAD 10, at (100, 60), 10 deep with MID 5, a 10 mm
+// tool: two levels (-5, -10), each plunged at the centre at FFD; rings
+// at most a tool radius apart, the last at the outline less the radius:
+// x 65..135, y 40..80, its corners arcs of radius 10 - 5 = 5 (G3, CDIR 3).
+TEST_CASE("Siemens 840D POCKET1: levels per MID, final walls at the outline less the tool radius", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G17 G71 G90 G94\nN20 $TC_DP6[1,1]=5\nN30 T1 D1\nN40 M6\nN50 S1000 M3 F500\nN60 G0 X0 Y0 Z20\n"
+      "N70 POCKET1(10,0,2,-10,,80,50,10,100,60,0,100,400,5,3,0,1)\nN80 G1 X0\nN90 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("p.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  CHECK(r.cycles[0].name == "POCKET1");
+  CHECK(r.cycles[0].line == 7);
+  CHECK(r.cycles[0].parameters.size() == 16);  // FAL given, MIDF.. SSF left out
+  const auto down = plunges(r);
+  REQUIRE(down.size() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    CHECK(down[i][0] == Approx(100));
+    CHECK(down[i][1] == Approx(60));
+    CHECK(down[i][2] == Approx(-5.0 * static_cast<double>(i + 1)));
+    CHECK(down[i][3] == Approx(100));  // FFD
+  }
+  // Only the cycle's calls: N80 G1 X0 comes after it.
+  Result cycle = r;
+  cycle.calls.assign(r.calls.begin() + r.cycles[0].first_call, r.calls.begin() + r.cycles[0].end_call);
+  const Extent e = cut_extent(cycle);
+  CHECK(e.x0 == Approx(65));
+  CHECK(e.x1 == Approx(135));
+  CHECK(e.y0 == Approx(40));
+  CHECK(e.y1 == Approx(80));
+  const auto arcs = of(cycle, CallKind::arc);
+  REQUIRE(arcs.size() == 8);  // four corners on each level; inner rings have sharp corners
+  for (const Call* a : arcs) {
+    CHECK(std::hypot(a->v[0] - a->v[2], a->v[1] - a->v[3]) == Approx(5));
+    CHECK(a->v[4] == 1);  // counter-clockwise
+    CHECK(std::abs(a->v[2] - 100) == Approx(30));
+    CHECK(std::abs(a->v[3] - 60) == Approx(15));
+    CHECK(a->state.feed == Approx(400));
+  }
+  // The rings: inset by 20 / ceil(20 / 5) = 5 each, so x reaches 135, 130, ..., 115 on the +X side.
+  std::set<double> ring_x;
+  for (const Call* c : of(cycle, CallKind::linear))
+    if (c->v[2] == Approx(-10) && c->v[1] == Approx(60) && c->v[0] > 100.5) ring_x.insert(std::round(c->v[0] * 1000) / 1000);
+  CHECK(ring_x == std::set<double>{115, 120, 125, 130, 135});
+  // Out to RTP, then the modal feed again.
+  const Call& last = r.calls[r.cycles[0].end_call - 2];
+  CHECK(last.kind == CallKind::rapid);
+  CHECK(last.v[2] == Approx(10));
+  CHECK(of(r, CallKind::linear).back()->state.feed == Approx(500));
+}
+
+// POCKET2 radius 20 at (0, 0), 6 deep with MID 3, G2, FAL 1 roughing, a
+// 10 mm tool from the tool list: the wall ring has radius 20 - 5 - 1 = 14,
+// the rings inside it 14 x 2/3 and 14 / 3 (at most 5 apart).
+TEST_CASE("Siemens 840D POCKET2: circular rings out to the radius less tool and FAL", "[gcode][siemens]") {
+  Options options;
+  options.tools = {{2, {2, 0, 10}}};
+  const Result r = interpret_text("N10 G17 G71 G90 G94\nN20 T2 D1\nN30 M6\nN40 S1000 M3 F500\nN50 G0 X0 Y0 Z20\n"
+                                  "N60 POCKET2(10,0,2,,6,20,0,0,100,400,3,2,1,1)\nN70 M30\n",
+                                  *controller("siemens840d"), options);
+  for (const auto& e : r.errors) INFO(e.to_string("p.mpf"));
+  REQUIRE(r.ok());
+  CHECK(plunges(r).size() == 2);
+  std::set<double> radii;
+  for (const Call* a : of(r, CallKind::arc)) {
+    CHECK(a->v[4] == -1);  // G2
+    CHECK(a->v[2] == Approx(0));
+    radii.insert(std::round(std::hypot(a->v[0], a->v[1]) * 1000) / 1000);
+  }
+  CHECK(radii == std::set<double>{4.667, 9.333, 14});
+  CHECK(of(r, CallKind::arc).size() == 2 * 3 * 4);  // 2 levels, 3 rings, 4 quarters
+}
+
+// CYCLE71 over 100 x 40 from (0, 0), RFP 5, DP 0, _MID 2, _MIDA 8, _FDP 1,
+// _FALD 0.5, roughing zig-zag (_VARI 31), a 10 mm tool: levels 3.5, 2, 0.5
+// (4.5 in three equal steps); passes at y 4, 12, 20, 28, 36 (first and last
+// overrun the edges by _FDP1 = _FDP), each from x -6 to 106 (radius + _FDP
+// beyond the face), alternating, so every y of 0..40 lies under the tool.
+TEST_CASE("Siemens 840D CYCLE71: face milling passes cover the face on every level", "[gcode][siemens]") {
+  const Result r = interpret_text(
+      "N10 G17 G71 G90 G94\nN20 $TC_DP6[1,1]=5\nN30 T1 D1\nN40 M6\nN50 S1000 M3 F500\n"
+      "N60 CYCLE71(10,5,2,0,0,0,100,40,0,2,8,1,0.5,600,31)\nN70 M30\n",
+      *controller("siemens840d"));
+  for (const auto& e : r.errors) INFO(e.to_string("f.mpf"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  std::vector<std::array<double, 4>> cuts;  // y, z, from x, to x
+  double x = 0;
+  for (const Call& c : r.calls) {
+    if (c.kind == CallKind::linear && std::abs(c.v[0] - x) > 100) cuts.push_back({c.v[1], c.v[2], x, c.v[0]});
+    if (c.kind == CallKind::linear || c.kind == CallKind::rapid) x = c.v[0];
+  }
+  REQUIRE(cuts.size() == 15);
+  const std::array<double, 3> levels{3.5, 2, 0.5};
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    CHECK(cuts[i][0] == Approx(4 + 8.0 * static_cast<double>(i % 5)));
+    CHECK(cuts[i][1] == Approx(levels[i / 5]));
+    CHECK(cuts[i][2] == Approx(i % 5 % 2 == 0 ? -6 : 106));
+    CHECK(cuts[i][3] == Approx(i % 5 % 2 == 0 ? 106 : -6));
+  }
+  for (const Call* c : of(r, CallKind::linear)) CHECK(c->state.feed == Approx(600));
+  CHECK(r.calls[r.cycles[0].end_call - 2].v[2] == Approx(10));  // out at RTP, then F500 again
 }
 
 TEST_CASE("Siemens 840D drilling cycles CYCLE81/82/86 expand at the current position", "[gcode][siemens]") {
