@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "stepnc/machining/polygons.h"
+
 #include <fmt/format.h>
 
 namespace stepnc::machining {
@@ -39,6 +41,48 @@ PassPlan plan_passes(const std::vector<double>& cutting_depths, double total,
   for (const double pass : plan.thicknesses) plan.cumulative.push_back(done = std::min(total, done + pass));
   if (!plan.cumulative.empty()) plan.cumulative.back() = total;
   return plan;
+}
+
+// The profile, closed below and extended straight beyond both ends (no
+// rounded caps at the ends), is offset by Clipper; the upper chain of the
+// grown outline is the contour.
+std::vector<Vec2> allowance_contour(const std::vector<Vec2>& profile, double allowance) {
+  if (allowance <= 1e-9 || profile.size() < 2) return profile;
+  const double front = profile.front().x, back = profile.back().x;
+  const double reach = 2 * allowance + 1;
+  double low = profile.front().y;
+  for (const Vec2 p : profile) low = std::min(low, p.y);
+  low -= reach;
+  polygons::Ring ring{{front + reach, low}, {front + reach, profile.front().y}};
+  ring.insert(ring.end(), profile.begin(), profile.end());
+  ring.push_back({back - reach, profile.back().y});
+  ring.push_back({back - reach, low});
+  const polygons::Area grown = polygons::offset(polygons::make_area(ring), allowance);
+  // The outer ring (the largest; a notch closed by the offset leaves a hole),
+  // counter-clockwise: its upper chain runs from the front backwards, and it
+  // is the only part of the ring strictly between the ends.
+  if (grown.empty()) return profile;  // a degenerate profile (generation refuses it first)
+  auto signed_area = [](const polygons::Ring& r) {
+    double twice = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Vec2 a = r[i], b = r[(i + 1) % r.size()];
+      twice += a.x * b.y - a.y * b.x;
+    }
+    return twice / 2;
+  };
+  const polygons::Ring& outer = *std::max_element(grown.rings.begin(), grown.rings.end(),
+      [&](const polygons::Ring& x, const polygons::Ring& y) { return signed_area(x) < signed_area(y); });
+  const double margin = 1e-6;
+  auto inside = [&](Vec2 p) { return p.x < front - margin && p.x > back + margin; };
+  std::size_t start = 0;
+  while (start < outer.size() && inside(outer[start])) ++start;
+  std::vector<Vec2> contour{{front, profile.front().y + allowance}};
+  for (std::size_t k = 1; k <= outer.size(); ++k) {
+    const Vec2 p = outer[(start + k) % outer.size()];
+    if (inside(p)) contour.push_back(p);
+  }
+  contour.push_back({back, profile.back().y + allowance});
+  return contour;
 }
 
 }  // namespace stepnc::machining
