@@ -2,6 +2,7 @@
 #include "stepnc/machining/passes.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "stepnc/machining/polygons.h"
 
@@ -74,14 +75,30 @@ std::vector<Vec2> allowance_contour(const std::vector<Vec2>& profile, double all
       [&](const polygons::Ring& x, const polygons::Ring& y) { return signed_area(x) < signed_area(y); });
   const double margin = 1e-6;
   auto inside = [&](Vec2 p) { return p.x < front - margin && p.x > back + margin; };
-  std::size_t start = 0;
-  while (start < outer.size() && inside(outer[start])) ++start;
-  std::vector<Vec2> contour{{front, profile.front().y + allowance}};
-  for (std::size_t k = 1; k <= outer.size(); ++k) {
-    const Vec2 p = outer[(start + k) % outer.size()];
-    if (inside(p)) contour.push_back(p);
+  const std::size_t n = outer.size();
+  auto at = [&](std::size_t i) { return outer[i % n]; };
+  // The top chain: from the last vertex at or beyond the front, through the
+  // vertices between the ends, to the first vertex at or beyond the back
+  // (a chain with none between is the one edge that runs front to back).
+  std::size_t first = n;
+  for (std::size_t i = 0; i < n && first == n; ++i) {
+    const bool top_edge = at(i).x >= front - margin && at(i + 1).x <= back + margin;
+    if (at(i).x >= front - margin && (inside(at(i + 1)) || top_edge)) first = i;
   }
-  contour.push_back({back, profile.back().y + allowance});
+  if (first == n) return profile;  // a degenerate profile (generation refuses it first)
+  std::vector<Vec2> chain{at(first)};
+  for (std::size_t i = first + 1; i <= first + n; ++i) {
+    chain.push_back(at(i));
+    if (!inside(at(i))) break;
+  }
+  // Cut both ends where the chain crosses the profile's first and last z.
+  auto cut = [](Vec2 a, Vec2 b, double x) {
+    if (std::abs(b.x - a.x) < 1e-12) return Vec2{x, a.y};
+    return Vec2{x, a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x)};
+  };
+  std::vector<Vec2> contour{cut(chain[0], chain[1], front)};
+  contour.insert(contour.end(), chain.begin() + 1, chain.end() - 1);
+  contour.push_back(cut(chain[chain.size() - 2], chain.back(), back));
   return contour;
 }
 

@@ -91,6 +91,28 @@ TEST_CASE("allowance along the normal: the chamfer keeps 0.5 mm, radially 0.5 * 
   CHECK(normal_allowance_oracle(outline, 0.5, -20) == Approx(21.54).margin(1e-9));
 }
 
+TEST_CASE("allowance_contour follows the normal on chamfers, shoulders and corners", "[passes]") {
+  // The shaft's outline (tests/machining/projects.cpp): a front chamfer,
+  // two shoulders, a step down at the back.
+  const std::vector<Vec2> outline{{0, 16}, {-2, 18}, {-40, 18}, {-40, 25}, {-90, 25}, {-90, 35}, {-120, 35}};
+  const std::vector<Vec2> contour = allowance_contour(outline, 0.5);
+  REQUIRE(contour.size() >= 2);
+  CHECK(contour.front().x == 0);
+  CHECK(contour.back().x == -120);
+  // At the front the chamfer's offset, not the radius plus 0.5: 16 + 0.5 * sqrt(2).
+  CHECK(contour.front().y == Approx(16 + 0.5 * std::sqrt(2.0)).margin(1e-5));
+  for (double z = -0.013; z > -120; z -= 0.137) {
+    double r = 0;
+    for (std::size_t i = 0; i + 1 < contour.size(); ++i) {
+      const Vec2 a = contour[i], b = contour[i + 1];
+      if (z <= a.x && z >= b.x && a.x > b.x) r = std::max(r, a.y + (b.y - a.y) * (z - a.x) / (b.x - a.x));
+    }
+    INFO("z " << z);
+    CHECK(r == Approx(normal_allowance_oracle(outline, 0.5, z)).margin(0.002));
+  }
+  CHECK(allowance_contour(outline, 0) .size() == outline.size());
+}
+
 TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at the allowance", "[passes]") {
   MachiningProject project = read_fixture();
   CHECK(project.workpiece.stock_radius == 37.5);
