@@ -582,6 +582,7 @@ GenerateResult Generator::run() {
   emit(Comment{fmt::format("{} (#{})", project_.source.name, project_.source.id)});
   // No move here: the first tool change starts with the machine-safe
   // retract, and the first move comes after the tool and its offset.
+  at_machine_safe_ = options_.tool_ready;
   visit(project_.main_workplan);
   provenance_ = 0;
   if (spindle_) emit(SpindleOff{});
@@ -1389,7 +1390,7 @@ void Generator::explicit_toolpaths(const Job& job) {
 // A rapid movement: its points at rapid, in setup coordinates. From
 // elsewhere it starts over its security plane.
 void Generator::rapid_movement(const Executable& executable) {
-  if (current_tool_ == 0) {
+  if (current_tool_ == 0 && !options_.tool_ready) {
     warning(executable.source, "a rapid movement before the first tool change is left out: nothing moves before "
                                "a tool and its length offset are active");
     return;
