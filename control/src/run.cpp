@@ -389,7 +389,16 @@ class Controller {
 
   void execute(int leaf) {
     current_node_ = name(leaf);
-    const StepProgram step = generate_step(project_, executable(leaf));
+    const m::Executable e = executable(leaf);
+    // A rapid_movement moves with the tool in the spindle; with none loaded
+    // yet (or the broken one taken out) nothing may move before a tool and
+    // its length offset are active, so it is left out, and said so.
+    const bool rapid_node = e.kind == m::ExecutableKind::rapid_movement;
+    if (rapid_node && spindle_tool_ < 0) {
+      emit({"decision", "safe_motion", name(leaf), -1,
+            fmt::format("{}: rapid movement left out: no tool and length offset are active yet", name(leaf))});
+    }
+    const StepProgram step = generate_step(project_, e, rapid_node && spindle_tool_ >= 0);
     if (!step.ok()) {
       std::vector<std::string> messages;
       for (const m::Diagnostic& d : step.diagnostics)

@@ -26,14 +26,16 @@ bool is_cut(const m::Statement& s) {
 
 }  // namespace
 
-StepProgram generate_step(const m::MachiningProject& project, const m::Executable& step) {
+StepProgram generate_step(const m::MachiningProject& project, const m::Executable& step, bool tool_ready) {
   m::MachiningProject alone = project;
   alone.main_workplan = m::Executable{};
   alone.main_workplan.kind = m::ExecutableKind::workplan;
   alone.main_workplan.source = project.main_workplan.source;
   alone.main_workplan.setup_security_plane = project.main_workplan.setup_security_plane;
   alone.main_workplan.children = {step};
-  m::GenerateResult generated = m::generate(alone);
+  m::GenerateOptions options;
+  options.tool_ready = tool_ready;
+  m::GenerateResult generated = m::generate(alone, options);
   StepProgram out;
   out.diagnostics = std::move(generated.diagnostics);
   if (!out.ok()) return out;

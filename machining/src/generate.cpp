@@ -176,7 +176,7 @@ class Generator {
   void turning_step(const Job& job);
   void facing(const Job& job);
   void rough_profile(const Job& job, const TurningProfile& profile);
-  void finish_profile(const Job& job, const TurningProfile& profile, double allowance);
+  void finish_profile(const Job& job, const std::vector<Vec2>& contour, bool at_size);
   void grooving(const Job& job, const Groove& groove);
   void axial_drilling(const Job& job, double depth);
 
@@ -582,6 +582,7 @@ GenerateResult Generator::run() {
   emit(Comment{fmt::format("{} (#{})", project_.source.name, project_.source.id)});
   // No move here: the first tool change starts with the machine-safe
   // retract, and the first move comes after the tool and its offset.
+  at_machine_safe_ = options_.tool_ready;
   visit(project_.main_workplan);
   provenance_ = 0;
   if (spindle_) emit(SpindleOff{});
@@ -1389,7 +1390,7 @@ void Generator::explicit_toolpaths(const Job& job) {
 // A rapid movement: its points at rapid, in setup coordinates. From
 // elsewhere it starts over its security plane.
 void Generator::rapid_movement(const Executable& executable) {
-  if (current_tool_ == 0) {
+  if (current_tool_ == 0 && !options_.tool_ready) {
     warning(executable.source, "a rapid movement before the first tool change is left out: nothing moves before "
                                "a tool and its length offset are active");
     return;
@@ -1437,7 +1438,7 @@ void Generator::turning_step(const Job& job) {
     if (kind == OperationKind::contouring_rough)
       rough_profile(job, *profile);
     else
-      finish_profile(job, *profile, 0);
+      finish_profile(job, profile->points, true);
   } else if (auto* groove = std::get_if<Groove>(&shape); groove && kind == OperationKind::grooving) {
     grooving(job, *groove);
   } else if (auto* hole_shape = std::get_if<CentreHole>(&shape);
@@ -1489,10 +1490,12 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
       return;
     }
   }
+  // What roughing leaves: the profile plus the allowance along its normal.
+  const std::vector<Vec2> contour = allowance_contour(pts, allowance);
   double min_radius = stock;
-  for (const Vec2 p : pts) min_radius = std::min(min_radius, p.y + allowance);
+  for (const Vec2 p : contour) min_radius = std::min(min_radius, p.y);
   if (min_radius >= stock - eps) {
-    finish_profile(job, profile, allowance);
+    finish_profile(job, contour, false);
     return;
   }
   const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
@@ -1534,29 +1537,31 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
       }
     }
     // A constant depth keeps the intent of a lathe stock-removal cycle
-    // (Fanuc G71): offer it, with the passes below as its expansion.
+    // (Fanuc G71): offer it, with the passes below as its expansion. Its
+    // contour is the allowance contour with no further allowance: G71's own
+    // U would leave it radially, not along the normal.
     if (std::all_of(depths.begin(), depths.end(), [&](double d) { return std::abs(d - depths.front()) < eps; })) {
       FeatureCycle g71;
       g71.name = "G71";
       g71.parameters = {
           {"depth", depths.front(), "its_machining_strategy/cutting_depth"},
           {"retract", lift, "its_machining_strategy/lift_height"},
-          {"allowance", allowance, "\"TurningOp\"/allowance"},
+          {"allowance", 0.0, "\"TurningOp\"/allowance (in the contour, along the normal)"},
           {"feed", job.tech.feed.value, "\"TurningOp\"/its_technology/feedrate"},
       };
       g71.start = {turning_safe().x, 0, z_start};
-      for (const Vec2 p : pts) g71.profile.push_back({p.y, 0, p.x});
+      for (const Vec2 p : contour) g71.profile.push_back({p.y, 0, p.x});
       emit(std::move(g71));
       cycle = program_.blocks.size() - 1;
     }
     for (const double done : cumulative) {
       const double x = stock - done;
-      double z_end = pts.back().x;
-      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-        const double ra = pts[i].y + allowance, rb = pts[i + 1].y + allowance;
+      double z_end = contour.back().x;
+      for (std::size_t i = 0; i + 1 < contour.size(); ++i) {
+        const double ra = contour[i].y, rb = contour[i + 1].y;
         if (rb >= x - eps) {
-          z_end = ra >= x - eps ? pts[i].x
-                                : pts[i].x + (pts[i + 1].x - pts[i].x) * (x - ra) / (rb - ra);
+          z_end = ra >= x - eps ? contour[i].x
+                                : contour[i].x + (contour[i + 1].x - contour[i].x) * (x - ra) / (rb - ra);
           break;
         }
       }
@@ -1568,21 +1573,21 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
       rapid({x + lift, 0, z_start});
     }
   } else {
-    // Contour turning: the profile shifted out by what is left, clipped to
-    // just above the stock.
+    // Contour turning: the allowance contour shifted out by what is left,
+    // clipped to just above the stock.
     for (const double done : cumulative) {
       const double shift = (stock - min_radius) - done;
       if (shift <= eps) break;
       std::vector<Vec3> path;
       const double ceiling = stock + options_.approach_clearance;
-      path.push_back({std::min(pts.front().y + allowance + shift, ceiling), 0, z_start});
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        const Vec3 p{std::min(pts[i].y + allowance + shift, ceiling), 0, pts[i].x};
+      path.push_back({std::min(contour.front().y + shift, ceiling), 0, z_start});
+      for (std::size_t i = 0; i < contour.size(); ++i) {
+        const Vec3 p{std::min(contour[i].y + shift, ceiling), 0, contour[i].x};
         if (i > 0) {
-          const double ra = pts[i - 1].y + allowance + shift, rb = pts[i].y + allowance + shift;
+          const double ra = contour[i - 1].y + shift, rb = contour[i].y + shift;
           if ((ra - ceiling) * (rb - ceiling) < 0) {
             const double t = (ceiling - ra) / (rb - ra);
-            path.push_back({ceiling, 0, pts[i - 1].x + (pts[i].x - pts[i - 1].x) * t});
+            path.push_back({ceiling, 0, contour[i - 1].x + (contour[i].x - contour[i - 1].x) * t});
           }
         }
         path.push_back(p);
@@ -1594,13 +1599,13 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
     }
   }
   // Seed 001 5.2: a final contour pass leaves exactly the allowance.
-  finish_profile(job, profile, allowance);
+  finish_profile(job, contour, false);
   end_feature_cycle(cycle);
 }
 
-void Generator::finish_profile(const Job& job, const TurningProfile& profile, double allowance) {
-  const auto& pts = profile.points;
-  if (allowance == 0 && job.tech.feed.per_revolution && job.tool->kind == ToolKind::turning_insert) {
+void Generator::finish_profile(const Job& job, const std::vector<Vec2>& contour, bool at_size) {
+  const auto& pts = contour;
+  if (at_size && job.tech.feed.per_revolution && job.tool->kind == ToolKind::turning_insert) {
     // Note the roughness the finish pass leaves (seed 001, eqs. 1-3).
     const double h = residual_height({job.tool->nose_radius, job.tech.feed.value,
                                       job.tool->side_cutting_edge_angle_deg, job.tool->end_cutting_edge_angle_deg});
@@ -1609,8 +1614,8 @@ void Generator::finish_profile(const Job& job, const TurningProfile& profile, do
   }
   const double z_start = std::max(project_.workpiece.stock_front, pts.front().x) + options_.safety_distance;
   rapid({turning_safe().x, 0, z_start});
-  rapid({pts.front().y + allowance, 0, z_start});
-  for (const Vec2 p : pts) feed({p.y + allowance, 0, p.x});
+  rapid({pts.front().y, 0, z_start});
+  for (const Vec2 p : pts) feed({p.y, 0, p.x});
   rapid({turning_safe().x, 0, pos_.z});
 }
 

@@ -10,6 +10,7 @@
 
 #include "stepnc/machining/feature_geometry.h"
 #include "stepnc/machining/motion.h"
+#include "stepnc/machining/passes.h"
 
 namespace stepnc::machining {
 
@@ -290,6 +291,13 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
       edges.push_back(groove->z - groove->width);
     }
   }
+  // What each profile should keep: its allowance along the normal.
+  std::map<std::size_t, std::vector<Vec2>> kept;
+  for (std::size_t f = 0; f < project.features.size(); ++f) {
+    const double extra = allowance.count(static_cast<int>(f)) ? allowance[static_cast<int>(f)].side : 0;
+    if (auto* profile = std::get_if<TurningProfile>(&project.features[f].shape))
+      kept[f] = allowance_contour(profile->points, extra);
+  }
   // Target radius per z: faced to z = 0, then profiles and grooves; the
   // stock beyond the last profile point stays.
   for (int k = 0; k < n; ++k) {
@@ -298,13 +306,12 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
     bool machined = z > 0;
     for (std::size_t f = 0; f < project.features.size(); ++f) {
       const Feature& feature = project.features[f];
-      const double extra = allowance.count(static_cast<int>(f)) ? allowance[static_cast<int>(f)].side : 0;
-      if (auto* profile = std::get_if<TurningProfile>(&feature.shape)) {
-        const auto& pts = profile->points;
+      if (std::holds_alternative<TurningProfile>(feature.shape)) {
+        const auto& pts = kept[f];
         for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
           const double za = pts[i].x, zb = pts[i + 1].x;
           if (z <= std::min(za, zb) || z > std::max(za, zb)) continue;
-          target = std::min(target, pts[i].y + (pts[i + 1].y - pts[i].y) * (z - za) / (zb - za) + extra);
+          target = std::min(target, pts[i].y + (pts[i + 1].y - pts[i].y) * (z - za) / (zb - za));
           machined = true;
         }
       } else if (auto* groove = std::get_if<Groove>(&feature.shape)) {

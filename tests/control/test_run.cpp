@@ -2,6 +2,7 @@
 // The simulated controller: unit features, tool breakage, interference,
 // events, the journal and resuming after SIGKILL (seed 003 4.2-4.4;
 // SEEDS-SPEC T003-07..11).
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include <csignal>
@@ -312,6 +313,66 @@ TEST_CASE("Bad input: unknown nodes and tools in events, bad magazines and event
                                                "3:1: endmill B needs a diameter"});
   const control::MagazineResult twice = control::read_magazine("tool,kind,name,diameter\n1,endmill,A,10\n1,endmill,B,8\n");
   CHECK(twice.errors == std::vector<std::string>{"3:1: tool 1 is listed twice (line 2)"});
+}
+
+// Blocks generated for instance `id` (a workingstep or NC function).
+std::vector<const machining::Block*> blocks_of(const machining::Program& program, std::int64_t id) {
+  std::vector<const machining::Block*> out;
+  for (const auto& b : program.blocks)
+    if (b.provenance != 0 && program.provenance[b.provenance].workingstep.id == id) out.push_back(&b);
+  return out;
+}
+
+TEST_CASE("A rapid_movement node after a tool change is written; before any tool it is left out and said so",
+          "[control][run]") {
+  machining::DescribeResult described = testing::describe_sample("milling/nested_setup_functions.stp");
+  REQUIRE(described.ok());
+  const auto magazine_csv = magazine(sample("control/nested_setup_magazine.csv"));
+  {
+    // #32 follows the facing workingstep: its three points run at rapid,
+    // after the facing tool and its offset are active.
+    const control::RunResult result = control::run(described.project, magazine_csv, {});
+    REQUIRE(result.status == control::RunStatus::finished);
+    const auto rapid = blocks_of(result.program, 32);
+    std::size_t rapids = 0;
+    for (const auto* b : rapid) rapids += std::holds_alternative<machining::Rapid>(b->statement);
+    CHECK(rapids >= 3);
+    REQUIRE_FALSE(rapid.empty());
+    std::size_t first_change = result.program.blocks.size(), first_rapid_block = 0;
+    for (std::size_t i = 0; i < result.program.blocks.size(); ++i) {
+      if (first_change == result.program.blocks.size() &&
+          std::holds_alternative<machining::ToolChange>(result.program.blocks[i].statement))
+        first_change = i;
+      if (&result.program.blocks[i] == rapid.front()) first_rapid_block = i;
+    }
+    CHECK(first_change < first_rapid_block);
+    // Its last point, (25, 40, 50) in the setup, is where the tool is left.
+    const auto* last = std::get_if<machining::Rapid>(&rapid.back()->statement);
+    REQUIRE(last);
+    CHECK(last->to.z == Approx(50));
+  }
+  {
+    // The rapid moved ahead of every workingstep: no tool is loaded yet,
+    // so nothing moves, and the run reports the decision.
+    auto& setup = described.project.main_workplan.children.at(1).children;
+    REQUIRE(setup.at(1).source.id == 32);
+    std::rotate(setup.begin(), setup.begin() + 1, setup.begin() + 2);
+    REQUIRE(setup.front().source.id == 32);
+    const control::RunResult result = control::run(described.project, magazine_csv, {});
+    REQUIRE(result.status == control::RunStatus::finished);
+    CHECK(blocks_of(result.program, 32).empty());
+    const bool reported = std::any_of(result.records.begin(), result.records.end(), [](const control::Record& r) {
+      return r.kind == "decision" && r.rule == "safe_motion" &&
+             r.text.find("rapid movement left out: no tool and length offset are active yet") != std::string::npos;
+    });
+    CHECK(reported);
+    // Nothing moves before the first tool change.
+    for (const auto& b : result.program.blocks) {
+      if (std::holds_alternative<machining::ToolChange>(b.statement)) break;
+      CHECK_FALSE(std::holds_alternative<machining::Rapid>(b.statement));
+      CHECK_FALSE(std::holds_alternative<machining::Linear>(b.statement));
+    }
+  }
 }
 
 }  // namespace

@@ -268,10 +268,13 @@ TEST_CASE("unidirectional turning follows the cutting-depth list (seed 001 5.2)"
     }
   }
   // From r 37.5: 3, 3, 3, 3, 3, 2.5, 1.5, then the last entry repeats and
-  // the final pass takes what is left down to r 16 + 0.5 allowance; then
-  // the contour pass leaving the allowance (its runs along -z: approach,
-  // r 18 + 0.5, r 25 + 0.5, r 35 + 0.5).
-  const std::vector<double> expected{34.5, 31.5, 28.5, 25.5, 22.5, 20, 18.5, 17, 16.5, 16.5, 18.5, 25.5, 35.5};
+  // the final pass takes what is left down to the allowance contour's
+  // smallest radius: at the front, on the 45 degree chamfer's normal
+  // offset, 16 + 0.5 * sqrt(2) (SEEDS-SPEC 1.5 item 9); then the contour
+  // pass leaving the allowance (its runs along -z: approach, r 18 + 0.5,
+  // r 25 + 0.5, r 35 + 0.5).
+  const double front = 16 + 0.5 * std::sqrt(2.0);
+  const std::vector<double> expected{34.5, 31.5, 28.5, 25.5, 22.5, 20, 18.5, 17, front, front, 18.5, 25.5, 35.5};
   REQUIRE(radii.size() == expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i) CHECK(radii[i] == Approx(expected[i]));
 }

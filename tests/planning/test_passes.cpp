@@ -63,6 +63,56 @@ TEST_CASE("cutting-depth lists: ISO order, the last entry repeats, remainder fir
   CHECK_THAT(plan_passes({}, 15.96).error, Catch::Contains("empty"));
 }
 
+// Oracle for "the profile plus the allowance along its normal" at z: the
+// top of every disc of radius `allowance` centred on a point of the outline
+// (points 1 µm apart), i.e. the upper edge of the dilated outline.
+static double normal_allowance_oracle(const std::vector<Vec2>& outline, double allowance, double z) {
+  double top = 0;
+  for (std::size_t i = 0; i + 1 < outline.size(); ++i) {
+    const Vec2 a = outline[i], b = outline[i + 1];
+    const double length = std::hypot(b.x - a.x, b.y - a.y);
+    const int steps = std::max(1, static_cast<int>(length / 0.001));
+    for (int k = 0; k <= steps; ++k) {
+      const double t = static_cast<double>(k) / steps;
+      const double qz = a.x + (b.x - a.x) * t, dz = qz - z;
+      if (std::abs(dz) > allowance) continue;
+      top = std::max(top, a.y + (b.y - a.y) * t + std::sqrt(allowance * allowance - dz * dz));
+    }
+  }
+  return top;
+}
+
+TEST_CASE("allowance along the normal: the chamfer keeps 0.5 mm, radially 0.5 * sqrt(2)", "[passes]") {
+  // The oracle itself, on the fixture's 45 degree chamfer (-50, 21.04) to
+  // (-55, 26.04): mid-chamfer the normal allowance sits 0.5 * sqrt(2) above
+  // the outline, where a radial one would sit 0.5 above it.
+  const std::vector<Vec2> outline{{0, 21.04}, {-50, 21.04}, {-55, 26.04}, {-100, 26.04}};
+  CHECK(normal_allowance_oracle(outline, 0.5, -52.5) == Approx(23.54 + 0.5 * std::sqrt(2.0)).margin(1e-5));
+  CHECK(normal_allowance_oracle(outline, 0.5, -20) == Approx(21.54).margin(1e-9));
+}
+
+TEST_CASE("allowance_contour follows the normal on chamfers, shoulders and corners", "[passes]") {
+  // The shaft's outline (tests/machining/projects.cpp): a front chamfer,
+  // two shoulders, a step down at the back.
+  const std::vector<Vec2> outline{{0, 16}, {-2, 18}, {-40, 18}, {-40, 25}, {-90, 25}, {-90, 35}, {-120, 35}};
+  const std::vector<Vec2> contour = allowance_contour(outline, 0.5);
+  REQUIRE(contour.size() >= 2);
+  CHECK(contour.front().x == 0);
+  CHECK(contour.back().x == -120);
+  // At the front the chamfer's offset, not the radius plus 0.5: 16 + 0.5 * sqrt(2).
+  CHECK(contour.front().y == Approx(16 + 0.5 * std::sqrt(2.0)).margin(1e-5));
+  for (double z = -0.013; z > -120; z -= 0.137) {
+    double r = 0;
+    for (std::size_t i = 0; i + 1 < contour.size(); ++i) {
+      const Vec2 a = contour[i], b = contour[i + 1];
+      if (z <= a.x && z >= b.x && a.x > b.x) r = std::max(r, a.y + (b.y - a.y) * (z - a.x) / (b.x - a.x));
+    }
+    INFO("z " << z);
+    CHECK(r == Approx(normal_allowance_oracle(outline, 0.5, z)).margin(0.002));
+  }
+  CHECK(allowance_contour(outline, 0) .size() == outline.size());
+}
+
 TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at the allowance", "[passes]") {
   MachiningProject project = read_fixture();
   CHECK(project.workpiece.stock_radius == 37.5);
@@ -95,10 +145,12 @@ TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at 
     const std::vector<double> passes(pass_radii.begin(), pass_radii.begin() + 6);
     CHECK(37.5 - passes.back() == Approx(15.96));
     CHECK(37.5 - passes.front() == Approx(order == PassOrder::iso ? 3.0 : 0.96));
-    // The contour pass: feeds through every outline point offset by the allowance.
-    for (const auto& p : std::get<TurningProfile>(project.features[0].shape).points) {
+    // The contour pass runs from the front to the back of the outline, the
+    // allowance above its ends (both ends lie on cylinders).
+    const auto& ends = std::get<TurningProfile>(project.features[0].shape).points;
+    for (const Vec2 p : {ends.front(), ends.back()}) {
       const bool visited = std::any_of(moves.begin(), moves.end(), [&](const Move& m) {
-        return m.kind == Move::Kind::feed && std::abs(m.to.z - p.x) < 1e-9 && std::abs(m.to.x - (p.y + 0.5)) < 1e-9;
+        return m.kind == Move::Kind::feed && std::abs(m.to.z - p.x) < 1e-9 && std::abs(m.to.x - (p.y + 0.5)) < 1e-6;
       });
       CHECK(visited);
     }
@@ -106,8 +158,10 @@ TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at 
     // Simulated: no rapid through material, nothing cut inside the part ...
     const SimulationReport report = simulate_turning(project, generated.program);
     CHECK(report.text() == "");
-    // ... and what remains is the profile plus the allowance: the tool
-    // (its tip, the quadrant behind and above it) swept along every feed.
+    // ... and what remains is the profile plus the allowance measured along
+    // its normal (SEEDS-SPEC 1.5 item 9), the chamfer at z -50..-55 included:
+    // the tool (its tip, the quadrant behind and above it) swept along
+    // every feed.
     const auto& outline = std::get<TurningProfile>(project.features[0].shape).points;
     for (double z = -139.5; z <= -0.5; z += 0.5) {
       double remaining = 37.5;
@@ -119,13 +173,8 @@ TEST_CASE("seed 001 fixture: 6 passes totalling 15.96, then the contour pass at 
                                          : m.from.x + (m.to.x - m.from.x) * (z - m.from.z) / (m.to.z - m.from.z);
         remaining = std::min(remaining, x);
       }
-      double wanted = 0;
-      for (std::size_t i = 0; i + 1 < outline.size(); ++i) {
-        if (z <= outline[i].x && z >= outline[i + 1].x)
-          wanted = outline[i].y + (outline[i + 1].y - outline[i].y) * (z - outline[i].x) / (outline[i + 1].x - outline[i].x);
-      }
       INFO("z " << z);
-      CHECK(remaining == Approx(wanted + 0.5).margin(0.01));
+      CHECK(remaining == Approx(normal_allowance_oracle(outline, 0.5, z)).margin(0.01));
     }
 
     // Posted: every dialect prints it.

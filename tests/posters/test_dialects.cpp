@@ -96,7 +96,7 @@ TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is consta
   CHECK(has_line(ngc, "G18 G7 G21 G90 G40 G49 G80 G54"));
   CHECK(has_line(ngc, "G96 D3000 S200 M3"));
   CHECK(has_line(ngc, "G95 F0.3"));
-  CHECK(has_line(ngc, "G1 Z-90"));  // a rough pass
+  CHECK(has_line(ngc, "G1 Z-89.5"));  // a rough pass, 0.5 short of the shoulder at z -90 (allowance along the normal)
   CHECK(ngc.find("X69") != std::string::npos);  // r 34.5 written as a diameter
 
   // The shaft's depth list is not constant: Fanuc posts the passes.
@@ -104,9 +104,11 @@ TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is consta
   std::get<UnidirectionalTurning>(project.operations[3].strategy).cutting_depths = {3};
   const std::string fanuc = posted(project, Dialect::fanuc);
   CHECK(has_line(fanuc, "G71 U3. R2."));
-  CHECK(has_line(fanuc, "G71 P1100 Q1107 U1. W0. F0.3"));
-  CHECK(has_line(fanuc, "N1100 G0 X32."));
-  CHECK(has_line(fanuc, "N1107 G1 X70. Z-120."));
+  // The contour already carries the allowance along the normal (the
+  // chamfer's offset at the front: r 16 + 0.5 * sqrt(2)); G71's U stays 0.
+  CHECK(has_line(fanuc, "G71 P1100 Q1137 U0. W0. F0.3"));
+  CHECK(has_line(fanuc, "N1100 G0 X33.414"));
+  CHECK(has_line(fanuc, "N1137 G1 X71. Z-120."));
   CHECK(has_line(fanuc, "G50 S3000"));
   CHECK(has_line(fanuc, "G96 S200 M03"));
   CHECK(has_line(fanuc, "T0101"));

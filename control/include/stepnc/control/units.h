@@ -44,6 +44,10 @@ inline constexpr double rapid_rate = 10'000;
 /// cutting run, and every canned drilling cycle is a unit. Feature cycles
 /// (840D POCKET1...) are left out: the explicit motion they stand for is
 /// kept, since a controller cannot resume a cycle at a unit feature.
-StepProgram generate_step(const machining::MachiningProject& project, const machining::Executable& step);
+/// `tool_ready`: a tool and its offset are active and the machine is at
+/// its machine-safe retract (GenerateOptions::tool_ready), so a
+/// rapid_movement generated alone runs.
+StepProgram generate_step(const machining::MachiningProject& project, const machining::Executable& step,
+                          bool tool_ready = false);
 
 }  // namespace stepnc::control

@@ -45,6 +45,12 @@ struct GenerateOptions {
   double boring_lift_off = 0.2;  ///< mm off the wall after the oriented stop (see boring_orientation_deg)
   /// Order of the roughing passes of a cutting-depth list (passes.h).
   PassOrder pass_order = PassOrder::iso;
+  /// A tool and its length offset are already active when the program
+  /// starts, the machine at its machine-safe retract: a controller that
+  /// generates one executable at a time (control/) continues a program, so
+  /// a rapid_movement ahead of this program's first tool change runs
+  /// instead of being left out.
+  bool tool_ready = false;
 };
 
 /// A program, and the problems found making it.

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "stepnc/machining/description.h"
+
 namespace stepnc::machining {
 
 /// In which order the passes of a cutting-depth list take the depth.
@@ -36,5 +38,13 @@ struct PassPlan {
 /// entry, an empty list or an entry that is not positive is an error.
 PassPlan plan_passes(const std::vector<double>& cutting_depths, double total,
                      std::optional<bool> allow_multiple_passes = std::nullopt, PassOrder order = PassOrder::iso);
+
+/// What roughing a turning profile leaves: the profile ((z, radius) points
+/// from the front backwards) grown by `allowance` along its normal, not
+/// radially, so a chamfer or taper keeps the allowance too (SEEDS-SPEC 1.5
+/// item 9). From the profile's front z to its back z; convex corners become
+/// chords within 1 µm of the arc (polygons.h). The profile itself when the
+/// allowance is 0. Generation, the planner and the turning simulation use it.
+std::vector<Vec2> allowance_contour(const std::vector<Vec2>& profile, double allowance);
 
 }  // namespace stepnc::machining
