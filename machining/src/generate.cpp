@@ -742,8 +742,11 @@ bool Generator::sizes_make_sense(const Job& job) {
             return {shape.length, shape.width};
           else if constexpr (std::is_same_v<S, RoundHole>)
             return {shape.diameter, shape.diameter};
-          else if constexpr (std::is_same_v<S, OpenPocket>)
-            return {shape.profile.length, shape.profile.width};
+          else if constexpr (std::is_same_v<S, OpenPocket>) {
+            if (shape.outline.empty()) return {shape.profile.length, shape.profile.width};
+            const geom::Bounds box = geom::bounds(shape.outline);
+            return box.max - box.min;
+          }
           else if constexpr (std::is_same_v<S, ClosedPocket>)
             return pocket_extent(shape.profile);
           else

@@ -251,4 +251,54 @@ stepnc::meta::FileHeader hole_milling_header() {
                 "ROUND_HOLE, BOTTOM_AND_SIDE ROUGH AND FINISH MILLING, CONTOUR_PARALLEL");
 }
 
+void build_open_profiles(Model& m) {
+  // A 120 x 80 x 30 block, origin at a bottom corner. Two open pockets run
+  // out of the back face (Y 80); ISO 14649-10 bounds them by open profiles
+  // only, so each runs from its profile to the block's edge. A trapezoid
+  // (GENERAL_PROFILE polyline, 8 mm deep, R3 vertical edges) at X 30 and a
+  // 120-degree arc of radius 16 (PARTIAL_CIRCULAR_PROFILE, 6 mm deep) at X 85.
+  Shop shop(m, "BLOCK 120 X 80 X 30", 120, 80, 30);
+  auto& trapezoid = m.create<ms::polyline>();
+  trapezoid.name = "TRAPEZOID";
+  trapezoid.points = {point(m, 0, "T1", -20, 15, 0), point(m, 0, "T2", -10, -10, 0), point(m, 0, "T3", 12, -10, 0),
+                      point(m, 0, "T4", 20, 15, 0)};
+  auto& general = m.create<ms::general_profile>();
+  general.its_profile = &trapezoid;
+  auto& trapezoid_pocket = m.create<ms::open_pocket>();
+  trapezoid_pocket.its_id = "TRAPEZOID OPEN POCKET";
+  trapezoid_pocket.its_workpiece = shop.workpiece;
+  trapezoid_pocket.feature_placement = shop.at("TRAPEZOID OPEN POCKET", 30, 50, 30);
+  trapezoid_pocket.depth = shop.depth("TRAPEZOID DEPTH", 8);
+  trapezoid_pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  trapezoid_pocket.orthogonal_radius = shop.size(3);
+  trapezoid_pocket.open_boundary = &general;
+
+  auto& arc = m.create<ms::partial_circular_profile>();
+  arc.radius = shop.size(16);
+  arc.sweep_angle = 120;
+  auto& arc_pocket = m.create<ms::open_pocket>();
+  arc_pocket.its_id = "ARC OPEN POCKET";
+  arc_pocket.its_workpiece = shop.workpiece;
+  arc_pocket.feature_placement = shop.at("ARC OPEN POCKET", 85, 62, 30);
+  arc_pocket.depth = shop.depth("ARC DEPTH", 6);
+  arc_pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  arc_pocket.open_boundary = &arc;
+
+  auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
+  const auto [rough_trapezoid, finish_trapezoid] =
+      shop.rough_and_finish("ROUGH TRAPEZOID", "FINISH TRAPEZOID", mill_10, 4, 5, 8);
+  trapezoid_pocket.its_operations = {rough_trapezoid, finish_trapezoid};
+  const auto [rough_arc, finish_arc] = shop.rough_and_finish("ROUGH ARC", "FINISH ARC", mill_10, 3, 5, 6);
+  arc_pocket.its_operations = {rough_arc, finish_arc};
+  shop.main_workplan("OPEN POCKETS WITH GENERAL PROFILES", {{&trapezoid_pocket, rough_trapezoid},
+                                                            {&trapezoid_pocket, finish_trapezoid},
+                                                            {&arc_pocket, rough_arc},
+                                                            {&arc_pocket, finish_arc}});
+}
+
+stepnc::meta::FileHeader open_profiles_header() {
+  return header("open_profiles.stp", "STEPNC SAMPLE: OPEN POCKETS WITH GENERAL PROFILES",
+                "GENERAL_PROFILE AND PARTIAL_CIRCULAR_PROFILE OPEN POCKETS, CONTOUR_PARALLEL ROUGH AND FINISH");
+}
+
 }  // namespace stepnc_samples
