@@ -128,7 +128,8 @@ std::optional<MillingRegion> open_outline(const OpenPocket& pocket, double open_
     return std::nullopt;
   }
   if (pocket.profile.corner_radius > 0) outline = round_corners(outline, pocket.profile.corner_radius);
-  if (open_extension <= 0) return MillingRegion{std::move(outline), {}};
+  // The feature itself ends at the block's edge.
+  if (open_extension <= 0) return MillingRegion{polygons::intersect(outline, stock), {}};
   const auto air = polygons::subtract(polygons::offset(stock, 2 * open_extension), stock);
   auto area = polygons::intersect(polygons::unite(outline, air), polygons::offset(outline, open_extension));
   if (area.empty()) {
