@@ -242,4 +242,21 @@ std::vector<Vec2> feature_outline(const Feature& feature) {
   return out;
 }
 
+std::vector<std::vector<Vec2>> feature_islands(const Feature& feature) {
+  std::string problem;
+  const auto region = milling_region(feature, 0, problem);
+  std::vector<std::vector<Vec2>> out;
+  const auto* area = region ? std::get_if<polygons::Area>(&region->region) : nullptr;
+  if (!area) return out;
+  for (const auto& ring : area->rings) {
+    if (polygons::area(polygons::Area{{ring}}) >= 0) continue;  // outer rings are counter-clockwise
+    auto& island = out.emplace_back();
+    for (const Vec2 local : ring) {
+      const Vec3 p = feature.placement.to_global(local + region->offset);
+      island.push_back({p.x, p.y});
+    }
+  }
+  return out;
+}
+
 }  // namespace stepnc::machining
