@@ -945,6 +945,19 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
       }
     }
   }
+  // orthogonal_radius of a polygon outline (regions.cpp rounds it): as for
+  // rectangles, a larger tool would leave the corners unfinished.
+  double polygon_corner = 0;
+  if (auto* pocket = std::get_if<ClosedPocket>(&job.feature->shape))
+    if (auto* polygon = std::get_if<PolygonProfile>(&pocket->profile)) polygon_corner = polygon->corner_radius;
+  if (auto* open = std::get_if<OpenPocket>(&job.feature->shape); open && !open->outline.empty())
+    polygon_corner = open->profile.corner_radius;
+  if (polygon_corner > eps && r > polygon_corner + side + eps && std::holds_alternative<polygons::Area>(region)) {
+    error(job.feature->source, fmt::format("tool radius {:g} is larger than the pocket corner radius {:g}; "
+                                            "the tool cannot reach the corners",
+                                            r, polygon_corner));
+    return;
+  }
   // Zig-zag strategies end with a lap along the outline, so the walls are
   // reached (contour_bidirectional says so; bidirectional_milling needs it
   // too inside a closed outline).

@@ -255,7 +255,7 @@ void build_open_profiles(Model& m) {
   // A 120 x 80 x 30 block, origin at a bottom corner. Two open pockets run
   // out of the back face (Y 80); ISO 14649-10 bounds them by open profiles
   // only, so each runs from its profile to the block's edge. A trapezoid
-  // (GENERAL_PROFILE polyline, 8 mm deep, R3 vertical edges) at X 30 and a
+  // (GENERAL_PROFILE polyline, 8 mm deep, R6 vertical edges) at X 30 and a
   // 120-degree arc of radius 16 (PARTIAL_CIRCULAR_PROFILE, 6 mm deep) at X 85.
   Shop shop(m, "BLOCK 120 X 80 X 30", 120, 80, 30);
   auto& trapezoid = m.create<ms::polyline>();
@@ -270,7 +270,7 @@ void build_open_profiles(Model& m) {
   trapezoid_pocket.feature_placement = shop.at("TRAPEZOID OPEN POCKET", 30, 50, 30);
   trapezoid_pocket.depth = shop.depth("TRAPEZOID DEPTH", 8);
   trapezoid_pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
-  trapezoid_pocket.orthogonal_radius = shop.size(3);
+  trapezoid_pocket.orthogonal_radius = shop.size(6);
   trapezoid_pocket.open_boundary = &general;
 
   auto& arc = m.create<ms::partial_circular_profile>();
