@@ -79,6 +79,18 @@ struct Shop {
 
   ms::toleranced_length_measure* size(double value) { return length(m, 0, value, tolerance); }
 
+  // A pocket with a planar floor, its top on the block's top (z).
+  template <typename Pocket>
+  Pocket& pocket(const char* name, double x, double y, double z, const char* depth_name, double depth_value) {
+    auto& pocket = m.create<Pocket>();
+    pocket.its_id = name;
+    pocket.its_workpiece = workpiece;
+    pocket.feature_placement = at(name, x, y, z);
+    pocket.depth = depth(depth_name, depth_value);
+    pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+    return pocket;
+  }
+
   tools::milling_cutting_tool* end_mill(const char* name, double diameter, int flutes, double length) {
     auto& size = m.create<tools::milling_tool_dimension>();
     size.diameter = diameter;
@@ -207,12 +219,7 @@ void build_l_pocket_island(Model& m) {
   island.depth = shop.depth("ISLAND HEIGHT", 10);
   island.its_boundary = &island_outline;
 
-  auto& pocket = m.create<ms::closed_pocket>();
-  pocket.its_id = "L POCKET";
-  pocket.its_workpiece = shop.workpiece;
-  pocket.feature_placement = shop.at("L POCKET", 20, 20, 30);
-  pocket.depth = shop.depth("L POCKET DEPTH", 10);
-  pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  auto& pocket = shop.pocket<ms::closed_pocket>("L POCKET", 20, 20, 30, "L POCKET DEPTH", 10);
   pocket.its_boss = {&island};
   pocket.feature_boundary = &boundary;
 
@@ -264,24 +271,15 @@ void build_open_profiles(Model& m) {
                       point(m, 0, "T4", 20, 15, 0)};
   auto& general = m.create<ms::general_profile>();
   general.its_profile = &trapezoid;
-  auto& trapezoid_pocket = m.create<ms::open_pocket>();
-  trapezoid_pocket.its_id = "TRAPEZOID OPEN POCKET";
-  trapezoid_pocket.its_workpiece = shop.workpiece;
-  trapezoid_pocket.feature_placement = shop.at("TRAPEZOID OPEN POCKET", 30, 50, 30);
-  trapezoid_pocket.depth = shop.depth("TRAPEZOID DEPTH", 8);
-  trapezoid_pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  auto& trapezoid_pocket =
+      shop.pocket<ms::open_pocket>("TRAPEZOID OPEN POCKET", 30, 50, 30, "TRAPEZOID DEPTH", 8);
   trapezoid_pocket.orthogonal_radius = shop.size(6);
   trapezoid_pocket.open_boundary = &general;
 
   auto& arc = m.create<ms::partial_circular_profile>();
   arc.radius = shop.size(16);
   arc.sweep_angle = 120;
-  auto& arc_pocket = m.create<ms::open_pocket>();
-  arc_pocket.its_id = "ARC OPEN POCKET";
-  arc_pocket.its_workpiece = shop.workpiece;
-  arc_pocket.feature_placement = shop.at("ARC OPEN POCKET", 85, 62, 30);
-  arc_pocket.depth = shop.depth("ARC DEPTH", 6);
-  arc_pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  auto& arc_pocket = shop.pocket<ms::open_pocket>("ARC OPEN POCKET", 85, 62, 30, "ARC DEPTH", 6);
   arc_pocket.open_boundary = &arc;
 
   auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
