@@ -743,8 +743,11 @@ bool Generator::sizes_make_sense(const Job& job) {
             return {shape.length, shape.width};
           else if constexpr (std::is_same_v<S, RoundHole>)
             return {shape.diameter, shape.diameter};
-          else if constexpr (std::is_same_v<S, OpenPocket>)
-            return {shape.profile.length, shape.profile.width};
+          else if constexpr (std::is_same_v<S, OpenPocket>) {
+            if (shape.outline.empty()) return {shape.profile.length, shape.profile.width};
+            const geom::Bounds box = geom::bounds(shape.outline);
+            return box.max - box.min;
+          }
           else if constexpr (std::is_same_v<S, ClosedPocket>)
             return pocket_extent(shape.profile);
           else
@@ -942,6 +945,19 @@ void Generator::area_clearing(const Job& job, const Region& region, Vec2 offset)
         return;
       }
     }
+  }
+  // orthogonal_radius of a polygon outline (regions.cpp rounds it): as for
+  // rectangles, a larger tool would leave the corners unfinished.
+  double polygon_corner = 0;
+  if (auto* pocket = std::get_if<ClosedPocket>(&job.feature->shape))
+    if (auto* polygon = std::get_if<PolygonProfile>(&pocket->profile)) polygon_corner = polygon->corner_radius;
+  if (auto* open = std::get_if<OpenPocket>(&job.feature->shape); open && !open->outline.empty())
+    polygon_corner = open->profile.corner_radius;
+  if (polygon_corner > eps && r > polygon_corner + side + eps && std::holds_alternative<polygons::Area>(region)) {
+    error(job.feature->source, fmt::format("tool radius {:g} is larger than the pocket corner radius {:g}; "
+                                            "the tool cannot reach the corners",
+                                            r, polygon_corner));
+    return;
   }
   // Zig-zag strategies end with a lap along the outline, so the walls are
   // reached (contour_bidirectional says so; bidirectional_milling needs it

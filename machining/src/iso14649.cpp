@@ -695,14 +695,17 @@ class Describer {
     } else if (auto* rounded = as<ms::rounded_u_profile>(boundary)) {
       to_x = size(rounded->width) / 2;
       radius = to_x;  // a half-circle base
+    } else if (as<ms::general_profile>(boundary) || as<ms::partial_circular_profile>(boundary) ||
+               as<ms::vee_profile>(boundary)) {
+      return general_open_pocket(pocket, *boundary, *frame, out);
     } else if (auto* line = as<ms::linear_profile>(boundary)) {
       if (!line->profile_length) return inconsistent("linear profile without a length");
       to_x = line->profile_length->its_parameter_value;
       open = open_min_x | open_max_x | open_max_y;
       across_block = true;
     } else {
-      return inconsistent(fmt::format("{} is not supported: the posters' open pocket is a rectangle "
-                                      "(square_u_profile, rounded_u_profile or linear_profile)",
+      return inconsistent(fmt::format("{} is not supported (square_u_profile, rounded_u_profile, linear_profile, "
+                                      "general_profile, partial_circular_profile or vee_profile)",
                                       boundary->entity_info().name));
     }
     if (!across_block) {
@@ -722,7 +725,93 @@ class Describer {
     Vec3 centre = frame->to_global({(from_x + to_x) / 2, *reach / 2});
     centre.z = out.placement.location.z;
     out.placement = Placement{centre, frame->angle_deg};
-    out.shape = OpenPocket{RectangularProfile{to_x - from_x, *reach, radius}, open};
+    out.shape = OpenPocket{RectangularProfile{to_x - from_x, *reach, radius}, open, {}, {}};
+  }
+
+  // An open pocket bounded by a general_profile (a polyline), a
+  // partial_circular_profile or a vee_profile, in the profile's frame with
+  // the open side towards +y, as the U profiles: the profile's ends run on
+  // along +y to the workpiece block's edge, where the pocket lies open. A
+  // partial circle is centred on the origin, its sweep halved by -y; a vee
+  // has its vertex at the origin, its legs profile_angle apart about +y
+  // turned by tilt_angle, its vertex rounded to profile_radius. The
+  // pocket's orthogonal_radius rounds every vertical edge.
+  void general_open_pocket(const ms::open_pocket& pocket, const ms::open_profile& boundary, const Placement& frame,
+                           Feature& out) {
+    auto inconsistent = [&](std::string what) {
+      error(pocket, pocket.its_id, fmt::format("open boundary #{}: {}", boundary.id(), what));
+    };
+    constexpr double pi = 3.14159265358979323846;
+    std::vector<Vec2> profile;
+    double vertex_radius = 0;
+    if (auto* general = as<ms::general_profile>(&boundary)) {
+      const auto* line = as<ms::polyline>(general->its_profile);
+      if (!line)
+        return inconsistent("a general_profile's curve must be a polyline (its other bounded curves are not "
+                            "supported yet)");
+      for (const ms::cartesian_point* p : line->points) {
+        const Vec3 v = point(p);
+        profile.push_back({v.x, v.y});
+      }
+      if (profile.size() < 2) return inconsistent("a general_profile needs at least two points");
+    } else if (auto* arc = as<ms::partial_circular_profile>(&boundary)) {
+      const double r = size(arc->radius), sweep = arc->sweep_angle;
+      if (r <= 0 || sweep <= 0 || sweep > 180 + 1e-9)
+        return inconsistent(fmt::format("partial circle of radius {:g} sweeping {:g} degrees: the radius must be "
+                                        "positive and the sweep in (0, 180] for the pocket to open along +y",
+                                        r, sweep));
+      // Chords within the chordal tolerance of the arc.
+      const double step = 2 * std::acos(std::max(-1.0, 1 - polygons::chordal_tolerance / r));
+      const int n = std::max(2, static_cast<int>(std::ceil(sweep * pi / 180 / step)));
+      for (int i = 0; i <= n; ++i) {
+        const double a = (-90 + sweep / 2 - sweep * i / n) * pi / 180;
+        profile.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+    } else {
+      const auto& vee = dynamic_cast<const ms::vee_profile&>(boundary);
+      if (vee.profile_angle <= 0 || vee.profile_angle >= 180)
+        return inconsistent(fmt::format("vee profile angle {:g} is not between 0 and 180 degrees", vee.profile_angle));
+      vertex_radius = size(vee.profile_radius);
+      const auto box = block(pocket.its_workpiece);
+      const double reach = box ? std::hypot(box->max.x - box->min.x, box->max.y - box->min.y) : 0;
+      auto leg = [&](double side) {
+        const double a = (90 + vee.tilt_angle + side * vee.profile_angle / 2) * pi / 180;
+        return Vec2{reach * std::cos(a), reach * std::sin(a)};
+      };
+      profile = {leg(1), {0, 0}, leg(-1)};
+    }
+    double from_x = 1e300, to_x = -1e300;
+    for (const Vec2 p : profile) {
+      from_x = std::min(from_x, p.x);
+      to_x = std::max(to_x, p.x);
+    }
+    const bool vee = as<ms::vee_profile>(&boundary) != nullptr;
+    // A vee's legs run out of the block: only its vertex must lie inside.
+    const auto ahead = vee ? reach_to_block_edge(pocket, frame, 0, 0, false)
+                           : reach_to_block_edge(pocket, frame, from_x, to_x, false);
+    if (!ahead) return;
+    // Closed beyond the block's edge, so rounding its corners there leaves
+    // the edge itself open.
+    const double corner = size(pocket.orthogonal_radius);
+    double far = *ahead + 2 * corner + 1;
+    for (const Vec2 p : profile) far = std::max(far, p.y + 2 * corner + 1);
+    profile.push_back({profile.back().x, far});
+    profile.push_back({profile.front().x, far});
+    auto area = polygons::make_area(profile);
+    if (area.rings.size() != 1)
+      return inconsistent("the profile, continued along +y to the workpiece block's edge, is not a simple polygon");
+    if (vertex_radius > 0) area = polygons::offset(polygons::offset(area, -vertex_radius), vertex_radius);
+    if (area.rings.size() != 1)
+      return inconsistent(fmt::format("vee profile radius {:g} does not fit the vee", vertex_radius));
+    const auto box = block(pocket.its_workpiece);
+    OpenPocket shape;
+    shape.profile.corner_radius = corner;
+    shape.outline = area.rings.front();
+    for (const Vec2 c : {Vec2{box->min.x, box->min.y}, Vec2{box->max.x, box->min.y}, Vec2{box->max.x, box->max.y},
+                         Vec2{box->min.x, box->max.y}})
+      shape.stock.push_back(frame.to_local(c));
+    out.placement = Placement{{frame.location.x, frame.location.y, out.placement.location.z}, frame.angle_deg};
+    out.shape = std::move(shape);
   }
 
   // step: the open boundary is the foot of the wall, a linear path from its

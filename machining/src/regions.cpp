@@ -48,6 +48,14 @@ std::optional<RectangularProfile> as_rectangle(const PolygonProfile& polygon, Ve
 
 namespace {
 
+// Every vertical edge of a polygon pocket rounded to `radius`
+// (ISO 14649-10 pocket.orthogonal_radius): corners of the pocket by an
+// opening, corners of the material (concave for the pocket) by a closing.
+polygons::Area round_corners(const polygons::Area& area, double radius) {
+  const auto opened = polygons::offset(polygons::offset(area, -radius), radius);
+  return polygons::offset(polygons::offset(opened, radius), -radius);
+}
+
 // A pocket outline minus its islands, as a Clipper area.
 std::optional<MillingRegion> with_islands(const MillingRegion& outline, const ClosedPocket& pocket, std::string& problem) {
   polygons::Ring outer = geom::outline_ring(outline.region);
@@ -99,6 +107,35 @@ std::optional<MillingRegion> pocket_outline(const ClosedPocket& pocket, std::str
     problem = "general profile is not a simple polygon";
     return std::nullopt;
   }
+  if (polygon.corner_radius > 0) {
+    area = round_corners(area, polygon.corner_radius);
+    if (area.rings.size() != 1) {
+      problem = fmt::format("orthogonal_radius {:g} does not fit the general profile", polygon.corner_radius);
+      return std::nullopt;
+    }
+  }
+  return MillingRegion{std::move(area), {}};
+}
+
+// A general open pocket: its outline, plus the air beyond the workpiece
+// block near it (out to `open_extension`), so the tool clears the open
+// side and may run out there.
+std::optional<MillingRegion> open_outline(const OpenPocket& pocket, double open_extension, std::string& problem) {
+  auto outline = polygons::make_area(pocket.outline);
+  const auto stock = polygons::make_area(pocket.stock);
+  if (outline.rings.size() != 1 || stock.rings.size() != 1) {
+    problem = "the open profile closed along the workpiece block's edge is not a simple polygon";
+    return std::nullopt;
+  }
+  if (pocket.profile.corner_radius > 0) outline = round_corners(outline, pocket.profile.corner_radius);
+  // The feature itself ends at the block's edge.
+  if (open_extension <= 0) return MillingRegion{polygons::intersect(outline, stock), {}};
+  const auto air = polygons::subtract(polygons::offset(stock, 2 * open_extension), stock);
+  auto area = polygons::intersect(polygons::unite(outline, air), polygons::offset(outline, open_extension));
+  if (area.empty()) {
+    problem = "the open profile leaves nothing to mill";
+    return std::nullopt;
+  }
   return MillingRegion{std::move(area), {}};
 }
 
@@ -112,6 +149,7 @@ std::optional<MillingRegion> milling_region(const Feature& feature, double open_
     return with_islands(*outline, *pocket, problem);
   }
   if (auto* open = std::get_if<OpenPocket>(&shape)) {
+    if (!open->outline.empty()) return open_outline(*open, open_extension, problem);
     const auto& p = open->profile;
     return open_rectangle(p.length, p.width, p.corner_radius, open->open_sides, open_extension, {});
   }
@@ -200,6 +238,23 @@ std::vector<Vec2> feature_outline(const Feature& feature) {
       add(seg.to);
     }
     from = seg.to;
+  }
+  return out;
+}
+
+std::vector<std::vector<Vec2>> feature_islands(const Feature& feature) {
+  std::string problem;
+  const auto region = milling_region(feature, 0, problem);
+  std::vector<std::vector<Vec2>> out;
+  const auto* area = region ? std::get_if<polygons::Area>(&region->region) : nullptr;
+  if (!area) return out;
+  for (const auto& ring : area->rings) {
+    if (polygons::area(polygons::Area{{ring}}) >= 0) continue;  // outer rings are counter-clockwise
+    auto& island = out.emplace_back();
+    for (const Vec2 local : ring) {
+      const Vec3 p = feature.placement.to_global(local + region->offset);
+      island.push_back({p.x, p.y});
+    }
   }
   return out;
 }

@@ -111,7 +111,7 @@ Vec2 project(Projection projection, Vec3 p) {
 struct Outline {  // model coordinates of the view (u right, v up)
   std::vector<Vec2> points;
   bool closed = true;
-  int feature = -1;  // index into project.features; -1 = stock
+  int feature = -1;  // index into project.features; -1 = stock or an island (no label)
   Region region = Region::removed;
 };
 
@@ -211,6 +211,8 @@ std::vector<View> milling_views(const MachiningProject& project) {
     const std::vector<Vec2> outline = feature_outline(f);
     if (outline.empty()) continue;
     top.outlines.push_back({outline, true, static_cast<int>(i)});
+    // Islands stand inside the removed area (drawn after it, so on top).
+    for (auto& island : feature_islands(f)) top.outlines.push_back({std::move(island), true, -1, Region::part});
     Box extent;
     for (const Vec2 p : outline) extent.add(p);
     const double z = f.placement.location.z;

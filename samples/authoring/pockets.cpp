@@ -3,6 +3,7 @@
 //
 //   pockets l_pocket_island OUT.stp   an L pocket with an island
 //   pockets hole_milling OUT.stp      a round hole milled with a smaller end mill
+//   pockets open_profiles OUT.stp     open pockets with general open profiles
 #include <cstdio>
 #include <string_view>
 
@@ -18,6 +19,9 @@ int main(int argc, char** argv) {
   if (which == "hole_milling")
     return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_hole_milling,
                                         stepnc_samples::hole_milling_header());
-  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling OUT.stp\n", argv[0]);
+  if (which == "open_profiles")
+    return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_open_profiles,
+                                        stepnc_samples::open_profiles_header());
+  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling|open_profiles OUT.stp\n", argv[0]);
   return 2;
 }

@@ -79,6 +79,18 @@ struct Shop {
 
   ms::toleranced_length_measure* size(double value) { return length(m, 0, value, tolerance); }
 
+  // A pocket with a planar floor, its top on the block's top (z).
+  template <typename Pocket>
+  Pocket& pocket(const char* name, double x, double y, double z, const char* depth_name, double depth_value) {
+    auto& pocket = m.create<Pocket>();
+    pocket.its_id = name;
+    pocket.its_workpiece = workpiece;
+    pocket.feature_placement = at(name, x, y, z);
+    pocket.depth = depth(depth_name, depth_value);
+    pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+    return pocket;
+  }
+
   tools::milling_cutting_tool* end_mill(const char* name, double diameter, int flutes, double length) {
     auto& size = m.create<tools::milling_tool_dimension>();
     size.diameter = diameter;
@@ -207,12 +219,7 @@ void build_l_pocket_island(Model& m) {
   island.depth = shop.depth("ISLAND HEIGHT", 10);
   island.its_boundary = &island_outline;
 
-  auto& pocket = m.create<ms::closed_pocket>();
-  pocket.its_id = "L POCKET";
-  pocket.its_workpiece = shop.workpiece;
-  pocket.feature_placement = shop.at("L POCKET", 20, 20, 30);
-  pocket.depth = shop.depth("L POCKET DEPTH", 10);
-  pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+  auto& pocket = shop.pocket<ms::closed_pocket>("L POCKET", 20, 20, 30, "L POCKET DEPTH", 10);
   pocket.its_boss = {&island};
   pocket.feature_boundary = &boundary;
 
@@ -249,6 +256,47 @@ void build_hole_milling(Model& m) {
 stepnc::meta::FileHeader hole_milling_header() {
   return header("hole_milling.stp", "STEPNC SAMPLE: A 30 MM HOLE MILLED WITH A 12 MM END MILL",
                 "ROUND_HOLE, BOTTOM_AND_SIDE ROUGH AND FINISH MILLING, CONTOUR_PARALLEL");
+}
+
+void build_open_profiles(Model& m) {
+  // A 120 x 80 x 30 block, origin at a bottom corner. Two open pockets run
+  // out of the back face (Y 80); ISO 14649-10 bounds them by open profiles
+  // only, so each runs from its profile to the block's edge. A trapezoid
+  // (GENERAL_PROFILE polyline, 8 mm deep, R6 vertical edges) at X 30 and a
+  // 120-degree arc of radius 16 (PARTIAL_CIRCULAR_PROFILE, 6 mm deep) at X 85.
+  Shop shop(m, "BLOCK 120 X 80 X 30", 120, 80, 30);
+  auto& trapezoid = m.create<ms::polyline>();
+  trapezoid.name = "TRAPEZOID";
+  trapezoid.points = {point(m, 0, "T1", -20, 15, 0), point(m, 0, "T2", -10, -10, 0), point(m, 0, "T3", 12, -10, 0),
+                      point(m, 0, "T4", 20, 15, 0)};
+  auto& general = m.create<ms::general_profile>();
+  general.its_profile = &trapezoid;
+  auto& trapezoid_pocket =
+      shop.pocket<ms::open_pocket>("TRAPEZOID OPEN POCKET", 30, 50, 30, "TRAPEZOID DEPTH", 8);
+  trapezoid_pocket.orthogonal_radius = shop.size(6);
+  trapezoid_pocket.open_boundary = &general;
+
+  auto& arc = m.create<ms::partial_circular_profile>();
+  arc.radius = shop.size(16);
+  arc.sweep_angle = 120;
+  auto& arc_pocket = shop.pocket<ms::open_pocket>("ARC OPEN POCKET", 85, 62, 30, "ARC DEPTH", 6);
+  arc_pocket.open_boundary = &arc;
+
+  auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
+  const auto [rough_trapezoid, finish_trapezoid] =
+      shop.rough_and_finish("ROUGH TRAPEZOID", "FINISH TRAPEZOID", mill_10, 4, 5, 8);
+  trapezoid_pocket.its_operations = {rough_trapezoid, finish_trapezoid};
+  const auto [rough_arc, finish_arc] = shop.rough_and_finish("ROUGH ARC", "FINISH ARC", mill_10, 3, 5, 6);
+  arc_pocket.its_operations = {rough_arc, finish_arc};
+  shop.main_workplan("OPEN POCKETS WITH GENERAL PROFILES", {{&trapezoid_pocket, rough_trapezoid},
+                                                            {&trapezoid_pocket, finish_trapezoid},
+                                                            {&arc_pocket, rough_arc},
+                                                            {&arc_pocket, finish_arc}});
+}
+
+stepnc::meta::FileHeader open_profiles_header() {
+  return header("open_profiles.stp", "STEPNC SAMPLE: OPEN POCKETS WITH GENERAL PROFILES",
+                "GENERAL_PROFILE AND PARTIAL_CIRCULAR_PROFILE OPEN POCKETS, CONTOUR_PARALLEL ROUGH AND FINISH");
 }
 
 }  // namespace stepnc_samples

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Everyday milling features built in code: an L-shaped closed pocket with
 // an island (its_boss), machined contour-parallel, and a round hole milled
-// with an end mill smaller than the hole (rough and finish).
+// with an end mill smaller than the hole (rough and finish), open pockets
+// bounded by general open profiles.
 #pragma once
 
 #include "stepnc/meta/io.h"
@@ -16,5 +17,9 @@ stepnc::meta::FileHeader l_pocket_island_header();
 // samples/milling/hole_milling.stp
 void build_hole_milling(stepnc::meta::Model& model);
 stepnc::meta::FileHeader hole_milling_header();
+
+// samples/milling/open_profiles.stp
+void build_open_profiles(stepnc::meta::Model& model);
+stepnc::meta::FileHeader open_profiles_header();
 
 }  // namespace stepnc_samples

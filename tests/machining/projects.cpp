@@ -152,7 +152,7 @@ MachiningProject milling_features() {
   PolygonProfile ell{{{0, 0}, {50, 0}, {50, 20}, {20, 20}, {20, 40}, {0, 40}}, 0};
   p.features.push_back(feature(11, "L POCKET", Placement{{60, 10, 0}, 0}, 6, ClosedPocket{ell, 0, {}}));
   p.features.push_back(feature(12, "OPEN POCKET", Placement{{140, 30, 0}, 0}, 5,
-                               OpenPocket{RectangularProfile{40, 30, 6}, open_max_x}));
+                               OpenPocket{RectangularProfile{40, 30, 6}, open_max_x, {}, {}}));
   p.features.push_back(feature(13, "STEP", Placement{{0, 100, 0}, 0}, 4, Step{160, 20}));
   p.features.push_back(feature(14, "SLOT WIDE", Placement::from_ref_direction({20, 75, 0}, 1, 0), 5,
                                Slot{40, 14, true}));

@@ -153,6 +153,21 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     CHECK_FALSE(result.ok());
     CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
   }
+  SECTION("tool too big for the corner radius of a general polygon pocket") {
+    // The same rectangle with a vertex in the middle of its first edge is
+    // no longer read as a rectangle: Clipper rounds its corners.
+    auto& polygon = std::get<PolygonProfile>(std::get<ClosedPocket>(project.features[2].shape).profile);
+    auto& v = polygon.vertices;
+    if (v.size() == 5) v.pop_back();  // closed polyline
+    REQUIRE(v.size() == 4);
+    v.insert(v.begin() + 1, Vec2{(v[0].x + v[1].x) / 2, (v[0].y + v[1].y) / 2});
+    polygon.corner_radius = 6;
+    const auto result = generate(project);
+    CHECK_FALSE(result.ok());
+    CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
+    polygon.corner_radius = 12;
+    CHECK(generate(project).ok());
+  }
   SECTION("numbers in messages are rounded") {
     project.operations[3].strategy = ContourBidirectional{1 - 2.2};  // -1.2000000000000002
     const auto result = generate(project);

@@ -10,6 +10,7 @@
 #include "projects.h"
 #include "stepnc/machining/simulation.h"
 #include "stepnc/post/dialect.h"
+#include "stepnc/machining/feature_geometry.h"
 #include "stepnc/machining/iso14649.h"
 #include "stepnc/post/plot.h"
 #include "test_files.h"
@@ -457,17 +458,28 @@ TEST_CASE("open pockets the description cannot hold are reported by their #id") 
   auto& pocket = m.model.create<ms::open_pocket>();
   pocket.its_id = "OPEN POCKET";
   pocket.bottom_condition = &m.model.create<ms::planar_pocket_bottom_condition>();
-  auto& arc = m.model.create<ms::partial_circular_profile>();
-  arc.radius = m.measure(15);
-  arc.sweep_angle = 180;
-  pocket.open_boundary = &arc;
+  auto& tee = m.model.create<ms::tee_profile>();
+  tee.width = m.measure(15);
+  pocket.open_boundary = &tee;
   m.place(pocket, 50, 30, 5);
   auto described = describe_project(m.model);
   REQUIRE_FALSE(described.ok());
   CHECK(described.diagnostics.at(0).to_string() ==
+        id(pocket) + " 'OPEN POCKET': error: open boundary " + id(tee) +
+            ": tee_profile is not supported (square_u_profile, rounded_u_profile, linear_profile, general_profile,"
+            " partial_circular_profile or vee_profile)");
+
+  // A partial circle sweeping past 180 degrees would close on itself.
+  auto& arc = m.model.create<ms::partial_circular_profile>();
+  arc.radius = m.measure(15);
+  arc.sweep_angle = 200;
+  pocket.open_boundary = &arc;
+  described = describe_project(m.model);
+  REQUIRE_FALSE(described.ok());
+  CHECK(described.diagnostics.at(0).to_string() ==
         id(pocket) + " 'OPEN POCKET': error: open boundary " + id(arc) +
-            ": partial_circular_profile is not supported: the posters' open pocket is a rectangle"
-            " (square_u_profile, rounded_u_profile or linear_profile)");
+            ": partial circle of radius 15 sweeping 200 degrees: the radius must be positive and the sweep in"
+            " (0, 180] for the pocket to open along +y");
 
   // A U profile whose corners disagree with the pocket's orthogonal radius.
   auto& u = m.model.create<ms::square_u_profile>();
@@ -490,6 +502,66 @@ TEST_CASE("open pockets the description cannot hold are reported by their #id") 
   described = describe_project(m.model);
   REQUIRE_FALSE(described.ok());
   CHECK(described.diagnostics.at(0).message.find("needs its workpiece's BLOCK bounding geometry") != std::string::npos);
+}
+
+TEST_CASE("open pockets with general profiles run from the profile to the block's edge") {
+  namespace ms = machining_schema;
+  OpenFeatureModel m;  // block X 0..100, Y 0..60, top Z 20
+  auto& pocket = m.model.create<ms::open_pocket>();
+  pocket.its_id = "GENERAL";
+  pocket.bottom_condition = &m.model.create<ms::planar_pocket_bottom_condition>();
+  auto& line = m.model.create<ms::polyline>();
+  for (const Vec2 p : {Vec2{-15, 10}, Vec2{-15, -10}, Vec2{15, -10}, Vec2{15, 10}}) {
+    auto& point = m.model.create<ms::cartesian_point>();
+    point.coordinates = {p.x, p.y, 0.0};
+    line.points.push_back(&point);
+  }
+  auto& general = m.model.create<ms::general_profile>();
+  general.its_profile = &line;
+  pocket.open_boundary = &general;
+  pocket.orthogonal_radius = m.measure(4);
+  m.place(pocket, 50, 40, 5);
+  auto described = describe_project(m.model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  // X 35..65 from Y 30 to the back face (Y 60), R4 vertical edges.
+  const Feature& u = described.project.features.at(0);
+  CHECK_FALSE(std::get<OpenPocket>(u.shape).outline.empty());
+  CHECK(feature_signed_distance(u, {50, 40}) == Approx(-10).margin(1e-3));
+  CHECK(feature_signed_distance(u, {50, 25}) == Approx(5).margin(1e-3));
+  CHECK(feature_signed_distance(u, {30, 45}) == Approx(5).margin(1e-3));
+  CHECK(feature_signed_distance(u, {50, 60.5}) == Approx(0.5).margin(1e-3));  // the feature ends at the block
+  // Rounded: chords within 1 µm, vertices within 1.5 µm of a line through their neighbours dropped.
+  CHECK(feature_signed_distance(u, {35.5, 30.5}) == Approx(std::hypot(3.5, 3.5) - 4).margin(2.5e-3));
+
+  // A half circle of radius 15 about (50, 30), open towards the back face.
+  auto& arc = m.model.create<ms::partial_circular_profile>();
+  arc.radius = m.measure(15);
+  arc.sweep_angle = 180;
+  pocket.open_boundary = &arc;
+  pocket.orthogonal_radius = nullptr;
+  pocket.feature_placement = m.placement(50, 30, 20);
+  described = describe_project(m.model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const Feature& half = described.project.features.at(0);
+  CHECK(feature_signed_distance(half, {50, 20}) == Approx(-5).margin(2e-3));
+  CHECK(feature_signed_distance(half, {50, 14}) == Approx(1).margin(2e-3));
+  CHECK(feature_signed_distance(half, {60, 50}) == Approx(-5).margin(2e-3));
+
+  // A right-angled vee with its vertex at (50, 20), legs out to the edge.
+  auto& vee = m.model.create<ms::vee_profile>();
+  vee.profile_angle = 90;
+  vee.profile_radius = m.measure(0);
+  pocket.open_boundary = &vee;
+  pocket.feature_placement = m.placement(50, 20, 20);
+  described = describe_project(m.model);
+  for (const auto& d : described.diagnostics) INFO(d.to_string());
+  REQUIRE(described.ok());
+  const Feature& v = described.project.features.at(0);
+  CHECK(feature_signed_distance(v, {50, 25}) == Approx(-5 / std::sqrt(2.0)).margin(1e-3));
+  CHECK(feature_signed_distance(v, {50, 19}) == Approx(1).margin(1e-3));
+  CHECK(feature_signed_distance(v, {50, 59}) == Approx(-1).margin(1e-3));
 }
 
 TEST_CASE("open pocket boundaries: a rounded U in its own placement, a linear profile") {

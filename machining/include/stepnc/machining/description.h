@@ -160,10 +160,18 @@ struct ClosedPocket {
   std::vector<std::vector<Vec2>> islands;
 };
 
-/// rectangular open pocket: the open sides lie in air
+/// An open pocket (ISO 14649-10 open_pocket): a rectangle whose open sides
+/// lie in air, or, when `outline` is given, a general open profile.
 struct OpenPocket {
-  RectangularProfile profile;  ///< its outline
-  unsigned open_sides = open_none;  ///< OpenSide bits
+  RectangularProfile profile;  ///< the rectangle (unused with an outline)
+  unsigned open_sides = open_none;  ///< OpenSide bits of the rectangle
+  /// General open profile: the material the pocket removes, as a simple
+  /// polygon in the feature's frame (the profile closed along the workpiece
+  /// block's edge, circles linearised within polygons::chordal_tolerance).
+  /// Whatever part of it lies on or beyond the block's edge is open: the
+  /// tool may run out there. Empty: the rectangle.
+  std::vector<Vec2> outline;
+  std::vector<Vec2> stock;  ///< the workpiece block's outline in the same frame (with `outline`)
 };
 
 /// straight slot, centre line from local (0,0) to (length,0)

@@ -21,4 +21,8 @@ std::function<double(Vec2)> feature_distance(const Feature& feature);
 /// The outline as a closed polyline (arcs sampled every 5 degrees).
 std::vector<Vec2> feature_outline(const Feature& feature);
 
+/// What stands inside the outline: a pocket's islands, the part inside an
+/// outside profile, as closed polylines (none for other features).
+std::vector<std::vector<Vec2>> feature_islands(const Feature& feature);
+
 }  // namespace stepnc::machining
