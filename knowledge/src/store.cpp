@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <chrono>
 #include <cstdlib>
 #include <set>
 #include <system_error>
+#include <thread>
 
 #include "machining_schema.h"
 #include "sqlite.h"
@@ -234,18 +236,31 @@ Store Store::open(const std::filesystem::path& path, const StoreOptions& options
   if (opened != SQLITE_OK) database->fail("cannot open");
   sqlite3_extended_result_codes(handle, 0);
   sqlite3_busy_timeout(handle, options.busy_timeout_ms);
-  try {
-    recognise(*database);
-    database->exec("PRAGMA journal_mode = WAL");
-    database->exec("PRAGMA synchronous = NORMAL");  // WAL: durable at checkpoints, never corrupt
-    database->exec("PRAGMA foreign_keys = ON");
-    migrate(*database, options.migrate_to > 0 ? std::min(options.migrate_to, schema_version) : schema_version);
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    if (message.find("file is not a database") != std::string::npos)
-      throw Error(ErrorKind::invalid_input,
-                  fmt::format("{}: not a stepnc knowledge base: not an SQLite file, or a damaged one", file));
-    throw;
+  // Processes opening a new file at once can meet SQLITE_BUSY where SQLite
+  // calls no busy handler (the switch to WAL, WAL recovery), so the set-up
+  // is retried until the busy timeout; it is idempotent (migrate re-reads
+  // the version inside its write transaction).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(options.busy_timeout_ms);
+  for (;;) {
+    try {
+      recognise(*database);
+      database->exec("PRAGMA journal_mode = WAL");
+      database->exec("PRAGMA synchronous = NORMAL");  // WAL: durable at checkpoints, never corrupt
+      database->exec("PRAGMA foreign_keys = ON");
+      migrate(*database, options.migrate_to > 0 ? std::min(options.migrate_to, schema_version) : schema_version);
+      break;
+    } catch (const Error& error) {
+      const int code = sqlite3_errcode(handle);
+      if ((code == SQLITE_BUSY || code == SQLITE_LOCKED) && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        continue;
+      }
+      const std::string message = error.what();
+      if (message.find("file is not a database") != std::string::npos)
+        throw Error(ErrorKind::invalid_input,
+                    fmt::format("{}: not a stepnc knowledge base: not an SQLite file, or a damaged one", file));
+      throw;
+    }
   }
   return Store(std::move(database), path);
 }
