@@ -34,45 +34,13 @@ struct Builder {
   ms::plane* depth(const char* name, double z) { return plane(m, 0, name, at(name, 0, 0, -z)); }
   ms::toleranced_length_measure* size(double value) { return length(m, 0, value, tolerance(m, 0, 0.1, 0.1)); }
 
-  // A milling cutting tool with its body, one cutting edge and its size.
-  template <class Body>
-  ms::machining_tool* tool(const char* name, double diameter, int teeth, double edge_radius, double length) {
-    auto& dimension = m.create<tools::milling_tool_dimension>();
-    dimension.diameter = diameter;
-    if (edge_radius > 0) dimension.edge_radius = edge_radius;
-    auto& body = m.create<Body>();
-    body.dimension = &dimension;
-    body.number_of_teeth = teeth;
-    body.hand_of_cut = tools::hand::right;
-    body.coolant_through_tool = false;
-    auto& edge = m.create<ms::cutting_component>();
-    edge.tool_offset_length = length;
-    auto& t = m.create<tools::milling_cutting_tool>();
-    t.its_id = name;
-    t.its_tool_body = &body;
-    t.its_cutting_edge = {&edge};
-    t.overall_assembly_length = length;
-    return &t;
-  }
-
-  mill::milling_technology* technology(double feedrate, double spindle) {
-    auto& t = m.create<mill::milling_technology>();
-    t.feedrate = feedrate;
-    t.feedrate_reference = ms::tool_reference_point::tcp;
-    t.spindle = spindle;
-    t.synchronize_spindle_with_feed = false;
-    t.inhibit_feedrate_override = false;
-    t.inhibit_spindle_override = false;
-    return &t;
-  }
-
   // Rough milling of a pocket or slot: 5 mm layers, 4 mm stepover.
   mill::bottom_and_side_rough_milling* rough(const char* name, ms::machining_tool* with) {
     auto& op = m.create<mill::bottom_and_side_rough_milling>();
     op.its_id = name;
     op.retract_plane = 5;
     op.its_tool = with;
-    op.its_technology = technology(0.02, -40);
+    op.its_technology = technology(m, 0, 0.02, -40);
     op.its_machine_functions = functions;
     op.its_machining_strategy = &m.create<mill::contour_bidirectional>();
     op.axial_cutting_depth = 5;
@@ -85,7 +53,7 @@ struct Builder {
     op.its_id = name;
     op.retract_plane = 5;
     op.its_tool = with;
-    op.its_technology = technology(0.01, -25);
+    op.its_technology = technology(m, 0, 0.01, -25);
     op.its_machine_functions = functions;
     return &op;
   }
@@ -175,11 +143,11 @@ void build_fig7(Model& m, Fig7Graph graph) {
 
   // Tools: the face mill, a 10 mm end mill (pocket, slots 5 and 6), the
   // slot cutter of the long slot 8, and two drills.
-  auto* face_mill = b.tool<tools::facemill>("FACEMILL 40MM", 40, 6, 0, 60);
-  auto* end_mill = b.tool<tools::endmill>("ENDMILL 10MM", 10, 4, 0, 70);
-  auto* slot_cutter = b.tool<tools::endmill>("SLOT CUTTER 10MM", 10, 2, 0, 75);
-  auto* drill_8 = b.tool<tools::twist_drill>("DRILL 8MM", 8, 2, 0, 90);
-  auto* drill_6 = b.tool<tools::twist_drill>("DRILL 6MM", 6, 2, 0, 85);
+  auto* face_mill = milling_tool<tools::facemill>(m, "FACEMILL 40MM", 40, 6, 60);
+  auto* end_mill = milling_tool<tools::endmill>(m, "ENDMILL 10MM", 10, 4, 70);
+  auto* slot_cutter = milling_tool<tools::endmill>(m, "SLOT CUTTER 10MM", 10, 2, 75);
+  auto* drill_8 = milling_tool<tools::twist_drill>(m, "DRILL 8MM", 8, 2, 90);
+  auto* drill_6 = milling_tool<tools::twist_drill>(m, "DRILL 6MM", 6, 2, 85);
 
   // 1: the top face, 2 mm off the raw block (z 32 -> 30).
   auto& travel = m.create<ms::linear_path>();
@@ -198,7 +166,7 @@ void build_fig7(Model& m, Fig7Graph graph) {
   face_op.its_id = "ROUGH TOP FACE";
   face_op.retract_plane = 5;
   face_op.its_tool = face_mill;
-  face_op.its_technology = b.technology(0.05, -20);
+  face_op.its_technology = technology(m, 0, 0.05, -20);
   face_op.its_machine_functions = &functions;
   face_op.its_machining_strategy = &strokes;
   face_op.axial_cutting_depth = 2;

@@ -41,4 +41,21 @@ machining_schema::machining_workingstep* workingstep(stepnc::meta::Model& m, std
                                                      machining_schema::manufacturing_feature* feature,
                                                      machining_schema::machining_operation* operation);
 
+// A right-hand milling cutting tool with a body of kind Body (endmill,
+// facemill, twist_drill...), its size, one cutting edge and its length;
+// every instance takes the next free id.
+template <class Body>
+milling_machine_tool_schema::milling_cutting_tool* milling_tool(stepnc::meta::Model& m, const char* name,
+                                                                double diameter, int teeth, double length,
+                                                                double edge_radius = 0) {
+  auto* size = dimension(m, 0, diameter);
+  if (edge_radius > 0) size->edge_radius = edge_radius;
+  auto& body = m.create<Body>();
+  body.dimension = size;
+  body.number_of_teeth = teeth;
+  body.hand_of_cut = milling_machine_tool_schema::hand::right;
+  body.coolant_through_tool = false;
+  return tool(m, 0, name, &body, cutting_edge(m, 0, length), length);
+}
+
 }  // namespace stepnc_samples

@@ -91,36 +91,6 @@ struct Shop {
     return pocket;
   }
 
-  tools::milling_cutting_tool* end_mill(const char* name, double diameter, int flutes, double length) {
-    auto& size = m.create<tools::milling_tool_dimension>();
-    size.diameter = diameter;
-    auto& body = m.create<tools::endmill>();
-    body.dimension = &size;
-    body.number_of_teeth = flutes;
-    body.hand_of_cut = tools::hand::right;
-    body.coolant_through_tool = false;
-    auto& edge = m.create<ms::cutting_component>();
-    edge.tool_offset_length = length;
-    auto& tool = m.create<tools::milling_cutting_tool>();
-    tool.its_id = name;
-    tool.its_tool_body = &body;
-    tool.its_cutting_edge = {&edge};
-    tool.overall_assembly_length = length;
-    return &tool;
-  }
-
-  // Feed in m/s, spindle in rev/s (negative: clockwise, M3).
-  mill::milling_technology* technology(double feedrate, double spindle) {
-    auto& t = m.create<mill::milling_technology>();
-    t.feedrate = feedrate;
-    t.feedrate_reference = ms::tool_reference_point::tcp;
-    t.spindle = spindle;
-    t.synchronize_spindle_with_feed = false;
-    t.inhibit_feedrate_override = false;
-    t.inhibit_spindle_override = false;
-    return &t;
-  }
-
   mill::contour_parallel* contour_parallel() {
     auto& s = m.create<mill::contour_parallel>();
     s.allow_multiple_passes = true;
@@ -149,11 +119,11 @@ struct Shop {
       const char* rough_name, const char* finish_name, tools::milling_cutting_tool* tool, double rough_depth,
       double stepover, double finish_depth) {
     auto& rough = bottom_and_side<mill::bottom_and_side_rough_milling>(
-        rough_name, tool, technology(0.02, -50), rough_depth, stepover);  // 1200 mm/min, 3000 rev/min
+        rough_name, tool, technology(m, 0, 0.02, -50), rough_depth, stepover);  // 1200 mm/min, 3000 rev/min
     rough.allowance_side = 0.5;
     rough.allowance_bottom = 0.3;
     auto& finish = bottom_and_side<mill::bottom_and_side_finish_milling>(
-        finish_name, tool, technology(0.015, -60), finish_depth, stepover);  // 900 mm/min, 3600 rev/min
+        finish_name, tool, technology(m, 0, 0.015, -60), finish_depth, stepover);  // 900 mm/min, 3600 rev/min
     return {&rough, &finish};
   }
 
@@ -223,7 +193,7 @@ void build_l_pocket_island(Model& m) {
   pocket.its_boss = {&island};
   pocket.feature_boundary = &boundary;
 
-  auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
+  auto* mill_10 = milling_tool<tools::endmill>(m, "ENDMILL 10MM", 10, 3, 75);
   const auto [rough, finish] = shop.rough_and_finish("ROUGH L POCKET", "FINISH L POCKET", mill_10, 5, 5, 10);
   pocket.its_operations = {rough, finish};
   shop.main_workplan("L POCKET WITH ISLAND", {{&pocket, rough}, {&pocket, finish}});
@@ -247,7 +217,7 @@ void build_hole_milling(Model& m) {
   hole.diameter = shop.size(30);
   hole.bottom_condition = &m.create<ms::flat_hole_bottom>();
 
-  auto* mill_12 = shop.end_mill("ENDMILL 12MM", 12, 3, 80);
+  auto* mill_12 = milling_tool<tools::endmill>(m, "ENDMILL 12MM", 12, 3, 80);
   const auto [rough, finish] = shop.rough_and_finish("ROUGH HOLE D30", "FINISH HOLE D30", mill_12, 5, 6, 10);
   hole.its_operations = {rough, finish};
   shop.main_workplan("HOLE MILLED WITH A SMALLER END MILL", {{&hole, rough}, {&hole, finish}});
@@ -282,7 +252,7 @@ void build_open_profiles(Model& m) {
   auto& arc_pocket = shop.pocket<ms::open_pocket>("ARC OPEN POCKET", 85, 62, 30, "ARC DEPTH", 6);
   arc_pocket.open_boundary = &arc;
 
-  auto* mill_10 = shop.end_mill("ENDMILL 10MM", 10, 3, 75);
+  auto* mill_10 = milling_tool<tools::endmill>(m, "ENDMILL 10MM", 10, 3, 75);
   const auto [rough_trapezoid, finish_trapezoid] =
       shop.rough_and_finish("ROUGH TRAPEZOID", "FINISH TRAPEZOID", mill_10, 4, 5, 8);
   trapezoid_pocket.its_operations = {rough_trapezoid, finish_trapezoid};
