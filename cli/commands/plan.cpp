@@ -71,14 +71,14 @@ int run_plan(const PlanCommandOptions& options) {
   plan_options.sequence.fewest_tool_changes = options.order == "fewest-tool-changes";
   plan_options.toolpaths = options.toolpaths;
   if (options.remainder_first) plan_options.pass_order = machining::PassOrder::remainder_first;
-  planning::ToolLibrary library;
+  tooling::ToolList library;
   if (!options.tools.empty()) {
     std::string csv;
     if (const auto error = io::read_text(options.tools, csv)) {
       fmt::print(stderr, "error: {}\n", *error);
       return exit_failure;
     }
-    library = planning::read_tool_library(csv, options.tools);
+    library = tooling::read_tool_list(csv, options.tools);
     for (const std::string& error : library.errors) fmt::print(stderr, "{}\n", error);
     if (!library.ok()) return exit_invalid_input;
     plan_options.tools = &library;

@@ -150,9 +150,9 @@ class Planner {
       error(where, "has no tool (late binding) and no tool library was given (--tools)");
       return;
     }
-    const LibraryTool* chosen = nullptr;
+    const tooling::Tool* chosen = nullptr;
     std::string why;
-    for (const LibraryTool& tool : options_.tools->tools) {
+    for (const tooling::Tool& tool : options_.tools->tools) {
       if (!tool.available) continue;
       if (kind == OperationKind::grooving) {
         // The narrowest grooving tool fits any groove another one fits.
@@ -181,7 +181,7 @@ class Planner {
                             chosen->kind, chosen->line, why)});
   }
 
-  ms::cutting_tool& typed_tool(const LibraryTool& tool) {
+  ms::cutting_tool& typed_tool(const tooling::Tool& tool) {
     if (auto found = tools_.find(tool.number); found != tools_.end()) return *found->second;
     auto& edge = model_.create<ms::cutting_component>();
     edge.tool_offset_length = tool.length.value_or(0);

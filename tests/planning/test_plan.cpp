@@ -85,7 +85,7 @@ TEST_CASE("feeds are reduced to meet a target, each change reported", "[plan]") 
 
 TEST_CASE("late binding: the shaft without tools and technology validates, posts and meets Ra 1.6 um", "[plan]") {
   const auto library_text = slurp(data("library.csv"));
-  const planning::ToolLibrary library = planning::read_tool_library(library_text, "library.csv");
+  const tooling::ToolList library = tooling::read_tool_list(library_text, "library.csv");
   REQUIRE(library.ok());
   // PCLNR + CNMG120408: K_r 95, K'_r 180 - 95 - 80 = 5, r 0.8 (ISO 5608, ISO 1832).
   CHECK(*library.tools[1].side_cutting_edge_angle == 95);

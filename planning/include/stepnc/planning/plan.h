@@ -16,7 +16,7 @@
 #include "stepnc/machining/generate.h"
 #include "stepnc/machining/roughness.h"
 #include "stepnc/planning/sequence.h"
-#include "stepnc/planning/tool_library.h"
+#include "stepnc/tooling/tool_list.h"
 
 namespace stepnc::planning {
 
@@ -33,7 +33,7 @@ std::optional<RoughnessTarget> parse_roughness_target(std::string_view text, std
 /// What to plan.
 struct PlanOptions {
   std::optional<RoughnessTarget> roughness;  ///< reduce finishing feeds to meet it
-  const ToolLibrary* tools = nullptr;        ///< for late binding; null: every operation must have its own
+  const tooling::ToolList* tools = nullptr;        ///< for late binding; null: every operation must have its own
   SequenceOptions sequence;                  ///< re-sequencing, applied first (sequence.h)
   /// Write the generated motion of every turning operation that has none
   /// as explicit toolpaths (`toolpath_list` of `cutter_location_trajectory`

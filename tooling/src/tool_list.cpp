@@ -1,21 +1,16 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "stepnc/planning/tool_library.h"
+#include "stepnc/tooling/tool_list.h"
+
+#include "stepnc/tooling/iso_codes.h"
 
 #include <algorithm>
 #include <charconv>
-#include <map>
 #include <set>
 
 #include <fmt/format.h>
 
-namespace stepnc::planning {
+namespace stepnc::tooling {
 namespace {
-
-// ISO 5608 holder style (third letter of PCLNR): the approach angle K_r.
-const std::map<char, double> holder_kr = {{'A', 90}, {'B', 75}, {'D', 45}, {'F', 90}, {'G', 90}, {'J', 93},
-                                          {'K', 75}, {'L', 95}, {'N', 63}, {'R', 75}, {'S', 45}, {'V', 72.5}};
-// ISO 1832 insert shape (first letter of CNMG): the corner angle.
-const std::map<char, double> insert_corner = {{'C', 80}, {'D', 55}, {'S', 90}, {'T', 60}, {'V', 35}, {'W', 80}};
 
 const std::set<std::string_view> columns = {
     "tool",   "kind",   "name",        "diameter",        "corner_radius", "length",  "flutes",
@@ -37,8 +32,14 @@ std::vector<std::string_view> split(std::string_view line) {
 
 }  // namespace
 
-ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) {
-  ToolLibrary library;
+const Tool* ToolList::find(int number) const {
+  for (const Tool& tool : tools)
+    if (tool.number == number) return &tool;
+  return nullptr;
+}
+
+ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
+  ToolList library;
   std::vector<std::string> header;
   std::set<int> numbers;
   int line_number = 0;
@@ -67,11 +68,14 @@ ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) 
       if (!library.ok()) return library;
       continue;
     }
-    LibraryTool tool;
+    Tool tool;
     tool.line = line_number;
-    std::string holder, insert;
     bool ok = true;
-    for (std::size_t i = 0; i < cells.size() && i < header.size(); ++i) {
+    if (cells.size() != header.size()) {
+      fail(0, fmt::format("{} cells, the header names {}", cells.size(), header.size()));
+      continue;
+    }
+    for (std::size_t i = 0; i < cells.size(); ++i) {
       const std::string_view cell = cells[i];
       if (cell.empty()) continue;
       const std::string& column = header[i];
@@ -100,8 +104,8 @@ ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) 
       } else if (column == "kind") tool.kind = cell;
       else if (column == "name") tool.name = cell;
       else if (column == "hand") tool.hand = cell;
-      else if (column == "holder") holder = cell;
-      else if (column == "insert") insert = cell;
+      else if (column == "holder") tool.holder = cell;
+      else if (column == "insert") tool.insert = cell;
       else if (column == "available") tool.available = cell != "no";
       else if (column == "diameter") tool.diameter = number();
       else if (column == "corner_radius") tool.corner_radius = number();
@@ -112,28 +116,30 @@ ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) 
       else if (column == "side_cutting_edge_angle") tool.side_cutting_edge_angle = number();
       else if (column == "end_cutting_edge_angle") tool.end_cutting_edge_angle = number();
       else if (column == "width") tool.width = number();
-      else number();  // life_minutes, used_minutes: checked, not used by planning
+      else if (column == "life_minutes") tool.life_minutes = number();
+      else if (column == "used_minutes") tool.used_minutes = number();
     }
     if (!ok) continue;
     const auto column_index = [&](std::string_view name) {
       return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
     };
     // Explicit cells win over decoded codes (tool-list.md).
-    if (!holder.empty()) {
-      const auto kr = holder.size() >= 3 ? holder_kr.find(holder[2]) : holder_kr.end();
-      if (kr == holder_kr.end()) fail(column_index("holder"), fmt::format("holder '{}': unknown ISO 5608 style", holder));
-      else if (!tool.side_cutting_edge_angle) tool.side_cutting_edge_angle = kr->second;
-    }
-    if (!insert.empty()) {
-      const auto corner = insert_corner.find(insert.front());
-      int radius = -1;
-      if (insert.size() >= 10) std::from_chars(insert.data() + 8, insert.data() + 10, radius);
-      if (corner == insert_corner.end() || radius < 0) {
-        fail(column_index("insert"), fmt::format("insert '{}': not an ISO 1832 designation this library decodes", insert));
+    if (!tool.holder.empty()) {
+      if (const auto holder = decode_holder(tool.holder)) {
+        if (!tool.side_cutting_edge_angle) tool.side_cutting_edge_angle = holder->side_cutting_edge_angle;
+        if (tool.hand.empty()) tool.hand = holder->hand == 'R' ? "right" : holder->hand == 'L' ? "left" : "neutral";
       } else {
-        if (!tool.nose_radius) tool.nose_radius = radius / 10.0;
+        fail(column_index("holder"), fmt::format("holder '{}': not an ISO 5608 designation this library decodes", tool.holder));
+      }
+    }
+    if (!tool.insert.empty()) {
+      if (const auto insert = decode_insert(tool.insert)) {
+        if (!tool.nose_radius) tool.nose_radius = insert->nose_radius;
+        if (!tool.cutting_edge_length) tool.cutting_edge_length = insert->cutting_edge_length;
         if (!tool.end_cutting_edge_angle && tool.side_cutting_edge_angle)
-          tool.end_cutting_edge_angle = 180 - *tool.side_cutting_edge_angle - corner->second;
+          tool.end_cutting_edge_angle = end_cutting_edge_angle(*tool.side_cutting_edge_angle, insert->corner_angle);
+      } else {
+        fail(column_index("insert"), fmt::format("insert '{}': not an ISO 1832 designation this library decodes", tool.insert));
       }
     }
     if (tool.number > 0 && !numbers.insert(tool.number).second)
@@ -144,4 +150,4 @@ ToolLibrary read_tool_library(std::string_view csv, std::string_view file_name) 
   return library;
 }
 
-}  // namespace stepnc::planning
+}  // namespace stepnc::tooling
