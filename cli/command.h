@@ -42,6 +42,7 @@ void add_dump_command(CLI::App& app, Action& action);
 void add_post_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
 void add_gcode_command(CLI::App& app, Action& action);
+void add_import_command(CLI::App& app, Action& action);
 void add_kb_command(CLI::App& app, Action& action);
 void add_roughness_command(CLI::App& app, Action& action);
 void add_plan_command(CLI::App& app, Action& action);

@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   add_post_command(app, action);
   add_plot_command(app, action);
   add_gcode_command(app, action);
+  add_import_command(app, action);
   add_kb_command(app, action);
   add_roughness_command(app, action);
   add_plan_command(app, action);
