@@ -40,8 +40,8 @@ int run_program(const RunCommandOptions& options) {
   const auto magazine_text = read_input(options.magazine);
   const auto events_text = options.events.empty() ? std::optional<std::string>("") : read_input(options.events);
   if (!program_text || !magazine_text || !events_text) return exit_failure;
-  control::MagazineResult magazine = control::read_magazine(*magazine_text);
-  for (const std::string& e : magazine.errors) fmt::print(stderr, "{}:{}\n", options.magazine, e);
+  control::MagazineResult magazine = control::read_magazine(*magazine_text, options.magazine);
+  for (const std::string& e : magazine.errors) fmt::print(stderr, "{}\n", e);
   control::EventsResult events = control::read_events(*events_text);
   for (const std::string& e : events.errors) fmt::print(stderr, "{}:{}\n", options.events, e);
   if (!magazine.ok() || !events.ok()) return exit_invalid_input;

@@ -308,11 +308,15 @@ TEST_CASE("Bad input: unknown nodes and tools in events, bad magazines and event
   CHECK(lines.errors[3] == "4:1: unknown key \"when\" (event, tool, node, unit, at, before)");
 
   const control::MagazineResult csv = control::read_magazine("tool,kind,name,diametre\n1,endmill,A,10\nx,endmill,B,\n");
-  CHECK(csv.errors == std::vector<std::string>{"1:16: unknown column 'diametre'", "2:1: endmill A needs a diameter",
-                                               "3:1: tool: 'x' is not a tool number",
-                                               "3:1: endmill B needs a diameter"});
-  const control::MagazineResult twice = control::read_magazine("tool,kind,name,diameter\n1,endmill,A,10\n1,endmill,B,8\n");
-  CHECK(twice.errors == std::vector<std::string>{"3:1: tool 1 is listed twice (line 2)"});
+  CHECK(csv.errors == std::vector<std::string>{"magazine.csv:1:16: error: unknown column 'diametre'"});
+  const control::MagazineResult thin =
+      control::read_magazine("tool,kind,name,diameter\n1,endmill,A,\nx,endmill,B,\n", "m.csv");
+  CHECK(thin.errors == std::vector<std::string>{"m.csv:3:1: error: 'x' is not a tool number",
+                                                "m.csv:2:1: error: endmill A needs a diameter"});
+  const control::MagazineResult twice =
+      control::read_magazine("tool,kind,name,diameter\n1,endmill,A,10\n1,endmill,B,8\n2,endmill,A,8\n", "m.csv");
+  CHECK(twice.errors == std::vector<std::string>{"m.csv:3:1: error: tool 1 is listed twice",
+                                                 "m.csv:4:1: error: tool name 'A' is listed twice (line 2)"});
 }
 
 // Blocks generated for instance `id` (a workingstep or NC function).

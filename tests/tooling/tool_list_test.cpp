@@ -87,5 +87,14 @@ TEST_CASE("bad tool lists name file, line and column", "[tooling]") {
         "t.csv:2:3: error: holder 'PCQNR2525M12': not an ISO 5608 designation this library decodes");
   CHECK(first_error("tool,insert\n1,CNMG12\n") ==
         "t.csv:2:3: error: insert 'CNMG12': not an ISO 1832 designation this library decodes");
+  CHECK(first_error("tool,available\n1,maybe\n") == "t.csv:2:3: error: available: 'maybe' is neither yes nor no");
+  CHECK(first_error("kind,tool\nendmill,\n") == "t.csv:2:9: error: the row has no tool number");
   CHECK(first_error("") == "t.csv: error: no header row");
+}
+
+TEST_CASE("quoted cells keep their commas and quotes", "[tooling]") {
+  const ToolList list = read_tool_list("tool,name,diameter\n1,\"DRILL, 8 \"\"HSS\"\"\", 8\n", "t.csv");
+  REQUIRE(list.ok());
+  CHECK(list.tools[0].name == "DRILL, 8 \"HSS\"");
+  CHECK(*list.tools[0].diameter == 8);
 }

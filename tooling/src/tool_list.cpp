@@ -17,17 +17,40 @@ const std::set<std::string_view> columns = {
     "holder", "insert", "nose_radius", "cutting_edge_length", "side_cutting_edge_angle",
     "end_cutting_edge_angle", "hand", "width", "available", "life_minutes", "used_minutes"};
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> cells;
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = line.find(',', start);
-    std::string_view cell = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
-    while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
-    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t' || cell.back() == '\r')) cell.remove_suffix(1);
-    cells.push_back(cell);
-    if (comma == std::string_view::npos) return cells;
-    start = comma + 1;
+struct Cell {
+  std::string text;
+  std::size_t column = 1;  // 1-based, where the cell starts
+};
+
+// One CSV row (RFC 4180 quoting: double quotes protect commas, "" is a
+// quote); cells are trimmed of blanks outside quotes.
+std::vector<Cell> split(std::string_view line) {
+  std::vector<Cell> cells(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        cells.back().text += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        cells.back().text += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      cells.push_back({"", i + 2});
+    } else {
+      cells.back().text += c;
+    }
   }
+  for (Cell& cell : cells) {
+    const auto first = cell.text.find_first_not_of(" \t\r");
+    cell.text = first == std::string::npos ? "" : cell.text.substr(first, cell.text.find_last_not_of(" \t\r") - first + 1);
+  }
+  return cells;
 }
 
 }  // namespace
@@ -50,19 +73,14 @@ ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
     ++line_number;
     if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
     const auto cells = split(line);
-    // Column of cell i, 1-based, for messages.
-    const auto column_of = [&](std::size_t i) {
-      std::size_t column = 1;
-      for (std::size_t k = 0; k < i; ++k) column = line.find(',', column - 1) + 2;
-      return column;
-    };
+    const auto column_of = [&](std::size_t i) { return i < cells.size() ? cells[i].column : std::size_t{1}; };
     const auto fail = [&](std::size_t i, const std::string& message) {
       library.errors.push_back(fmt::format("{}:{}:{}: error: {}", file_name, line_number, column_of(i), message));
     };
     if (header.empty()) {
       for (std::size_t i = 0; i < cells.size(); ++i) {
-        if (!columns.count(cells[i])) fail(i, fmt::format("unknown column '{}'", cells[i]));
-        header.emplace_back(cells[i]);
+        if (!columns.count(cells[i].text)) fail(i, fmt::format("unknown column '{}'", cells[i].text));
+        header.push_back(cells[i].text);
       }
       if (std::find(header.begin(), header.end(), "tool") == header.end()) fail(0, "no 'tool' column");
       if (!library.ok()) return library;
@@ -76,7 +94,7 @@ ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
       continue;
     }
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      const std::string_view cell = cells[i];
+      const std::string_view cell = cells[i].text;
       if (cell.empty()) continue;
       const std::string& column = header[i];
       const auto number = [&]() -> std::optional<double> {
@@ -106,7 +124,10 @@ ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
       else if (column == "hand") tool.hand = cell;
       else if (column == "holder") tool.holder = cell;
       else if (column == "insert") tool.insert = cell;
-      else if (column == "available") tool.available = cell != "no";
+      else if (column == "available") {
+        if (cell != "yes" && cell != "no") fail(i, fmt::format("available: '{}' is neither yes nor no", cell)), ok = false;
+        tool.available = cell != "no";
+      }
       else if (column == "diameter") tool.diameter = number();
       else if (column == "corner_radius") tool.corner_radius = number();
       else if (column == "length") tool.length = number();
@@ -119,10 +140,11 @@ ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
       else if (column == "life_minutes") tool.life_minutes = number();
       else if (column == "used_minutes") tool.used_minutes = number();
     }
-    if (!ok) continue;
     const auto column_index = [&](std::string_view name) {
       return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
     };
+    if (ok && tool.number == 0) fail(column_index("tool"), "the row has no tool number"), ok = false;
+    if (!ok) continue;
     // Explicit cells win over decoded codes (tool-list.md).
     if (!tool.holder.empty()) {
       if (const auto holder = decode_holder(tool.holder)) {

@@ -42,13 +42,14 @@ struct Magazine {
 /// A magazine, and the problems found reading it.
 struct MagazineResult {
   Magazine magazine;                ///< the tools read
-  std::vector<std::string> errors;  ///< "line:column: message"
+  std::vector<std::string> errors;  ///< "file:line:column: error: message"
   bool ok() const { return errors.empty(); }  ///< no errors
 };
 
-/// Reads a tool list. Unknown columns and bad cells are errors naming
-/// line:column; milling tools need a diameter; numbers and names are unique.
-MagazineResult read_magazine(std::string_view csv);
+/// Reads a tool list with the one reader (tooling::read_tool_list), then
+/// applies the magazine's own rules: milling tools need a diameter, names
+/// are unique. `file_name` is used in the messages.
+MagazineResult read_magazine(std::string_view csv, std::string_view file_name = "magazine.csv");
 
 /// True for the kinds that mill (endmill, bullnose_endmill, ballnose_endmill, facemill).
 bool is_milling_cutter(std::string_view kind);
