@@ -127,5 +127,44 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   for (const auto& d : disagreements) FAIL_CHECK(d);
   CHECK(disagreements.empty());
   CHECK(runnable >= 150);
+  // The counts gcode/README.md gives (linuxcnc-uspace 2.9 as Debian ships it).
+  CHECK(runnable == 195);
+  CHECK(agree == 184);
+  CHECK(refused == 11);
+  CHECK(moves == 33443);
   CHECK(static_cast<double>(agree) >= 0.9 * static_cast<double>(runnable));
+}
+
+// Programs written for the cycles no shipped program uses (G74/G84 tapping,
+// G87/G88 boring, M19): each must run in rs274 -g and agree call for call.
+TEST_CASE("hand-made cycle programs agree with rs274 -g call for call", "[gcode][linuxcnc]") {
+  if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the LinuxCNC comparison is skipped");
+    return;
+  }
+  const auto list = read_tool_list(stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"));
+  REQUIRE(list.ok());
+  Options options;
+  options.tools = list.tools;
+  const auto controller = *stepnc::gcode::controller("rs274ngc");
+  const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_lcnc_hand_{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path table = dir / "tools.tbl", listing = dir / "out.canon";
+  std::ofstream(table) << linuxcnc_tool_table(list.tools);
+  // The calls compared in each (moves, spindle, orientation, dwells, ...), counted from rs274's listing.
+  const std::map<std::string, std::size_t> expected_calls = {{"tapping.ngc", 79}, {"boring.ngc", 128}, {"orient.ngc", 15}};
+  for (const auto& [name, count] : expected_calls) {
+    INFO(name);
+    const fs::path program = fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/rs274" / name;
+    fs::remove(listing);
+    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1",
+                                            dir.string(), table.string(), program.string(), listing.string());
+    REQUIRE(std::system(command.c_str()) == 0);
+    const auto theirs = canonical_calls(stepnc_test::read_file(listing));
+    const Result ours = interpret_text(stepnc_test::read_file(program), controller, options);
+    REQUIRE(ours.ok());
+    CHECK(compare_calls(canonical_calls(canonical_text(ours, 9)), theirs) == "");
+    CHECK(theirs.size() == count);
+  }
+  fs::remove_all(dir);
 }
