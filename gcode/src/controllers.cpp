@@ -76,7 +76,8 @@ constexpr MCodeEntry siemens_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 
 
 constexpr Controller controllers[] = {
     {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ@^",
-     .bracket_expressions = true, .o_word_statements = true, .orient_words = true},
+     .bracket_expressions = true, .o_word_statements = true, .orient_words = true,
+     .cycle_moves_at_retract_level = true},
     {.name = "fanuc-mill", .g_codes = fanuc_mill_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTXYZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true,
      .integer_is_least_increment = true, .dwell_p_milliseconds = true, .g80_clears_cycle_words = true,

@@ -1716,9 +1716,9 @@ class Interpreter {
         p[0] = x, p[1] = y, p[2] = zz;
         return p;
       };
-      // The holes are reached at the retract level (as rs274 -g 2.9 moves):
-      // G98 the initial level, G99 where the tool is; never below R.
-      const double level = std::max(retract_r_ ? program_position()[2] : cycle_initial_z_, r);
+      const double here = program_position()[2];
+      const double level =
+          c_.cycle_moves_at_retract_level ? std::max(retract_r_ ? here : cycle_initial_z_, r) : here;
       move(CallKind::rapid, at(level));
       if (fanuc_back_boring) {
         fanuc_back_bore(at, r, z);

@@ -92,6 +92,10 @@ struct Controller {
   // runs it, orients nothing without any of them (LinuxCNC); elsewhere M19
   // stops at the angle the machine builder set (Fanuc parameter 4077, 0 here).
   bool orient_words = false;
+  // Canned cycles reach each hole at the retract level (G98 the initial
+  // level, G99 where the tool is, never below R), as rs274 -g 2.9 moves;
+  // elsewhere at the level the tool is at.
+  bool cycle_moves_at_retract_level = false;
   // Fanuc mill G76: the direction of the shift Q at the bottom (parameter 5101 RD1/RD2).
   double fine_boring_shift_x = 1, fine_boring_shift_y = 0;
   RepetitiveCycleDefaults repetitive{};
