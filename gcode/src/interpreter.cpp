@@ -1020,6 +1020,8 @@ class Interpreter {
         siemens_drilling(n, block);
       } else if (n.call && (n.name == "CYCLE71" || n.name == "POCKET1" || n.name == "POCKET2")) {
         siemens_feature_cycle(n, block);
+      } else if (n.call && (n.name == "POCKET3" || n.name == "POCKET4" || n.name == "SLOT1")) {
+        siemens_pocket_or_slot(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
       } else {
@@ -1239,16 +1241,27 @@ class Interpreter {
         fail(error);
       }
     }
-    const double feed = state_.feed, speed = state_.spindle;
     const double finish_speed = face ? 0 : a[circular ? 16 : 19].value_or(0);
+    std::vector<std::size_t> finish_paths;
+    if (finish_path) finish_paths.push_back(*finish_path);
+    emit_feature_paths(paths, finish_paths, finish_speed, planes.rtp, event);
+  }
+
+  // A feature cycle's paths from RTP: SSF (finish_speed) for the finishing
+  // paths, the modal feed and spindle speed restored afterwards.
+  void emit_feature_paths(const std::vector<milling::Path>& paths, const std::vector<std::size_t>& finish_paths,
+                          double finish_speed, double rtp, CycleEvent& event) {
+    const double feed = state_.feed, speed = state_.spindle;
     for (std::size_t i = 0; i < paths.size(); ++i) {
-      if (finish_path == i && finish_speed > 0 && finish_speed != state_.spindle) {
-        state_.spindle = finish_speed;
+      const bool finishing = std::find(finish_paths.begin(), finish_paths.end(), i) != finish_paths.end();
+      const double wanted = finishing && finish_speed > 0 ? finish_speed : speed;
+      if (wanted != state_.spindle) {
+        state_.spindle = wanted;
         emit(CallKind::spindle_speed).v[0] = state_.spindle;
       }
-      if (program_position()[2] < planes.rtp) {
+      if (program_position()[2] < rtp) {
         auto p = program_position();
-        p[2] = planes.rtp;
+        p[2] = rtp;
         move(CallKind::rapid, p);
       }
       emit_milling_path(paths[i]);
@@ -1263,6 +1276,125 @@ class Interpreter {
     }
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
+  }
+
+  // POCKET3(RTP, RFP, SDIS, DP, LENG, WID, CRAD, PA, PO, STA, MID, FAL, FALD,
+  //         FFP1, FFD, CDIR, VARI, MIDA, AP1, AP2, AD, RAD1, DP1),
+  // POCKET4(RTP, RFP, SDIS, DP, PRAD, PA, PO, MID, FAL, FALD, FFP1, FFD,
+  //         CDIR, VARI, MIDA, AP1, AD, RAD1, DP1),
+  // SLOT1(RTP, RFP, SDIS, DP, DPR, NUM, LENG, WID, CPA, CPO, RAD, STA1, INDA,
+  //       FFD, FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF, _FALD, _STA2)
+  // ("Cycles" manual). Each is pocket_path's contour-parallel clearing: PA
+  // PO the pocket's centre; a slot is a LENG x WID pocket with corners of
+  // WID / 2 turned by STA1 + i INDA, its middle RAD from (CPA, CPO). Roughing
+  // stops FALD (_FALD) above DP. Straight insertion only (VARI tens 0, 1).
+  void siemens_pocket_or_slot(const NamedWord& n, const Block& block) {
+    const bool slot = n.name == "SLOT1", circular = n.name == "POCKET4";
+    CycleArguments arguments = cycle_arguments(n, block, slot ? 24 : circular ? 19 : 23);
+    auto& a = arguments.a;
+    auto need = [&](std::size_t i, const char* name) {
+      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
+      return *a[i];
+    };
+    auto length = [&](std::size_t i, const char* name) { return to_mm(need(i, name)); };
+    auto optional_length = [&](std::size_t i) { return a[i] ? to_mm(*a[i]) : 0.0; };
+    // Where each parameter sits in the three lists.
+    struct Places {
+      std::size_t mid, fal, fald, ffp1, ffd, cdir, vari;
+    };
+    const Places at = slot ? Places{15, 17, 22, 14, 13, 16, 18} : circular ? Places{7, 8, 9, 10, 11, 12, 13}
+                                                                           : Places{10, 11, 12, 13, 14, 15, 16};
+    milling::Pocket p;
+    p.planes.rtp = length(0, "RTP");
+    p.planes.rfp = length(1, "RFP");
+    p.planes.sdis = optional_length(2);
+    p.planes.dp = slot && !a[3] ? p.planes.rfp - length(4, "DP or DPR") : length(3, "DP");
+    p.max_depth = length(at.mid, "MID");
+    p.allowance = optional_length(at.fal);
+    const double bottom_allowance = optional_length(at.fald);
+    p.feed = length(at.ffp1, "FFP1");
+    p.plunge_feed = length(at.ffd, "FFD");
+    const int cdir = to_int(need(at.cdir, "CDIR"), n.column);
+    if (cdir < 0 || cdir > 3) stop(fmt::format("{}: CDIR {} (0 climb, 1 conventional, 2 G2, 3 G3)", n.name, cdir), n.column);
+    p.ccw = cdir == 3 || (cdir < 2 && (cdir == 0) == (state_.spindle_direction >= 0));
+    const int vari = to_int(a[at.vari].value_or(0), n.column);
+    const int units = vari % 10, insertion = vari / 10;
+    if (vari < 0 || units > 2 || (!slot && units == 0) || insertion > 3)
+      stop(fmt::format("{}: VARI {} (units {}; tens 0-3 the insertion)", n.name, vari,
+                       slot ? "0 complete, 1 rough, 2 finish" : "1 rough, 2 finish"),
+           n.column);
+    if (insertion >= 2)
+      unsupported(fmt::format("{} VARI {} ({} insertion)", n.name, vari, insertion == 2 ? "helical" : "oscillating"),
+                  n.column);
+    if (const auto it = siemens_tools_.find(state_.tool); it != siemens_tools_.end() && it->second.diameter > 0)
+      p.tool_radius = it->second.diameter / 2;
+    else if (const auto t = o_.tools.find(state_.tool); t != o_.tools.end())
+      p.tool_radius = t->second.diameter / 2;
+    double finish_speed = 0;
+    std::vector<std::pair<double, double>> centres;  // and the angle of each slot
+    std::vector<double> angles;
+    if (slot) {
+      p.length = length(6, "LENG");
+      p.width = length(7, "WID");
+      if (!(p.width > 0) || p.length < p.width)
+        stop(fmt::format("SLOT1: WID {} must be above zero and at most LENG {}", to_units(p.width), to_units(p.length)),
+             n.column);
+      p.corner_radius = p.width / 2;
+      const int count = to_int(need(5, "NUM"), n.column);
+      if (count < 1 || count > 1000) stop(fmt::format("SLOT1: NUM {} must be a count from 1 to 1000", count), n.column);
+      const double cpa = length(8, "CPA"), cpo = length(9, "CPO"), rad = optional_length(10);
+      const double first = a[11].value_or(0), index = a[12] && *a[12] != 0 ? *a[12] : 360.0 / count;
+      for (int i = 0; i < count; ++i) {
+        const double angle = first + i * index;
+        centres.emplace_back(cpa + rad * std::cos(angle * deg), cpo + rad * std::sin(angle * deg));
+        angles.push_back(angle);
+      }
+      p.finish_depth = a[19] ? to_mm(*a[19]) : p.max_depth;
+      p.finish_feed = a[20] ? to_mm(*a[20]) : p.feed;
+      finish_speed = a[21].value_or(0);
+    } else {
+      if (circular) {
+        p.circular = true;
+        p.length = p.width = 2 * length(4, "PRAD");
+        p.corner_radius = p.length / 2;
+      } else {
+        p.length = length(4, "LENG");
+        p.width = length(5, "WID");
+        p.corner_radius = optional_length(6);
+      }
+      centres.emplace_back(length(circular ? 5 : 7, "PA"), length(circular ? 6 : 8, "PO"));
+      angles.push_back(circular ? 0 : a[9].value_or(0));
+      p.stepover = optional_length(circular ? 14 : 17);
+      for (const std::size_t blank : circular ? std::vector<std::size_t>{15, 16} : std::vector<std::size_t>{18, 19, 20})
+        if (a[blank] && *a[blank] != 0)
+          unsupported(fmt::format("{} with a pre-machined blank (AP1, AP2, AD)", n.name), n.column);
+      p.finish_depth = p.max_depth;
+      p.finish_feed = p.feed;  // POCKET3/4 finish at FFP1
+    }
+    const double start_z = program_position()[2], dp = p.planes.dp;
+    std::vector<milling::Path> paths;
+    std::vector<std::size_t> finish_paths;
+    std::string error;
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+      milling::Pocket one = p;
+      std::tie(one.cx, one.cy) = centres[i];
+      one.angle_deg = angles[i];
+      if (units != 2) {  // roughing leaves FAL on the walls and FALD on the floor
+        one.planes.dp = dp + bottom_allowance;
+        if (one.planes.dp > one.planes.rfp) stop(fmt::format("{}: DP plus FALD lies above RFP", n.name), n.column);
+        paths.push_back(milling::pocket_path(one, start_z, budget(), error));
+        if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
+      }
+      if (units != 1) {
+        one.planes.dp = dp;
+        one.finish = true;
+        one.allowance = 0;
+        finish_paths.push_back(paths.size());
+        paths.push_back(milling::pocket_path(one, start_z, budget(), error));
+        if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
+      }
+    }
+    emit_feature_paths(paths, finish_paths, finish_speed, p.planes.rtp, arguments.event);
   }
 
   // What is left of the call budget, for a cycle that builds its path first.
