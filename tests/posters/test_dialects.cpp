@@ -51,7 +51,7 @@ TEST_CASE("hole cycles in each dialect") {
   // RTP, RFP, SDIS, DP, DPR(, DTB ...)
   CHECK(siemens.find(" CYCLE82(5,0,2,-2,,0.5)\n") != std::string::npos);
   // ..., FDEP, FDPR, DAM, DTB, DTS, FRF, VARI
-  CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-6,,6,0,0,1,1)\n") != std::string::npos);
+  CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-4,,6,0,0,1,1)\n") != std::string::npos);
   // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
   CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,3,,1.5,,300,300)\n") != std::string::npos);
   CHECK(siemens.find("CYCLE86") == std::string::npos);
