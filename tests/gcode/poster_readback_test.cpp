@@ -16,6 +16,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <variant>
 
 #include "canonical_compare.h"
 #include "projects.h"
@@ -374,4 +375,41 @@ TEST_CASE("the milling features project reads back in every dialect, oriented st
     CHECK(report.text() == "");
     CHECK(report.cells_checked > 100);
   }
+}
+
+// Issue 11, item 5: a Fanuc G71 the poster writes (the shaft with constant
+// roughing depths, so the generator offers the cycle) moves as Fanuc's
+// G71 type I does by the manual (cycle start point A, passes Δd apart from
+// A's X, a 45 degree lift by e and the return along Z at the lifted level,
+// then the next infeed): A sits at the stock, and the generator's passes
+// of such a cycle return along Z and feed in from there, so the read-back
+// equals the poster's canonical listing.
+TEST_CASE("a Fanuc G71 the poster writes reads back to its canonical motion", "[gcode][posters]") {
+  auto described = testing::describe_sample("turning/shaft.stp");
+  REQUIRE(described.ok());
+  std::size_t made_constant = 0;
+  for (auto& op : described.project.operations)
+    if (auto* uni = std::get_if<machining::UnidirectionalTurning>(&op.strategy)) {
+      uni->cutting_depths = {2};
+      ++made_constant;
+    }
+  REQUIRE(made_constant > 0);
+  const auto generated = machining::generate(described.project);
+  REQUIRE(generated.ok());
+  const post::PrintedProgram printed = post::print(generated.program, post::Dialect::fanuc);
+  REQUIRE(printed.text.find("G71 U2. R") != std::string::npos);
+  CHECK(read_back_project("shaft with 2 mm roughing depths", described.project, post::Dialect::fanuc) == "");
+  // Fanuc's passes run from A: the first at the stock diameter less 2 Δd.
+  const gcode::Controller controller = *gcode::controller("fanuc-lathe");
+  const gcode::Result read = gcode::interpret(gcode::parse_program(printed.text, controller), controller,
+                                              tools_of(generated.program));
+  REQUIRE(read.ok());
+  const auto g71 = std::find_if(read.cycles.begin(), read.cycles.end(), [](const auto& c) { return c.name == "G71"; });
+  REQUIRE(g71 != read.cycles.end());
+  const double stock = described.project.workpiece.stock_radius;
+  const gcode::Call* first_cut = nullptr;
+  for (std::uint32_t i = g71->first_call; i < g71->end_call && !first_cut; ++i)
+    if (read.calls[i].kind == gcode::CallKind::linear) first_cut = &read.calls[i];
+  REQUIRE(first_cut);
+  CHECK(first_cut->v[0] == Approx(stock - 2));
 }
