@@ -75,7 +75,7 @@ constexpr MCodeEntry siemens_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 
                                     {7, 8}, {8, 8}, {9, 8}, {17, 4}, {30, 4}};
 
 constexpr Controller controllers[] = {
-    {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ@^",
+    {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDEFGHIJKLMNPQRSTUVWXYZ@^",
      .bracket_expressions = true, .o_word_statements = true, .orient_words = true,
      .cycle_moves_at_retract_level = true},
     {.name = "fanuc-mill", .g_codes = fanuc_mill_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTXYZ",

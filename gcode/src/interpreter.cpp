@@ -708,6 +708,7 @@ class Interpreter {
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
+    if (w.has('E') && !has_g(w, 760)) stop("E word with no G76 to use it", w.col('E'));
     named_words(block, w);
 
     // 2 feed mode, 3 F, 4 S, 5 T
@@ -1564,7 +1565,7 @@ class Interpreter {
     switch (code) {
       case 50: unsupported("G5 cubic splines", column);
       case 52: case 53: unsupported("G5.2/G5.3 NURBS blocks", column);
-      case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
+      case 331: unsupported("G33.1 rigid tapping", column);
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
       case 410: case 411: case 420: case 421:
         unsupported(c_.diameter_x ? "G41/G42 tool nose radius compensation (with its tip direction)"
@@ -1648,6 +1649,7 @@ class Interpreter {
       case meaning_left_hand_tapping: case meaning_tapping: case meaning_fine_boring: case meaning_back_boring:
       case meaning_manual_boring: cycle(w, block); return;
       case meaning_turning_cycle: case meaning_threading_cycle: case meaning_facing_cycle: single_cycle(w, block); return;
+      case 760: linuxcnc_threading(w); return;
       case 330: {  // spindle-synchronised motion: LinuxCNC G33 K, Fanuc G32 F (the lead)
         const char letter = c_.thread_pitch_letter;
         const int code = letter == 'F' ? 32 : 33;
@@ -2064,6 +2066,40 @@ class Interpreter {
       }
     }
     if (synchronised) emit(CallKind::feed_sync_stop);
+  }
+
+  // LinuxCNC G76 P(pitch) Z I J K [R Q H E L] in G18 from the drive line
+  // (where the tool is); I J K are diameters in G7. Tapered ends (L 1-3)
+  // are refused by name.
+  void linuxcnc_threading(const Words& w) {
+    if (plane_ != 18) stop("G76 threading needs the XZ plane (G18)");
+    for (const char c : std::string_view("PZIJK"))
+      if (!w.has(c)) stop(fmt::format("G76 needs {}", c));
+    if (w.has('L') && w.get('L') != 0) unsupported(fmt::format("G76 L{} (tapered thread ends)", w.get('L')), w.col('L'));
+    const double pitch = to_mm(w.get('P'));
+    if (!(pitch > 0)) stop("G76 needs a pitch P above zero", w.col('P'));
+    const auto start = program_position();
+    const double radial = diameter_ ? 0.5 : 1;
+    lathe::LinuxcncThreading t;
+    t.start = {start[0], start[2]};
+    t.end_z = incremental_ ? start[2] + to_mm(w.get('Z')) : to_mm(w.get('Z'));
+    t.peak_offset = to_mm(w.get('I')) * radial;
+    t.initial_depth = to_mm(w.get('J')) * radial;
+    t.full_depth = to_mm(w.get('K')) * radial;
+    if (w.has('R')) t.degression = w.get('R');
+    if (w.has('Q')) t.compound_angle_deg = w.get('Q');
+    if (w.has('H')) {
+      if (w.get('H') != std::floor(w.get('H')) || w.get('H') > 1e6) stop("G76 H must be a whole number of passes", w.col('H'));
+      t.spring_passes = static_cast<int>(w.get('H'));
+    }
+    CycleEvent event = begin_cycle("G76", w, "");
+    for (const char c : std::string_view("PZIJKRQHEL"))
+      if (w.has(c)) event.parameters.emplace_back(c, std::string_view("PZIJKE").find(c) != std::string_view::npos ? to_mm(w.get(c)) : w.get(c));
+    lathe::Path path;
+    const std::string problem = lathe::linuxcnc_thread(t, path, budget());
+    if (!problem.empty()) stop(fmt::format("G76: {}", problem));
+    emit_path(path, pitch);
+    end_cycle(std::move(event));
   }
 
   CycleEvent begin_cycle(std::string name, const Words& w, std::string_view letters) {

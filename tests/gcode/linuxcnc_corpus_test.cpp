@@ -136,7 +136,7 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
 }
 
 // Programs written for the cycles no shipped program uses (G74/G84 tapping,
-// G87/G88 boring, M19): each must run in rs274 -g and agree call for call.
+// G87/G88 boring, M19, G76 threading): each must run in rs274 -g and agree call for call.
 TEST_CASE("hand-made cycle programs agree with rs274 -g call for call", "[gcode][linuxcnc]") {
   if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
     WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the LinuxCNC comparison is skipped");
@@ -152,7 +152,7 @@ TEST_CASE("hand-made cycle programs agree with rs274 -g call for call", "[gcode]
   const fs::path table = dir / "tools.tbl", listing = dir / "out.canon";
   std::ofstream(table) << linuxcnc_tool_table(list.tools);
   // The calls compared in each (moves, spindle, orientation, dwells, ...), counted from rs274's listing.
-  const std::map<std::string, std::size_t> expected_calls = {{"tapping.ngc", 79}, {"boring.ngc", 128}, {"orient.ngc", 15}};
+  const std::map<std::string, std::size_t> expected_calls = {{"tapping.ngc", 79}, {"boring.ngc", 128}, {"orient.ngc", 15}, {"threading.ngc", 288}};
   for (const auto& [name, count] : expected_calls) {
     INFO(name);
     const fs::path program = fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/rs274" / name;
