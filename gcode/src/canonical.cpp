@@ -76,6 +76,10 @@ class CallPrinter {
         break;
       case CallKind::feed_sync_stop: out_ += "STOP_SPEED_FEED_SYNCH("; break;
       case CallKind::quadratic_spline: out_ += "NURBS_FEED(3, ..."; break;  // rs274 -g prints no points
+      case CallKind::spindle_orient:
+        fmt::format_to(std::back_inserter(out_), "ORIENT_SPINDLE(0, {}, {}", num(v[0]), static_cast<int>(v[1]));
+        break;
+      case CallKind::spindle_orient_wait: out_ += "SPINDLE.0.WAIT_ORIENT_COMPLETE("; list({v[0]}); break;
     }
     out_ += ")";
   }

@@ -39,11 +39,12 @@ constexpr MCodeEntry rs274ngc_m[] = {
 constexpr GCodeEntry fanuc_mill_g[] = {
     {0, 1, same},    {10, 1, same},   {20, 1, same},   {30, 1, same},   {40, 0, same},   {170, 2, same},
     {180, 2, same},  {190, 2, same},  {200, 6, same},  {210, 6, same},  {280, 0, same},  {300, 0, same},
-    {400, 7, same},  {410, 7, same},  {420, 7, same},  {430, 8, same},  {440, 8, 4400},   {490, 8, same},
+    {400, 7, same},  {410, 7, same},  {420, 7, same},  {430, 8, same},  {440, 8, meaning_negative_length_offset},   {490, 8, same},
     {530, 0, same},  {540, 12, same}, {550, 12, same}, {560, 12, same}, {570, 12, same}, {580, 12, same},
-    {590, 12, same}, {610, 13, same}, {640, 13, same}, {680, 16, 680},  {690, 16, 690},  {730, 1, same},
+    {590, 12, same}, {610, 13, same}, {640, 13, same}, {680, 16, meaning_rotation},  {690, 16, 690},  {730, 1, same},
     {740, 1, meaning_left_hand_tapping},  {760, 1, meaning_fine_boring},  {800, 1, same},  {810, 1, same},
-    {820, 1, same},  {830, 1, same},  {840, 1, meaning_tapping},  {850, 1, same},  {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},
+    {820, 1, same},  {830, 1, same},  {840, 1, meaning_tapping},  {850, 1, same},  {860, 1, same},
+    {870, 1, meaning_back_boring},  {880, 1, meaning_manual_boring},  {890, 1, same},
     {900, 3, same},  {910, 3, same},  {920, 0, same},  {940, 5, same},  {950, 5, same},  {980, 10, same},
     {990, 10, same}};
 // Fanuc lathe (0i-TF, G-code system A): G90/G92/G94 are single cycles,
@@ -58,7 +59,7 @@ constexpr GCodeEntry fanuc_lathe_g[] = {
     {740, 0, meaning_end_face_peck_drilling}, {750, 0, meaning_diameter_grooving}, {760, 0, meaning_multiple_threading},
     {800, 10, same}, {900, 1, meaning_turning_cycle}, {920, 1, meaning_threading_cycle}, {940, 1, meaning_facing_cycle}, {960, 2, same}, {970, 2, same}, {980, 5, 940}, {990, 5, 950}};
 constexpr MCodeEntry fanuc_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 7}, {6, 6},
-                                  {7, 8}, {8, 8}, {9, 8}, {30, 4}, {98, 11}, {99, 11}};
+                                  {7, 8}, {8, 8}, {9, 8}, {19, 7}, {30, 4}, {98, 11}, {99, 11}};
 
 // Siemens 840D (ISO dialect core): G70/G71 are inch/metric, G4 takes F
 // (seconds), G74 approaches the reference point of the machine axes it
@@ -74,8 +75,9 @@ constexpr MCodeEntry siemens_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 
                                     {7, 8}, {8, 8}, {9, 8}, {17, 4}, {30, 4}};
 
 constexpr Controller controllers[] = {
-    {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ@^",
-     .bracket_expressions = true, .o_word_statements = true},
+    {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDEFGHIJKLMNPQRSTUVWXYZ@^",
+     .bracket_expressions = true, .o_word_statements = true, .orient_words = true,
+     .cycle_moves_at_retract_level = true},
     {.name = "fanuc-mill", .g_codes = fanuc_mill_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTXYZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true,
      .integer_is_least_increment = true, .dwell_p_milliseconds = true, .g80_clears_cycle_words = true,
@@ -119,7 +121,8 @@ std::optional<std::uint8_t> m_group(const Controller& c, int code) {
 std::optional<std::uint8_t> meaning_group(int meaning10) {
   if (meaning10 == meaning_spindle_clamp_or_set) return 0;
   if (meaning10 > 5000) return 1;  // the cycles RS274NGC has no code for
-  if (meaning10 == 680 || meaning10 == 690) return 16;
+  if (meaning10 == meaning_rotation || meaning10 == 690) return 16;
+  if (meaning10 == meaning_negative_length_offset) return 8;
   const auto it = std::find_if(std::begin(rs274ngc_g), std::end(rs274ngc_g),
                                [&](const GCodeEntry& e) { return e.code == meaning10; });
   if (it == std::end(rs274ngc_g)) return std::nullopt;

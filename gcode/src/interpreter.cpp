@@ -251,20 +251,75 @@ class Interpreter {
     return result_.calls.back();
   }
 
+  // Positions in program coordinates; under G68 the program's XY are turned
+  // about the rotation centre, and the calls carry the turned path.
   std::array<double, axes> program_position() const {
     std::array<double, axes> out{};
     for (int a = 0; a < axes; ++a) out[a] = machine_[a] - g5x_[coord_system_][a] - g92_[a];
     out[2] -= tool_offset_;
-    return out;
+    return rotated(out, -1);
   }
-  void set_program_position(const std::array<double, axes>& p) {
+  void set_program_position(const std::array<double, axes>& program) {
+    const auto p = rotated(program, 1);
     for (int a = 0; a < axes; ++a) machine_[a] = p[a] + g5x_[coord_system_][a] + g92_[a];
     machine_[2] += tool_offset_;
   }
 
+  // Fanuc G68 (0i-MF, G17): centre X Y (the current position where left
+  // out), angle R in degrees counter-clockwise; G69 cancels.
+  struct Rotation {
+    double x = 0, y = 0, angle_deg = 0;
+  };
+  std::optional<Rotation> rotation_;
+  std::array<double, axes> rotated(std::array<double, axes> p, int sense) const {
+    if (!rotation_) return p;
+    const double a = sense * rotation_->angle_deg * deg, dx = p[0] - rotation_->x, dy = p[1] - rotation_->y;
+    p[0] = rotation_->x + dx * std::cos(a) - dy * std::sin(a);
+    p[1] = rotation_->y + dx * std::sin(a) + dy * std::cos(a);
+    return p;
+  }
+  void rotate_coordinates(Words& w, std::uint32_t column) {
+    if (plane_ != 17) unsupported("G68 coordinate rotation outside G17", column);
+    if (w.has('Z')) stop("G68 in G17 takes X and Y (the centre) and R (the angle), not Z", w.col('Z'));
+    if (!w.has('R')) stop("G68 needs R, the angle of rotation", column);
+    const auto here = program_position();
+    Rotation r;
+    r.x = w.has('X') ? to_mm(w.get('X')) : here[0];
+    r.y = w.has('Y') ? to_mm(w.get('Y')) : here[1];
+    r.angle_deg = w.get('R');
+    if (std::abs(r.angle_deg) > 360) stop("G68 R must be an angle from -360 to 360 degrees", w.col('R'));
+    rotation_ = r;  // the tool stays; its program coordinates turn back about the centre
+    for (char c : std::string_view("XYR")) w.value[slot(c)].reset();
+  }
+
+  // M19 and 840D SPOS=: an oriented spindle stop (the spindle halts at the angle).
+  void orient_spindle(const Words& w) {
+    double angle = 0, mode = 0;
+    if (c_.orient_words) {
+      state_.spindle_direction = 0;
+      if (w.has('R')) angle = w.get('R');
+      if (angle < 0 || angle > 360) stop("M19 R must be an angle from 0 to 360 degrees", w.col('R'));
+      if (w.has('P')) mode = w.get('P');
+      if (mode != 0 && mode != 1 && mode != 2) stop("M19 P must be 0, 1 or 2 (the direction to turn to the angle)", w.col('P'));
+      if (w.has('Q') && !(w.get('Q') >= 0)) stop("M19 Q must be a time to wait, 0 or more", w.col('Q'));
+    } else if (w.has('R')) {
+      stop("M19 R: the orientation angle is the machine's parameter here", w.col('R'));
+    }
+    // rs274 -g 2.9 orients only for R or P and waits only for Q (a bare M19 prints nothing).
+    if (!c_.orient_words || w.has('R') || w.has('P')) spindle_orient(angle, mode);
+    if (c_.orient_words && w.has('Q')) emit(CallKind::spindle_orient_wait).v[0] = w.get('Q');
+  }
+  void spindle_orient(double angle, double mode) {
+    state_.spindle_direction = 0;
+    Call& call = emit(CallKind::spindle_orient);
+    call.v[0] = angle;
+    call.v[1] = mode;
+  }
+
   void move(CallKind kind, const std::array<double, axes>& target) {
     Call& call = emit(kind);
-    std::copy(target.begin(), target.end(), call.v.begin());
+    const auto path = rotated(target, 1);
+    std::copy(path.begin(), path.end(), call.v.begin());
     set_program_position(target);
     last_move_ = target;
   }
@@ -653,6 +708,7 @@ class Interpreter {
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
+    if (w.has('E') && !has_g(w, 760)) stop("E word with no G76 to use it", w.col('E'));
     named_words(block, w);
 
     // 2 feed mode, 3 F, 4 S, 5 T
@@ -717,7 +773,7 @@ class Interpreter {
         case 3: state_.spindle_direction = 1; emit(CallKind::spindle_clockwise); break;
         case 4: state_.spindle_direction = -1; emit(CallKind::spindle_counterclockwise); break;
         case 5: state_.spindle_direction = 0; emit(CallKind::spindle_stop); break;
-        case 19: unsupported("M19 spindle orientation", column);
+        case 19: orient_spindle(w); break;
         default: break;
       }
     }
@@ -767,7 +823,7 @@ class Interpreter {
     // 13 cutter compensation (G40 only), 14 tool length
     if (auto g = g_of(w, 8)) {
       double length = 0;
-      if (g->first == 430) {
+      if (g->first == 430 || g->first == meaning_negative_length_offset) {
         int tool = state_.tool;
         if (w.has('H')) tool = to_int(w.get('H'), w.col('H'));
         if (tool != 0) {
@@ -779,6 +835,7 @@ class Interpreter {
           }
         }
       }
+      if (g->first == meaning_negative_length_offset) length = -length;  // Fanuc G44 subtracts H
       tool_offset_ = length;  // the machine stays; the program's Z shifts (RS274NGC 3.6.2)
       emit(CallKind::tool_length_offset).v[0] = length;
     }
@@ -815,7 +872,12 @@ class Interpreter {
           break;
         case 921: case 922: g92_reset(code == 921); break;
         case 923: g92_restore(); break;
-        case 530: machine_coordinates = true; break;
+        case 530:
+          if (rotation_) unsupported("G53 while G68 coordinate rotation is on", column);
+          machine_coordinates = true;
+          break;
+        case meaning_rotation: rotate_coordinates(w, column); axes_used = true; break;
+        case 690: rotation_.reset(); break;
         default: break;
       }
     }
@@ -933,6 +995,10 @@ class Interpreter {
         reference_axes_[static_cast<std::size_t>(n.name[0] - 'X')] = true;
       } else if (n.name == "LIMS" && !n.call) {
         css_limit_ = value();
+      } else if (n.name == "SPOS" && !n.call) {
+        const double angle = value();
+        if (angle < 0 || angle >= 360) stop("SPOS= must be an angle from 0 to below 360 degrees", n.column);
+        spindle_orient(angle, 0);
       } else if (n.name.starts_with("$TC_DP") && !n.call) {
         if (n.indices.size() != 2) stop(fmt::format("{} needs [tool, edge]", n.name), n.column);
         const int tool = to_int(eval(n.indices[0], n.column), n.column);
@@ -955,6 +1021,8 @@ class Interpreter {
         siemens_drilling(n, block);
       } else if (n.call && (n.name == "CYCLE71" || n.name == "POCKET1" || n.name == "POCKET2")) {
         siemens_feature_cycle(n, block);
+      } else if (n.call && (n.name == "POCKET3" || n.name == "POCKET4" || n.name == "SLOT1")) {
+        siemens_pocket_or_slot(n, block);
       } else if (n.call) {
         unsupported(fmt::format("{} ({} cycle)", n.name, c_.name), n.column);
       } else {
@@ -1174,16 +1242,27 @@ class Interpreter {
         fail(error);
       }
     }
-    const double feed = state_.feed, speed = state_.spindle;
     const double finish_speed = face ? 0 : a[circular ? 16 : 19].value_or(0);
+    std::vector<std::size_t> finish_paths;
+    if (finish_path) finish_paths.push_back(*finish_path);
+    emit_feature_paths(paths, finish_paths, finish_speed, planes.rtp, event);
+  }
+
+  // A feature cycle's paths from RTP: SSF (finish_speed) for the finishing
+  // paths, the modal feed and spindle speed restored afterwards.
+  void emit_feature_paths(const std::vector<milling::Path>& paths, const std::vector<std::size_t>& finish_paths,
+                          double finish_speed, double rtp, CycleEvent& event) {
+    const double feed = state_.feed, speed = state_.spindle;
     for (std::size_t i = 0; i < paths.size(); ++i) {
-      if (finish_path == i && finish_speed > 0 && finish_speed != state_.spindle) {
-        state_.spindle = finish_speed;
+      const bool finishing = std::find(finish_paths.begin(), finish_paths.end(), i) != finish_paths.end();
+      const double wanted = finishing && finish_speed > 0 ? finish_speed : speed;
+      if (wanted != state_.spindle) {
+        state_.spindle = wanted;
         emit(CallKind::spindle_speed).v[0] = state_.spindle;
       }
-      if (program_position()[2] < planes.rtp) {
+      if (program_position()[2] < rtp) {
         auto p = program_position();
-        p[2] = planes.rtp;
+        p[2] = rtp;
         move(CallKind::rapid, p);
       }
       emit_milling_path(paths[i]);
@@ -1198,6 +1277,125 @@ class Interpreter {
     }
     event.end_call = static_cast<std::uint32_t>(result_.calls.size());
     result_.cycles.push_back(std::move(event));
+  }
+
+  // POCKET3(RTP, RFP, SDIS, DP, LENG, WID, CRAD, PA, PO, STA, MID, FAL, FALD,
+  //         FFP1, FFD, CDIR, VARI, MIDA, AP1, AP2, AD, RAD1, DP1),
+  // POCKET4(RTP, RFP, SDIS, DP, PRAD, PA, PO, MID, FAL, FALD, FFP1, FFD,
+  //         CDIR, VARI, MIDA, AP1, AD, RAD1, DP1),
+  // SLOT1(RTP, RFP, SDIS, DP, DPR, NUM, LENG, WID, CPA, CPO, RAD, STA1, INDA,
+  //       FFD, FFP1, MID, CDIR, FAL, VARI, MIDF, FFP2, SSF, _FALD, _STA2)
+  // ("Cycles" manual). Each is pocket_path's contour-parallel clearing: PA
+  // PO the pocket's centre; a slot is a LENG x WID pocket with corners of
+  // WID / 2 turned by STA1 + i INDA, its middle RAD from (CPA, CPO). Roughing
+  // stops FALD (_FALD) above DP. Straight insertion only (VARI tens 0, 1).
+  void siemens_pocket_or_slot(const NamedWord& n, const Block& block) {
+    const bool slot = n.name == "SLOT1", circular = n.name == "POCKET4";
+    CycleArguments arguments = cycle_arguments(n, block, slot ? 24 : circular ? 19 : 23);
+    auto& a = arguments.a;
+    auto need = [&](std::size_t i, const char* name) {
+      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
+      return *a[i];
+    };
+    auto length = [&](std::size_t i, const char* name) { return to_mm(need(i, name)); };
+    auto optional_length = [&](std::size_t i) { return a[i] ? to_mm(*a[i]) : 0.0; };
+    // Where each parameter sits in the three lists.
+    struct Places {
+      std::size_t mid, fal, fald, ffp1, ffd, cdir, vari;
+    };
+    const Places at = slot ? Places{15, 17, 22, 14, 13, 16, 18} : circular ? Places{7, 8, 9, 10, 11, 12, 13}
+                                                                           : Places{10, 11, 12, 13, 14, 15, 16};
+    milling::Pocket p;
+    p.planes.rtp = length(0, "RTP");
+    p.planes.rfp = length(1, "RFP");
+    p.planes.sdis = optional_length(2);
+    p.planes.dp = slot && !a[3] ? p.planes.rfp - length(4, "DP or DPR") : length(3, "DP");
+    p.max_depth = length(at.mid, "MID");
+    p.allowance = optional_length(at.fal);
+    const double bottom_allowance = optional_length(at.fald);
+    p.feed = length(at.ffp1, "FFP1");
+    p.plunge_feed = length(at.ffd, "FFD");
+    const int cdir = to_int(need(at.cdir, "CDIR"), n.column);
+    if (cdir < 0 || cdir > 3) stop(fmt::format("{}: CDIR {} (0 climb, 1 conventional, 2 G2, 3 G3)", n.name, cdir), n.column);
+    p.ccw = cdir == 3 || (cdir < 2 && (cdir == 0) == (state_.spindle_direction >= 0));
+    const int vari = to_int(a[at.vari].value_or(0), n.column);
+    const int units = vari % 10, insertion = vari / 10;
+    if (vari < 0 || units > 2 || (!slot && units == 0) || insertion > 3)
+      stop(fmt::format("{}: VARI {} (units {}; tens 0-3 the insertion)", n.name, vari,
+                       slot ? "0 complete, 1 rough, 2 finish" : "1 rough, 2 finish"),
+           n.column);
+    if (insertion >= 2)
+      unsupported(fmt::format("{} VARI {} ({} insertion)", n.name, vari, insertion == 2 ? "helical" : "oscillating"),
+                  n.column);
+    if (const auto it = siemens_tools_.find(state_.tool); it != siemens_tools_.end() && it->second.diameter > 0)
+      p.tool_radius = it->second.diameter / 2;
+    else if (const auto t = o_.tools.find(state_.tool); t != o_.tools.end())
+      p.tool_radius = t->second.diameter / 2;
+    double finish_speed = 0;
+    std::vector<std::pair<double, double>> centres;  // and the angle of each slot
+    std::vector<double> angles;
+    if (slot) {
+      p.length = length(6, "LENG");
+      p.width = length(7, "WID");
+      if (!(p.width > 0) || p.length < p.width)
+        stop(fmt::format("SLOT1: WID {} must be above zero and at most LENG {}", to_units(p.width), to_units(p.length)),
+             n.column);
+      p.corner_radius = p.width / 2;
+      const int count = to_int(need(5, "NUM"), n.column);
+      if (count < 1 || count > 1000) stop(fmt::format("SLOT1: NUM {} must be a count from 1 to 1000", count), n.column);
+      const double cpa = length(8, "CPA"), cpo = length(9, "CPO"), rad = optional_length(10);
+      const double first = a[11].value_or(0), index = a[12] && *a[12] != 0 ? *a[12] : 360.0 / count;
+      for (int i = 0; i < count; ++i) {
+        const double angle = first + i * index;
+        centres.emplace_back(cpa + rad * std::cos(angle * deg), cpo + rad * std::sin(angle * deg));
+        angles.push_back(angle);
+      }
+      p.finish_depth = a[19] ? to_mm(*a[19]) : p.max_depth;
+      p.finish_feed = a[20] ? to_mm(*a[20]) : p.feed;
+      finish_speed = a[21].value_or(0);
+    } else {
+      if (circular) {
+        p.circular = true;
+        p.length = p.width = 2 * length(4, "PRAD");
+        p.corner_radius = p.length / 2;
+      } else {
+        p.length = length(4, "LENG");
+        p.width = length(5, "WID");
+        p.corner_radius = optional_length(6);
+      }
+      centres.emplace_back(length(circular ? 5 : 7, "PA"), length(circular ? 6 : 8, "PO"));
+      angles.push_back(circular ? 0 : a[9].value_or(0));
+      p.stepover = optional_length(circular ? 14 : 17);
+      for (const std::size_t blank : circular ? std::vector<std::size_t>{15, 16} : std::vector<std::size_t>{18, 19, 20})
+        if (a[blank] && *a[blank] != 0)
+          unsupported(fmt::format("{} with a pre-machined blank (AP1, AP2, AD)", n.name), n.column);
+      p.finish_depth = p.max_depth;
+      p.finish_feed = p.feed;  // POCKET3/4 finish at FFP1
+    }
+    const double start_z = program_position()[2], dp = p.planes.dp;
+    std::vector<milling::Path> paths;
+    std::vector<std::size_t> finish_paths;
+    std::string error;
+    for (std::size_t i = 0; i < centres.size(); ++i) {
+      milling::Pocket one = p;
+      std::tie(one.cx, one.cy) = centres[i];
+      one.angle_deg = angles[i];
+      if (units != 2) {  // roughing leaves FAL on the walls and FALD on the floor
+        one.planes.dp = dp + bottom_allowance;
+        if (one.planes.dp > one.planes.rfp) stop(fmt::format("{}: DP plus FALD lies above RFP", n.name), n.column);
+        paths.push_back(milling::pocket_path(one, start_z, budget(), error));
+        if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
+      }
+      if (units != 1) {
+        one.planes.dp = dp;
+        one.finish = true;
+        one.allowance = 0;
+        finish_paths.push_back(paths.size());
+        paths.push_back(milling::pocket_path(one, start_z, budget(), error));
+        if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
+      }
+    }
+    emit_feature_paths(paths, finish_paths, finish_speed, p.planes.rtp, arguments.event);
   }
 
   // What is left of the call budget, for a cycle that builds its path first.
@@ -1367,7 +1565,7 @@ class Interpreter {
     switch (code) {
       case 50: unsupported("G5 cubic splines", column);
       case 52: case 53: unsupported("G5.2/G5.3 NURBS blocks", column);
-      case 331: case 760: unsupported(fmt::format("G{:g} threading", code / 10.0), column);
+      case 331: unsupported("G33.1 rigid tapping", column);
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
       case 410: case 411: case 420: case 421:
         unsupported(c_.diameter_x ? "G41/G42 tool nose radius compensation (with its tip direction)"
@@ -1376,11 +1574,7 @@ class Interpreter {
       case 431: case 432: unsupported(fmt::format("G{:.1f} dynamic tool length offset", code / 10.0), column);
       case 520: unsupported("G52 local offset", column);
       case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
-      case 740: case 840: unsupported(fmt::format("G{} tapping", code / 10), column);
-      case 870: case 880: unsupported(fmt::format("G{} boring cycle", code / 10), column);
       case 611: unsupported("G61.1 exact stop", column);
-      case 4400: unsupported("G44 negative tool length offset", column);
-      case 680: unsupported("G68 coordinate rotation", column);
       default: break;
     }
   }
@@ -1451,9 +1645,11 @@ class Interpreter {
         arc(w, motion_ == 20);
         return;
       case 800: if (w.any_axis()) stop("axis words with G80 and no motion mode"); return;
-      case 730: case 810: case 820: case 830: case 850: case 860: case 890:
-      case meaning_left_hand_tapping: case meaning_tapping: case meaning_fine_boring: cycle(w, block); return;
+      case 730: case 740: case 810: case 820: case 830: case 840: case 850: case 860: case 870: case 880: case 890:
+      case meaning_left_hand_tapping: case meaning_tapping: case meaning_fine_boring: case meaning_back_boring:
+      case meaning_manual_boring: cycle(w, block); return;
       case meaning_turning_cycle: case meaning_threading_cycle: case meaning_facing_cycle: single_cycle(w, block); return;
+      case 760: linuxcnc_threading(w); return;
       case 330: {  // spindle-synchronised motion: LinuxCNC G33 K, Fanuc G32 F (the lead)
         const char letter = c_.thread_pitch_letter;
         const int code = letter == 'F' ? 32 : 33;
@@ -1562,13 +1758,18 @@ class Interpreter {
       const double planar = std::hypot(s1 - c1, s2 - c2) * sweep;
       inverse_time_feed(w, std::hypot(planar, end[normal] - start[normal]));
     }
+    if (rotation_ && plane_ != 17) unsupported("arcs outside G17 while G68 coordinate rotation is on");
+    std::array<double, axes> turned_end = rotated(end, 1), turned_centre = end;
+    turned_centre[first] = c1, turned_centre[second] = c2;
+    turned_centre = rotated(turned_centre, 1);
     Call& call = emit(CallKind::arc);
-    call.v = {e1, e2, c1, c2, static_cast<double>(clockwise ? -turns : turns), end[normal], end[3], end[4], end[5]};
+    call.v = {turned_end[first], turned_end[second], turned_centre[first], turned_centre[second],
+              static_cast<double>(clockwise ? -turns : turns), end[normal], end[3], end[4], end[5]};
     set_program_position(end);
     last_move_ = end;
   }
 
-  // ---- canned cycles (G73, G81-G83, G85, G86, G89), XY plane ----------------
+  // ---- canned cycles (G73, G74, G76, G81-G89), XY plane ----------------
 
   void cycle(const Words& w, const Block& block) {
     const int code = motion_ > 5000 ? motion_ / 100 : motion_ / 10;  // Fanuc's own cycles are G code x 100
@@ -1591,7 +1792,7 @@ class Interpreter {
     if (w.has('P')) cycle_p_ = w.get('P');
     if ((code == 73 || code == 83) && cycle_q_ <= 0) stop(fmt::format("G{} needs a positive Q", code));
     if ((code == 82 || code == 89) && !w.has('P') && cycle_p_ < 0) stop(fmt::format("G{} needs P", code));
-    if ((code == 86 || code == 84 || code == 74 || code == 76) && state_.spindle_direction == 0)
+    if ((code == 86 || code == 84 || code == 74 || code == 76 || code == 87) && state_.spindle_direction == 0)
       stop(fmt::format("G{} with the spindle not turning", code));
     if (code == 84 && state_.spindle_direction < 0) stop("G84 (right-hand tapping) with the spindle turning M4");
     if (code == 74 && state_.spindle_direction > 0) stop("G74 (left-hand tapping) with the spindle turning M3");
@@ -1601,12 +1802,29 @@ class Interpreter {
       r = cycle_initial_z_ + r;
       z = r + z;
     }
-    if (z > r) stop(fmt::format("G{}: Z {} above R {}", code, to_units(z), to_units(r)));
+    // Fanuc G87 bores upwards: R is the bottom of the hole, Z the top of the bore.
+    const bool fanuc_back_boring = motion_ == meaning_back_boring;
+    if (fanuc_back_boring) {
+      if (!(r < z)) stop(fmt::format("G87 (back boring): R {} must be below Z {}", to_units(r), to_units(z)));
+      if (retract_r_) stop("G87 (back boring) returns to the initial level: G99 cannot be used");
+      if (!(cycle_q_ > 0)) stop("G87 needs a positive Q, the shift off the wall");
+    } else if (z > r) {
+      stop(fmt::format("G{}: Z {} above R {}", code, to_units(z), to_units(r)));
+    }
+    // LinuxCNC G87: I J the offset that clears the bore, K the level bored up to.
+    double back_i = 0, back_j = 0, back_k = 0;
+    if (motion_ == 870) {
+      for (char c : std::string_view("IJK"))
+        if (!w.has(c)) stop(fmt::format("G87 needs {} (I J: the offset off the wall, K: the level bored to)", c));
+      back_i = to_mm(w.get('I')), back_j = to_mm(w.get('J'));
+      back_k = incremental_ ? z + to_mm(w.get('K')) : to_mm(w.get('K'));
+      if (!(back_k > z)) stop(fmt::format("G87: K {} must be above Z {}", to_units(back_k), to_units(z)), w.col('K'));
+    }
     CycleEvent event;
     event.name = fmt::format("G{}", code);
     event.line = block.line;
     event.first_call = static_cast<std::uint32_t>(result_.calls.size());
-    for (char c : std::string_view("XYZRQPL"))
+    for (char c : std::string_view("XYZRQPLIJK"))
       if (w.has(c)) event.parameters.emplace_back(c, (c == 'P' || c == 'L') ? w.get(c) : to_mm(w.get(c)));
     const double clear = retract_r_ ? r : std::max(cycle_initial_z_, r);
     const double delta = 0.254;  // G73 retract and G83 clearance: 0.010 inch
@@ -1632,9 +1850,36 @@ class Interpreter {
         p[0] = x, p[1] = y, p[2] = zz;
         return p;
       };
-      const double level = program_position()[2];
+      const double here = program_position()[2];
+      const double level =
+          c_.cycle_moves_at_retract_level ? std::max(retract_r_ ? here : cycle_initial_z_, r) : here;
       move(CallKind::rapid, at(level));
+      if (fanuc_back_boring) {
+        fanuc_back_bore(at, r, z);
+        continue;
+      }
       if (level != r) move(CallKind::rapid, at(r));
+      const auto direction = state_.spindle_direction;
+      auto turn = [&](std::int8_t d) {
+        state_.spindle_direction = d;
+        emit(d > 0 ? CallKind::spindle_clockwise : d < 0 ? CallKind::spindle_counterclockwise : CallKind::spindle_stop);
+      };
+      auto orient = [&] {  // LinuxCNC prints the direction the spindle turned (2 M3, 3 M4)
+        emit(CallKind::spindle_stop);
+        state_.spindle_direction = 0;
+        Call& call = emit(CallKind::spindle_orient);
+        call.v[1] = motion_ == 870 ? (direction > 0 ? 2 : 3) : 0;
+      };
+      if (motion_ == 740 || motion_ == 840) {  // LinuxCNC: in, stop, reversed, dwell P, out to the clear level, as before
+        move(CallKind::linear, at(z));
+        emit(CallKind::spindle_stop);
+        turn(static_cast<std::int8_t>(-direction));
+        emit(CallKind::dwell).v[0] = cycle_dwell();
+        move(CallKind::linear, at(clear));
+        emit(CallKind::spindle_stop);
+        turn(direction);
+        continue;
+      }
       switch (code) {
         case 81: move(CallKind::linear, at(z)); move(CallKind::rapid, at(clear)); break;
         case 82:
@@ -1654,7 +1899,6 @@ class Interpreter {
           break;
         case 85: move(CallKind::linear, at(z)); move(CallKind::linear, at(r)); move(CallKind::rapid, at(clear)); break;
         case 86: {  // bore, stop the spindle, rapid out, restart it as it turned
-          const auto direction = state_.spindle_direction;
           move(CallKind::linear, at(z));
           emit(CallKind::dwell).v[0] = cycle_dwell();
           state_.spindle_direction = 0;
@@ -1669,13 +1913,47 @@ class Interpreter {
           emit(CallKind::dwell).v[0] = cycle_dwell();
           move(CallKind::linear, at(clear));
           break;
+        case 87: {  // LinuxCNC back boring: off the wall by I J, down, back over the hole, bore up to K and down again
+          auto off = [&](double zz) {
+            auto p = at(zz);
+            p[0] += back_i, p[1] += back_j;
+            return p;
+          };
+          move(CallKind::rapid, off(r));
+          orient();
+          move(CallKind::rapid, off(z));
+          move(CallKind::rapid, at(z));
+          turn(direction);
+          move(CallKind::linear, at(back_k));
+          move(CallKind::linear, at(z));
+          orient();
+          move(CallKind::rapid, off(z));
+          move(CallKind::rapid, off(clear));
+          move(CallKind::rapid, at(clear));
+          turn(direction);
+          break;
+        }
+        case 88:  // bore, dwell, stop for the operator; the spindle as before
+          move(CallKind::linear, at(z));
+          if (motion_ == 880 || cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+          emit(CallKind::spindle_stop);
+          state_.spindle_direction = 0;
+          emit(CallKind::program_stop).v[0] = 0;
+          if (motion_ == 880) {
+            // LinuxCNC: the operator takes the tool out by hand; the cycle
+            // counts it at the clear level (as rs274 -g goes on from there).
+            if (direction != 0) turn(direction);
+            set_program_position(at(clear));
+          } else {
+            // Fanuc: after the manual retract, cycle start returns to R or the
+            // initial level at rapid and restarts the spindle; the hand's path
+            // is not known, so the return starts at the bottom.
+            move(CallKind::rapid, at(clear));
+            if (direction != 0) turn(direction);
+          }
+          break;
         case 74:
         case 84: {  // Fanuc tapping: in, dwell P, the spindle reversed, out to R at feed, turning as before
-          const auto direction = state_.spindle_direction;
-          auto turn = [&](std::int8_t d) {
-            state_.spindle_direction = d;
-            emit(d > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
-          };
           move(CallKind::linear, at(z));
           if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
           turn(static_cast<std::int8_t>(-direction));
@@ -1685,7 +1963,6 @@ class Interpreter {
           break;
         }
         case 76: {  // Fanuc fine boring: in, dwell P, oriented stop, shift Q off the wall, rapid out, back, restart
-          const auto direction = state_.spindle_direction;
           move(CallKind::linear, at(z));
           if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
           state_.spindle_direction = 0;
@@ -1710,6 +1987,43 @@ class Interpreter {
     result_.cycles.push_back(std::move(event));
   }
   bool cycle_r_set_ = false, cycle_z_set_ = false;
+
+  // Fanuc G87 (0i-MF back boring): oriented stop over the hole, shift Q off
+  // the wall (the G76 direction, parameter 5101), rapid down to R (the
+  // bottom), back over the hole, the spindle on, bore up to Z at feed (dwell
+  // P), oriented stop, shift off, rapid up to the initial level, back over
+  // the hole, the spindle on again.
+  template <typename At>
+  void fanuc_back_bore(const At& at, double r, double z) {
+    const auto direction = state_.spindle_direction;
+    auto shifted = [&](double zz) {
+      auto p = at(zz);
+      p[0] += c_.fine_boring_shift_x * cycle_q_;
+      p[1] += c_.fine_boring_shift_y * cycle_q_;
+      return p;
+    };
+    auto orient = [&] {
+      emit(CallKind::spindle_stop);
+      state_.spindle_direction = 0;
+      emit(CallKind::spindle_orient);
+    };
+    auto restart = [&] {
+      state_.spindle_direction = direction;
+      emit(direction > 0 ? CallKind::spindle_clockwise : CallKind::spindle_counterclockwise);
+    };
+    orient();
+    move(CallKind::rapid, shifted(program_position()[2]));
+    move(CallKind::rapid, shifted(r));
+    move(CallKind::rapid, at(r));
+    restart();
+    move(CallKind::linear, at(z));
+    if (cycle_p_ > 0) emit(CallKind::dwell).v[0] = cycle_dwell();
+    orient();
+    move(CallKind::rapid, shifted(z));
+    move(CallKind::rapid, shifted(cycle_initial_z_));
+    move(CallKind::rapid, at(cycle_initial_z_));
+    restart();
+  }
   // A canned cycle's P: a dwell in ms on Fanuc (as G04 P), in s elsewhere.
   double cycle_dwell() const { return c_.dwell_p_milliseconds ? cycle_p_ / 1000 : cycle_p_; }
   bool single_cycle_set_ = false;
@@ -1752,6 +2066,40 @@ class Interpreter {
       }
     }
     if (synchronised) emit(CallKind::feed_sync_stop);
+  }
+
+  // LinuxCNC G76 P(pitch) Z I J K [R Q H E L] in G18 from the drive line
+  // (where the tool is); I J K are diameters in G7. Tapered ends (L 1-3)
+  // are refused by name.
+  void linuxcnc_threading(const Words& w) {
+    if (plane_ != 18) stop("G76 threading needs the XZ plane (G18)");
+    for (const char c : std::string_view("PZIJK"))
+      if (!w.has(c)) stop(fmt::format("G76 needs {}", c));
+    if (w.has('L') && w.get('L') != 0) unsupported(fmt::format("G76 L{} (tapered thread ends)", w.get('L')), w.col('L'));
+    const double pitch = to_mm(w.get('P'));
+    if (!(pitch > 0)) stop("G76 needs a pitch P above zero", w.col('P'));
+    const auto start = program_position();
+    const double radial = diameter_ ? 0.5 : 1;
+    lathe::LinuxcncThreading t;
+    t.start = {start[0], start[2]};
+    t.end_z = incremental_ ? start[2] + to_mm(w.get('Z')) : to_mm(w.get('Z'));
+    t.peak_offset = to_mm(w.get('I')) * radial;
+    t.initial_depth = to_mm(w.get('J')) * radial;
+    t.full_depth = to_mm(w.get('K')) * radial;
+    if (w.has('R')) t.degression = w.get('R');
+    if (w.has('Q')) t.compound_angle_deg = w.get('Q');
+    if (w.has('H')) {
+      if (w.get('H') != std::floor(w.get('H')) || w.get('H') > 1e6) stop("G76 H must be a whole number of passes", w.col('H'));
+      t.spring_passes = static_cast<int>(w.get('H'));
+    }
+    CycleEvent event = begin_cycle("G76", w, "");
+    for (const char c : std::string_view("PZIJKRQHEL"))
+      if (w.has(c)) event.parameters.emplace_back(c, std::string_view("PZIJKE").find(c) != std::string_view::npos ? to_mm(w.get(c)) : w.get(c));
+    lathe::Path path;
+    const std::string problem = lathe::linuxcnc_thread(t, path, budget());
+    if (!problem.empty()) stop(fmt::format("G76: {}", problem));
+    emit_path(path, pitch);
+    end_cycle(std::move(event));
   }
 
   CycleEvent begin_cycle(std::string name, const Words& w, std::string_view letters) {

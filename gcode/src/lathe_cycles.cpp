@@ -49,6 +49,124 @@ Path shifted(const Path& path, Point by) {
   return out;
 }
 
+// G71/G72 type II (a contour with pockets, or moving along the cut in its
+// first block): the manual shows the levels, not every move, so the path is
+// this one. The boundary is the shifted contour from the start point A
+// (its first block included). Levels `depth` apart from A; at each level,
+// every stretch along the cut where the boundary lies deeper than the
+// level is cut in order: a rapid at A's level over the stretch's start, a
+// rapid down to the level above (cleared by then), a feed down to the level
+// and along to the stretch's end, a 45 degree lift by e and a rapid back up
+// to A's level. Then the contour from A (as type I) and a rapid to A.
+static std::string rough_with_pockets(const Contour& contour, const Roughing& r, const Path& path, Path& out,
+                               std::size_t max_moves) {
+  auto a_of = [&](Point p) { return r.along_z ? p.x : p.z; };
+  auto b_of = [&](Point p) { return r.along_z ? p.z : p.x; };
+  auto point = [&](double a, double b) { return r.along_z ? Point{a, b} : Point{b, a}; };
+  const Point start = contour.start;
+  const double ds = sign(a_of(path.front().end) - a_of(start));
+  const double db = sign(b_of(path.back().end) - b_of(start));
+  auto alpha = [&](Point p) { return (a_of(p) - a_of(start)) * ds; };
+  auto beta = [&](Point p) { return (b_of(p) - b_of(start)) * db; };
+  auto a_at = [&](double level) { return a_of(start) + ds * level; };
+  auto b_at = [&](double along) { return b_of(start) + db * along; };
+  // Whether p (on m's circle) lies on the arc from `from`.
+  auto on_arc = [&](Point from, const Move& m, Point p) {
+    const double a0 = angle(m.centre, from), a1 = angle(m.centre, m.end), ap = angle(m.centre, p);
+    auto sweep = [&](double to) {
+      double d = m.ccw ? to - a0 : a0 - to;
+      while (d < -1e-12) d += 2 * std::numbers::pi;
+      return d;
+    };
+    return sweep(ap) <= sweep(a1) + 1e-9;
+  };
+  // The points of the boundary where one coordinate (alpha if `by_alpha`,
+  // else beta) has the given value.
+  auto points_at = [&](bool by_alpha, double value) {
+    std::vector<Point> found;
+    Point from = start;
+    for (const Move& m : path) {
+      const double v0 = by_alpha ? alpha(from) : beta(from), v1 = by_alpha ? alpha(m.end) : beta(m.end);
+      if (m.kind != MoveKind::arc) {
+        if ((value - v0) * (value - v1) <= 0 && std::abs(v1 - v0) > eps) {
+          const double t = (value - v0) / (v1 - v0);
+          found.push_back({from.x + t * (m.end.x - from.x), from.z + t * (m.end.z - from.z)});
+        } else if (std::abs(v1 - value) <= eps) {
+          found.push_back(m.end);
+        }
+      } else {
+        const double rad = std::hypot(from.x - m.centre.x, from.z - m.centre.z);
+        // In (a, b): the line a = const (by alpha) or b = const.
+        const double c_fixed = by_alpha ? a_of(m.centre) : b_of(m.centre), c_free = by_alpha ? b_of(m.centre) : a_of(m.centre);
+        const double fixed = by_alpha ? a_at(value) : b_at(value);
+        const double d = fixed - c_fixed;
+        if (std::abs(d) <= rad + eps) {
+          const double h = std::sqrt(std::max(0.0, rad * rad - d * d));
+          for (const double free : {c_free - h, c_free + h}) {
+            const Point p = by_alpha ? point(fixed, free) : point(free, fixed);
+            if (on_arc(from, m, p)) found.push_back(p);
+          }
+        }
+      }
+      from = m.end;
+    }
+    return found;
+  };
+  // The boundary's depth at a distance along the cut (it goes one way along it).
+  auto depth_at = [&](double along) {
+    double deepest = 0;
+    for (const Point p : points_at(false, along)) deepest = std::max(deepest, alpha(p));
+    return deepest;
+  };
+  double top = 0;  // the deepest point of the boundary
+  {
+    Point from = start;
+    for (const Move& m : path) {
+      top = std::max(top, alpha(m.end));
+      if (m.kind == MoveKind::arc) {
+        const double rad = std::hypot(from.x - m.centre.x, from.z - m.centre.z);
+        const Point deepest = point(a_of(m.centre) + ds * rad, b_of(m.centre));
+        if (on_arc(from, m, deepest)) top = std::max(top, alpha(deepest));
+      }
+      from = m.end;
+    }
+  }
+  const double end_along = beta(path.back().end);
+  const MoveKind infeed = path.front().kind == MoveKind::rapid ? MoveKind::rapid : MoveKind::feed;
+  for (int k = 1; k * r.depth < top - 1e-6; ++k) {
+    if (out.size() > max_moves) return over_budget;
+    const double level = k * r.depth;
+    std::vector<double> cuts{0, end_along};
+    for (const Point p : points_at(true, level)) cuts.push_back(beta(p));
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<std::pair<double, double>> stretches;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      if (cuts[i + 1] - cuts[i] <= 1e-9 || cuts[i] < -eps || cuts[i + 1] > end_along + eps) continue;
+      if (depth_at((cuts[i] + cuts[i + 1]) / 2) <= level + 1e-9) continue;
+      if (!stretches.empty() && std::abs(stretches.back().second - cuts[i]) <= 1e-9) stretches.back().second = cuts[i + 1];
+      else stretches.emplace_back(cuts[i], cuts[i + 1]);
+    }
+    for (const auto& [from, to] : stretches) {
+      out.push_back(rapid(point(a_of(start), b_at(from))));
+      if (k > 1) out.push_back(rapid(point(a_at(level - r.depth), b_at(from))));
+      out.push_back(feed(point(a_at(level), b_at(from))));
+      out.push_back(feed(point(a_at(level), b_at(to))));
+      const double lift = std::max(0.0, std::min(r.retract, level));
+      out.push_back(rapid(point(a_at(level - lift), b_at(to - lift))));
+      out.push_back(rapid(point(a_of(start), b_at(to - lift))));
+    }
+  }
+  out.push_back(rapid(start));
+  out.push_back(straight(infeed, path.front().end));
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    Move m = path[i];
+    m.feed = 0;
+    out.push_back(m);
+  }
+  out.push_back(rapid(start));
+  return {};
+}
+
 std::string rough(const Contour& contour, const Roughing& r, Path& out, std::size_t max_moves) {
   if (contour.moves.empty()) return "the contour has no move";
   if (!(r.depth > 0)) return "the depth of cut must be above zero";
@@ -60,9 +178,8 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out, std::siz
   const Point start = contour.start;
   const Move& first_block = contour.moves.front();
   const char* a_name = r.along_z ? "X" : "Z";
-  if (std::abs(b_of(first_block.end) - b_of(start)) > 1e-6 || first_block.kind == MoveKind::arc)
-    return fmt::format("type II: the first contour block moves in {} (type I moves in {} only)", r.along_z ? "Z" : "X",
-                       a_name);
+  // Type II: the first block moves along the cut too (Z in G71's N P block).
+  bool type2 = std::abs(b_of(first_block.end) - b_of(start)) > 1e-6 || first_block.kind == MoveKind::arc;
   // Depth into the material (alpha) and distance along the cut (beta), from the start point.
   const double ds = sign(a_of(first_block.end) - a_of(start));
   if (ds == 0) return fmt::format("the first contour block does not move in {} away from the start point", a_name);
@@ -73,16 +190,19 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out, std::siz
 
   const Path path = shifted(contour.moves, r.allowance);
   // Type I: after the first block the contour only comes out of the
-  // material and only goes on along the cut (the manual's "monotonic").
-  Point at = path.front().end;
-  for (std::size_t i = 1; i < path.size(); ++i) {
+  // material and only goes on along the cut (the manual's "monotonic");
+  // going deeper again is a pocket (type II). Both go on along the cut only.
+  Point at = type2 ? start : path.front().end;
+  for (std::size_t i = type2 ? 0 : 1; i < path.size(); ++i) {
     const std::vector<Point> points = path[i].kind == MoveKind::arc ? arc_samples(at, path[i], 16) : std::vector{path[i].end};
     for (const Point p : points) {
-      if (alpha(p) > alpha(at) + 1e-6 || beta(p) < beta(at) - 1e-6)
-        return fmt::format("type II: the contour is not monotonic in X and Z (a pocket)");
+      if (beta(p) < beta(at) - 1e-6)
+        return fmt::format("the contour goes back along {} (G71 and G72 need it to go one way)", r.along_z ? "Z" : "X");
+      if (i > 0 && alpha(p) > alpha(at) + 1e-6) type2 = true;
       at = p;
     }
   }
+  if (type2) return rough_with_pockets(contour, r, path, out, max_moves);
 
   // Where the level alpha = level meets the shifted contour, as beta.
   auto hit = [&](double level) {

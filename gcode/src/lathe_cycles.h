@@ -86,4 +86,20 @@ struct Threading {
 };
 std::string thread(const Threading& threading, Path& out, std::size_t max_moves);
 
+// LinuxCNC 2.9 G76 (linuxcnc_threading.cpp; its G-code reference, the
+// motion taken from rs274 -g runs): from the drive line (where the tool
+// is), the thread peak I off it, passes J n^(1/R) deep (n = 1, 2, ...)
+// while short of K, then K and H spring passes at K.
+struct LinuxcncThreading {
+  Point start;                  // the drive line X and the start Z
+  double end_z = 0;             // Z
+  double peak_offset = 0;       // I, radius
+  double initial_depth = 0;     // J
+  double full_depth = 0;        // K
+  double degression = 1;        // R
+  double compound_angle_deg = 0;  // Q
+  int spring_passes = 0;        // H
+};
+std::string linuxcnc_thread(const LinuxcncThreading& threading, Path& out, std::size_t max_moves);
+
 }  // namespace stepnc::gcode::lathe

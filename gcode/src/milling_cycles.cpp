@@ -59,7 +59,7 @@ std::vector<double> depth_levels(double top, double bottom, double step) {
 
 // POCKET1/POCKET2: at each depth level the tool plunges at the centre at
 // FFD, then clears contour-parallel from the inside out, rings at most one
-// tool radius apart, the last ring at the outline less the tool radius and
+// tool radius (POCKET3/4: MIDA) apart, the last ring at the outline less the tool radius and
 // FAL (corners rounded to CRAD less both); roughing clears every level,
 // finishing (VARI 2) runs the last ring at each MIDF level and clears the
 // whole floor at DP, all at FFP2. Between levels the tool rises SDIS and
@@ -77,8 +77,9 @@ Path pocket_path(const Pocket& p, double start_z, std::size_t budget, std::strin
   if (!error.empty()) return {};
   const double m = std::max(0.0, std::min(a0, b0));
   const double step = p.finish && p.finish_depth > 0 ? p.finish_depth : p.max_depth;
-  if (over_budget(step_count(p.planes.rfp - p.planes.dp, step) * (step_count(m, r) + 1) * 10, budget, error)) return {};
-  const int rings = m > eps ? static_cast<int>(step_count(m, r)) : 0;
+  const double spacing = p.stepover > 0 ? p.stepover : r;
+  if (over_budget(step_count(p.planes.rfp - p.planes.dp, step) * (step_count(m, spacing) + 1) * 10, budget, error)) return {};
+  const int rings = m > eps ? static_cast<int>(step_count(m, spacing)) : 0;
   const Frame frame(p.cx, p.cy, p.angle_deg);
   Emitter out{{}, frame};
   const double sign = p.ccw ? 1 : -1;  // clockwise: the same ring mirrored in v

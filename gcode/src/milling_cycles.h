@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Siemens 840D feature cycles as XY paths: CYCLE71 face milling, POCKET1
-// rectangular and POCKET2 circular pocket (parameter meanings: SINUMERIK
+// and POCKET3 rectangular, POCKET2 and POCKET4 circular pockets, SLOT1 slots
+// (a rectangular pocket whose corner radius is half its width) (parameter meanings: SINUMERIK
 // 840D "Cycles" programming manual). The manual does not give the tool
 // path to the micron; the strategy here is the one gcode/README.md states.
 // Pure geometry: the interpreter reads the parameters and emits the moves.
@@ -43,6 +44,7 @@ struct Pocket {
   bool finish = false;                   // VARI 2
   double finish_depth = 0, finish_feed = 0;  // MIDF, FFP2
   double tool_radius = 0;
+  double stepover = 0;  // POCKET3/4 MIDA: rings at most this far apart (0: the tool radius)
 };
 
 struct Face {

@@ -13,11 +13,12 @@ namespace stepnc::gcode {
 namespace {
 
 std::string_view kind_name(CallKind kind) {
-  static constexpr std::array<std::string_view, 28> names = {
+  static constexpr std::array<std::string_view, 30> names = {
       "rapid", "linear", "arc", "dwell", "feed_rate", "spindle_speed", "spindle_clockwise",
       "spindle_counterclockwise", "spindle_stop", "select_tool", "change_tool", "tool_length_offset", "flood_on",
       "flood_off", "mist_on", "mist_off", "units", "plane", "g92_offset", "g5x_offset", "comment", "message",
-      "program_stop", "program_end", "feed_sync_start", "feed_sync_stop", "quadratic_spline"};
+      "program_stop", "program_end", "feed_sync_start", "feed_sync_stop", "quadratic_spline",
+      "spindle_orient", "spindle_orient_wait"};
   return names[static_cast<std::size_t>(kind)];
 }
 
@@ -37,9 +38,10 @@ std::size_t value_count(CallKind kind) {
     case CallKind::arc: return 9;
     case CallKind::quadratic_spline: return 8;
     case CallKind::g5x_offset: return 7;
+    case CallKind::spindle_orient: return 2;
     case CallKind::dwell: case CallKind::feed_rate: case CallKind::spindle_speed: case CallKind::select_tool:
     case CallKind::change_tool: case CallKind::tool_length_offset: case CallKind::plane: case CallKind::program_stop:
-    case CallKind::feed_sync_start:
+    case CallKind::feed_sync_start: case CallKind::spindle_orient_wait:
       return 1;
     default: return 0;
   }

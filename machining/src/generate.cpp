@@ -1565,10 +1565,14 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
           {"allowance", 0.0, "\"TurningOp\"/allowance (in the contour, along the normal)"},
           {"feed", job.tech.feed.value, "\"TurningOp\"/its_technology/feedrate"},
       };
-      g71.start = {turning_safe().x, 0, z_start};
+      // The cycle start point A at the stock: Fanuc's passes run Δd apart
+      // from A's X (0i-TF manual, G71 type I), so A outside the stock would
+      // cut air (found by the gcode front end's read-back).
+      g71.start = {stock, 0, z_start};
       for (const Vec2 p : contour) g71.profile.push_back({p.y, 0, p.x});
       emit(std::move(g71));
       cycle = program_.blocks.size() - 1;
+      rapid(std::get<FeatureCycle>(program_.blocks[*cycle].statement).start);  // the poster's G0 to A
     }
     for (const double done : cumulative) {
       const double x = stock - done;
@@ -1582,11 +1586,24 @@ void Generator::rough_profile(const Job& job, const TurningProfile& profile) {
         }
       }
       if (z_end >= z_start) continue;
-      rapid({turning_safe().x, 0, z_start});
+      // G71 cuts down to the contour with its last pass along it: no
+      // roughing pass at the contour's smallest radius.
+      if (cycle && x <= min_radius + eps) continue;
+      // A G71's passes go back along Z at the lifted level and feed in from
+      // there, as the cycle does; plain passes leave to the safe X between.
+      if (!cycle) rapid({turning_safe().x, 0, z_start});
       rapid({x, 0, z_start});
       feed({x, 0, z_end});
       rapid({x + lift, 0, z_end + lift});
       rapid({x + lift, 0, z_start});
+    }
+    if (cycle) {
+      // G71 type I's last pass follows the contour, then back to A.
+      rapid({contour.front().y, 0, z_start});
+      for (const Vec2 p : contour) feed({p.y, 0, p.x});
+      rapid(std::get<FeatureCycle>(program_.blocks[*cycle].statement).start);
+      end_feature_cycle(cycle);
+      return;
     }
   } else {
     // Contour turning: the allowance contour shifted out by what is left,

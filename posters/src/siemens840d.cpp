@@ -171,11 +171,13 @@ class Siemens840dPrinter final : public GcodePrinter {
         return call("CYCLE81", p);  // CYCLE81(RTP, RFP, SDIS, DP, DPR)
       case DrillKind::peck:
         // CYCLE83(RTP, RFP, SDIS, DP, DPR, FDEP, FDPR, DAM, DTB, DTS, FRF,
-        // VARI): FDEP first depth one depth_of_step below RFP, DAM
-        // degression = depth_of_step (equal pecks), DTB dwell_time_bottom,
-        // DTS dwell at the start 0, FRF feed factor 1, VARI 1 = retract to
-        // RFP + SDIS after each peck, as LinuxCNC G83 does.
-        p.insert(p.end(), {c.top - c.peck, none, c.peck, c.dwell, 0.0, 1.0, 1.0});
+        // VARI): FDEP first depth one depth_of_step below RFP + SDIS, where
+        // the drill starts to feed (as the motion LinuxCNC's G83 and the
+        // canonical listing make; the gcode front end's read-back found the
+        // SDIS missing), DAM degression = depth_of_step (equal pecks), DTB
+        // dwell_time_bottom, DTS dwell at the start 0, FRF feed factor 1,
+        // VARI 1 = retract to RFP + SDIS after each peck, as G83 does.
+        p.insert(p.end(), {c.r - c.peck, none, c.peck, c.dwell, 0.0, 1.0, 1.0});
         return call("CYCLE83", p);
       case DrillKind::tap: {
         // CYCLE84(RTP, RFP, SDIS, DP, DPR, DTB, SDAC, MPIT, PIT, POSS, SST,

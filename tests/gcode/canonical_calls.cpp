@@ -11,11 +11,12 @@
 namespace {
 
 // NURBS_FEED (G5.1) is compared by its place only: rs274 -g prints no points.
-constexpr std::array<std::string_view, 20> compared = {
+constexpr std::array<std::string_view, 22> compared = {
     "STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "NURBS_FEED", "START_SPEED_FEED_SYNC", "STOP_SPEED_FEED_SYNCH",
     "DWELL", "SET_FEED_RATE", "SET_SPINDLE_SPEED",
     "START_SPINDLE_CLOCKWISE", "START_SPINDLE_COUNTERCLOCKWISE", "STOP_SPINDLE_TURNING", "SELECT_TOOL", "CHANGE_TOOL",
-    "CHANGE_TOOL_NUMBER", "USE_TOOL_LENGTH_OFFSET", "FLOOD_ON", "FLOOD_OFF", "MIST_ON", "MIST_OFF"};
+    "CHANGE_TOOL_NUMBER", "USE_TOOL_LENGTH_OFFSET", "FLOOD_ON", "FLOOD_OFF", "MIST_ON", "MIST_OFF", "ORIENT_SPINDLE",
+    "SPINDLE.0.WAIT_ORIENT_COMPLETE"};
 
 bool number(std::string_view text, double& value) {
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

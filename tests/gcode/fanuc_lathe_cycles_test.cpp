@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <map>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -269,10 +270,10 @@ TEST_CASE("M98 calls a subprogram of the same file, repeated as P or L encodes i
 }
 
 TEST_CASE("Lathe cycle errors name the word and the block", "[gcode][fanuc][lathe]") {
-  const Result type2 = lathe("G99\nG00 X60. Z2.\nG71 U2. R1.\nG71 P10 Q20 F0.2\nN10 G00 X20.\nG01 Z-10.\nX30.\nZ-20.\n"
-                             "X20.\nZ-30.\nN20 X60.\nM30\n");
-  REQUIRE(type2.unsupported());
-  CHECK(type2.errors[0].message == "unsupported: G71 type II: the contour is not monotonic in X and Z (a pocket)");
+  const Result back = lathe("G99\nG00 X60. Z2.\nG71 U2. R1.\nG71 P10 Q20 F0.2\nN10 G00 X20.\nG01 Z-10.\nZ-5.\n"
+                            "N20 X60.\nM30\n");
+  REQUIRE(back.errors.size() == 1);
+  CHECK(back.errors[0].message == "G71: the contour goes back along Z (G71 and G72 need it to go one way)");
   // An error inside the contour is reported at its own block.
   const Result inside = lathe("G99\nG00 X60. Z2.\nG70 P10 Q20\nM30\nN10 G00 X20.\nG01 Z-10. E1\nN20 X60.\n");
   REQUIRE(inside.errors.size() == 1);
@@ -280,4 +281,48 @@ TEST_CASE("Lathe cycle errors name the word and the block", "[gcode][fanuc][lath
   const Result tip = lathe("G00 X60. Z2.\nG42 G01 X50. F0.2\nM30\n");
   REQUIRE(tip.unsupported());
   CHECK(tip.errors[0].message == "unsupported: G41/G42 tool nose radius compensation (with its tip direction)");
+}
+
+// G71 type II: a pocket between Z-20 and Z-30 (radius 10 there, 15 on the
+// collar before it), from A at radius 30, depth 2: levels at radius 28 ..
+// 12; down to radius 16 each level is one cut from Z2 to Z-30, at radius
+// 14 and 12 two: Z2 to Z-10 and, entered from A's level, Z-20 to Z-30.
+TEST_CASE("G71 type II cuts the pockets of its contour level by level", "[gcode][fanuc][lathe]") {
+  const Result r = lathe("G99\nG00 X60. Z2.\nG71 U2. R1.\nG71 P10 Q20 F0.2\nN10 G00 X20.\nG01 Z-10.\nX30.\nZ-20.\n"
+                         "X20.\nZ-30.\nN20 X60.\nM30\n");
+  for (const auto& e : r.errors) INFO(e.to_string("type2.nc"));
+  REQUIRE(r.ok());
+  REQUIRE(r.cycles.size() == 1);
+  // The cuts along Z (feeds that keep X), by radius: (start Z, end Z).
+  std::map<double, std::vector<std::pair<double, double>>> cuts;
+  std::array<double, 3> at{30, 0, 2};
+  for (std::uint32_t i = r.cycles[0].first_call; i < r.cycles[0].end_call; ++i) {
+    const Call& c = r.calls[i];
+    if (c.kind == CallKind::linear && std::abs(c.v[0] - at[0]) < 1e-9 && std::abs(c.v[2] - at[2]) > 1e-9)
+      cuts[std::round(c.v[0] * 1000) / 1000].emplace_back(at[2], c.v[2]);
+    if (c.kind == CallKind::rapid || c.kind == CallKind::linear) at = {c.v[0], c.v[1], c.v[2]};
+    if (c.kind == CallKind::arc) at = {c.v[1], c.v[5], c.v[0]};
+  }
+  for (const double radius : {28.0, 26.0, 24.0, 22.0, 20.0, 18.0, 16.0}) {
+    INFO("radius " << radius);
+    REQUIRE(cuts[radius].size() == 1);
+    CHECK(cuts[radius][0].first == Approx(2));
+    CHECK(cuts[radius][0].second == Approx(-30));
+  }
+  for (const double radius : {14.0, 12.0}) {
+    INFO("radius " << radius);
+    REQUIRE(cuts[radius].size() == 2);
+    CHECK(cuts[radius][0].first == Approx(2));
+    CHECK(cuts[radius][0].second == Approx(-10));
+    CHECK(cuts[radius][1].first == Approx(-20));
+    CHECK(cuts[radius][1].second == Approx(-30));
+  }
+  // The last pass follows the contour: the pocket's floor at radius 10 from Z-20 to Z-30.
+  REQUIRE(cuts[10.0].size() == 2);
+  CHECK(cuts[10.0][1].first == Approx(-20));
+  CHECK(cuts[10.0][1].second == Approx(-30));
+  // Back at A.
+  CHECK(r.calls[r.cycles[0].end_call - 1].kind == CallKind::rapid);
+  CHECK(r.calls[r.cycles[0].end_call - 1].v[0] == Approx(30));
+  CHECK(r.calls[r.cycles[0].end_call - 1].v[2] == Approx(2));
 }

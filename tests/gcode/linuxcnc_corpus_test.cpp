@@ -58,6 +58,33 @@ std::string linuxcnc_tool_table(const std::map<int, Tool>& tools) {
   return out;
 }
 
+// rs274 -g with the test tool table in a directory of its own, and the
+// options and table our interpreter runs the same programs with.
+struct Oracle {
+  Options options;
+  Controller controller = *stepnc::gcode::controller("rs274ngc");
+  fs::path dir, table, listing;
+  explicit Oracle(const std::string& name) {
+    const auto list = read_tool_list(stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"));
+    REQUIRE(list.ok());
+    options.tools = list.tools;
+    dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_{}_{}", name, ::getpid());
+    fs::create_directories(dir);
+    table = dir / "tools.tbl";
+    listing = dir / "out.canon";
+    std::ofstream(table) << linuxcnc_tool_table(list.tools);
+  }
+  ~Oracle() { fs::remove_all(dir); }
+  // rs274 keeps its tool data in $HOME/.tool.mmap, truncated at start: a
+  // HOME of our own keeps concurrent runs (other tests) apart.
+  bool run(const fs::path& program) const {
+    fs::remove(listing);
+    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1",
+                                            dir.string(), table.string(), program.string(), listing.string());
+    return std::system(command.c_str()) == 0;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a named refusal", "[gcode][linuxcnc]") {
@@ -68,32 +95,17 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   const auto programs = shipped_programs();
   REQUIRE(programs.size() >= 100);
 
-  const auto list = read_tool_list(stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"));
-  REQUIRE(list.ok());
-  Options options;
-  options.tools = list.tools;
-  const auto controller = *stepnc::gcode::controller("rs274ngc");
-
-  const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_lcnc_{}", ::getpid());
-  fs::create_directories(dir);
-  const fs::path table = dir / "tools.tbl", listing = dir / "out.canon";
-  std::ofstream(table) << linuxcnc_tool_table(list.tools);
-
+  const Oracle oracle("lcnc");
   std::size_t runnable = 0, agree = 0, refused_by_rs274 = 0, moves = 0;
   std::map<std::string, std::vector<std::string>> unsupported;  // reason -> programs
   std::vector<std::string> disagreements;
   for (const fs::path& program : programs) {
-    fs::remove(listing);
-    // rs274 keeps its tool data in $HOME/.tool.mmap, truncated at start: a
-    // HOME of our own keeps concurrent runs (other tests) apart.
-    const std::string command = fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1",
-                                            dir.string(), table.string(), program.string(), listing.string());
-    if (std::system(command.c_str()) != 0) {
+    if (!oracle.run(program)) {
       ++refused_by_rs274;
       continue;
     }
     ++runnable;
-    const Result ours = interpret_text(stepnc_test::read_file(program), controller, options);
+    const Result ours = interpret_text(stepnc_test::read_file(program), oracle.controller, oracle.options);
     if (!ours.ok()) {
       if (ours.unsupported()) {
         unsupported[ours.errors.front().message].push_back(program.filename().string());
@@ -103,7 +115,7 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
       }
       continue;
     }
-    const auto theirs = canonical_calls(stepnc_test::read_file(listing));
+    const auto theirs = canonical_calls(stepnc_test::read_file(oracle.listing));
     const auto mine = canonical_calls(canonical_text(ours, 9));
     const std::string difference = compare_calls(mine, theirs);
     if (difference.empty()) {
@@ -113,8 +125,6 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
       disagreements.push_back(fmt::format("{}: {}", program.string(), difference));
     }
   }
-  fs::remove_all(dir);
-
   std::size_t refused = 0;
   std::string reasons;
   for (const auto& [reason, names] : unsupported) {
@@ -127,5 +137,32 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   for (const auto& d : disagreements) FAIL_CHECK(d);
   CHECK(disagreements.empty());
   CHECK(runnable >= 150);
+  // The counts gcode/README.md gives (linuxcnc-uspace 2.9 as Debian ships it).
+  CHECK(runnable == 195);
+  CHECK(agree == 184);
+  CHECK(refused == 11);
+  CHECK(moves == 33443);
   CHECK(static_cast<double>(agree) >= 0.9 * static_cast<double>(runnable));
+}
+
+// Programs written for the cycles no shipped program uses (G74/G84 tapping,
+// G87/G88 boring, M19, G76 threading): each must run in rs274 -g and agree call for call.
+TEST_CASE("hand-made cycle programs agree with rs274 -g call for call", "[gcode][linuxcnc]") {
+  if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the LinuxCNC comparison is skipped");
+    return;
+  }
+  const Oracle oracle("lcnc_hand");
+  // The calls compared in each (moves, spindle, orientation, dwells, ...), counted from rs274's listing.
+  const std::map<std::string, std::size_t> expected_calls = {{"tapping.ngc", 79}, {"boring.ngc", 128}, {"orient.ngc", 15}, {"threading.ngc", 288}};
+  for (const auto& [name, count] : expected_calls) {
+    INFO(name);
+    const fs::path program = fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/rs274" / name;
+    REQUIRE(oracle.run(program));
+    const auto theirs = canonical_calls(stepnc_test::read_file(oracle.listing));
+    const Result ours = interpret_text(stepnc_test::read_file(program), oracle.controller, oracle.options);
+    REQUIRE(ours.ok());
+    CHECK(compare_calls(canonical_calls(canonical_text(ours, 9)), theirs) == "");
+    CHECK(theirs.size() == count);
+  }
 }

@@ -43,10 +43,10 @@ TEST_CASE("Siemens 840D: DIAMON, G96 with LIMS=, tool data, CYCLE832 as an event
 }
 
 TEST_CASE("Siemens 840D: cycles not expanded and unknown names are refused with their column", "[gcode][siemens]") {
-  const Result pocket = interpret_text("N10 G17 G71\nN20 POCKET3(10,0,2,-5,,40,20,5,50,50,0,3,1,0,1000,200,0,2)\nN30 M30\n",
+  const Result pocket = interpret_text("N10 G17 G71\nN20 LONGHOLE(10,0,2,-5,,3,20,50,50,30,0,90,100,400,5)\nN30 M30\n",
                                        *controller("siemens840d"));
   REQUIRE(pocket.unsupported());
-  CHECK(pocket.errors[0].to_string("p.mpf").starts_with("p.mpf:2:5: error: unsupported: POCKET3 (siemens840d cycle)"));
+  CHECK(pocket.errors[0].to_string("p.mpf").starts_with("p.mpf:2:5: error: unsupported: LONGHOLE (siemens840d cycle)"));
   const Result unknown = interpret_text("N10 G17 G71\nN20 FOO=3\nN30 M30\n", *controller("siemens840d"));
   REQUIRE(unknown.errors.size() == 1);
   CHECK(unknown.errors[0].message == "unknown address FOO for siemens840d");

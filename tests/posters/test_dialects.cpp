@@ -51,7 +51,7 @@ TEST_CASE("hole cycles in each dialect") {
   // RTP, RFP, SDIS, DP, DPR(, DTB ...)
   CHECK(siemens.find(" CYCLE82(5,0,2,-2,,0.5)\n") != std::string::npos);
   // ..., FDEP, FDPR, DAM, DTB, DTS, FRF, VARI
-  CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-6,,6,0,0,1,1)\n") != std::string::npos);
+  CHECK(siemens.find(" CYCLE83(5,0,2,-20,,-4,,6,0,0,1,1)\n") != std::string::npos);
   // ..., DTB, SDAC, MPIT, PIT, POSS, SST, SST1
   CHECK(siemens.find(" CYCLE84(5,0,2,-20,,0,3,,1.5,,300,300)\n") != std::string::npos);
   CHECK(siemens.find("CYCLE86") == std::string::npos);
@@ -104,6 +104,8 @@ TEST_CASE("lathe programs: diameter words, CSS and G71 where the depth is consta
   std::get<UnidirectionalTurning>(project.operations[3].strategy).cutting_depths = {3};
   const std::string fanuc = posted(project, Dialect::fanuc);
   CHECK(has_line(fanuc, "G71 U3. R2."));
+  // The cycle start point A at the stock diameter: G71's passes run Δd apart from A.
+  CHECK(fanuc.find("G0 X75. Z4.\nG71 U3. R2.\n") != std::string::npos);
   // The contour already carries the allowance along the normal (the
   // chamfer's offset at the front: r 16 + 0.5 * sqrt(2)); G71's U stays 0.
   CHECK(has_line(fanuc, "G71 P1100 Q1137 U0. W0. F0.3"));

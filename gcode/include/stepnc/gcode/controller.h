@@ -25,6 +25,10 @@ inline constexpr std::uint16_t meaning_multiple_threading = 7600;     // G76
 inline constexpr std::uint16_t meaning_left_hand_tapping = 7410;      // Fanuc mill G74
 inline constexpr std::uint16_t meaning_fine_boring = 7610;            // Fanuc mill G76
 inline constexpr std::uint16_t meaning_tapping = 8410;                // Fanuc mill G84
+inline constexpr std::uint16_t meaning_back_boring = 8710;            // Fanuc mill G87 (R the bottom, Q the shift)
+inline constexpr std::uint16_t meaning_manual_boring = 8810;          // Fanuc mill G88 (returns after the manual stop)
+inline constexpr std::uint16_t meaning_negative_length_offset = 4400;  // Fanuc mill G44
+inline constexpr std::uint16_t meaning_rotation = 680;                // Fanuc mill G68 (G69 cancels)
 // Fanuc lathe single cycles (group 01, modal).
 inline constexpr std::uint16_t meaning_turning_cycle = 9000;          // G90
 inline constexpr std::uint16_t meaning_threading_cycle = 9200;        // G92
@@ -84,6 +88,14 @@ struct Controller {
   char repeat_letter = 'L';              // canned-cycle repeats: L (RS274NGC) or K (Fanuc)
   double arc_tolerance_mm = 0.005;       // radii of an arc may differ by this much
   char thread_pitch_letter = 'K';        // G33 (LinuxCNC K) / G32 (Fanuc F: the lead)
+  // M19 reads R (angle), Q (wait) and P (direction) and, as rs274 -g 2.9
+  // runs it, orients nothing without any of them (LinuxCNC); elsewhere M19
+  // stops at the angle the machine builder set (Fanuc parameter 4077, 0 here).
+  bool orient_words = false;
+  // Canned cycles reach each hole at the retract level (G98 the initial
+  // level, G99 where the tool is, never below R), as rs274 -g 2.9 moves;
+  // elsewhere at the level the tool is at.
+  bool cycle_moves_at_retract_level = false;
   // Fanuc mill G76: the direction of the shift Q at the bottom (parameter 5101 RD1/RD2).
   double fine_boring_shift_x = 1, fine_boring_shift_y = 0;
   RepetitiveCycleDefaults repetitive{};

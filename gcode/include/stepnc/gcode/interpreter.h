@@ -43,6 +43,8 @@ enum class CallKind : std::uint8_t {
   feed_sync_start,   // START_SPEED_FEED_SYNC(v[0] = pitch, mm per revolution): G33, Fanuc G32/G92/G76
   feed_sync_stop,    // STOP_SPEED_FEED_SYNCH()
   quadratic_spline,  // NURBS_FEED(3, ...) of a G5.1: v = end x y z a b c, control point x y
+  spindle_orient,    // ORIENT_SPINDLE(0, v[0] = angle in degrees, v[1] = mode): M19, SPOS=, G87's oriented stops
+  spindle_orient_wait,  // SPINDLE.0.WAIT_ORIENT_COMPLETE(v[0] = seconds): LinuxCNC M19 Q
 };
 
 // The modal state every motion runs under.
