@@ -22,7 +22,7 @@
 
 #include "canonical_calls.h"
 #include "stepnc/gcode/interpreter.h"
-#include "stepnc/gcode/tool_list.h"
+#include "stepnc/tooling/tool_list.h"
 #include "test_files.h"
 
 namespace fs = std::filesystem;
@@ -68,16 +68,17 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   const auto programs = shipped_programs();
   REQUIRE(programs.size() >= 100);
 
-  const auto list = read_tool_list(stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"));
+  const auto list = stepnc::tooling::read_tool_list(
+      stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"), "tools.csv");
   REQUIRE(list.ok());
   Options options;
-  options.tools = list.tools;
+  options.tools = tools_from(list);
   const auto controller = *stepnc::gcode::controller("rs274ngc");
 
   const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_lcnc_{}", ::getpid());
   fs::create_directories(dir);
   const fs::path table = dir / "tools.tbl", listing = dir / "out.canon";
-  std::ofstream(table) << linuxcnc_tool_table(list.tools);
+  std::ofstream(table) << linuxcnc_tool_table(options.tools);
 
   std::size_t runnable = 0, agree = 0, refused_by_rs274 = 0, moves = 0;
   std::map<std::string, std::vector<std::string>> unsupported;  // reason -> programs
