@@ -54,11 +54,61 @@ std::vector<fs::path> shipped_programs() {
 std::string linuxcnc_tool_table(const std::map<int, Tool>& tools) {
   std::string out;
   for (const auto& [number, tool] : tools)
-    out += fmt::format("T{} P{} D{:.6f} Z{:+.6f}\n", number, number, tool.diameter / 25.4, tool.length / 25.4);
+    out += fmt::format("T{} P{} D{:.9f} Z{:+.9f}\n", number, number, tool.diameter / 25.4, tool.length / 25.4);
   return out;
 }
 
 }  // namespace
+
+// Hand-made radius compensation programs (tests/gcode/data/compensation/:
+// outside and inside contours, line-arc and arc-arc corners, rapids and
+// Z-only moves under compensation, an R-format entry arc, G18 with
+// G42.1 D in inches) agree with rs274 call for call; the malformed
+// compensation programs (malformed/comp_*.ngc) are refused by rs274 too.
+TEST_CASE("radius compensation: hand-made programs against rs274 -g", "[gcode][linuxcnc][compensation]") {
+  if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
+    WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the comparison is skipped");
+    return;
+  }
+  const auto list = stepnc::tooling::read_tool_list(
+      stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"), "tools.csv");
+  REQUIRE(list.ok());
+  Options options;
+  options.tools = tools_from(list);
+  const auto controller = *stepnc::gcode::controller("rs274ngc");
+  const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_comp_{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path table = dir / "tools.tbl", malformed_table = dir / "malformed.tbl", listing = dir / "out.canon";
+  std::ofstream(table) << linuxcnc_tool_table(options.tools);
+  // The tools malformed_test.cpp gives: 1 (10 mm), 2 (6 mm).
+  std::ofstream(malformed_table) << linuxcnc_tool_table({{1, {1, 50, 10}}, {2, {2, 60, 6}}});
+  const auto rs274 = [&](const fs::path& program, const fs::path& tools) {
+    fs::remove(listing);
+    return std::system(fmt::format("HOME='{}' rs274 -g -t '{}' '{}' '{}' < /dev/null > /dev/null 2>&1", dir.string(),
+                                   tools.string(), program.string(), listing.string())
+                           .c_str()) == 0;
+  };
+  std::size_t compared = 0, refused = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/compensation")) {
+    INFO(entry.path().filename().string());
+    REQUIRE(rs274(entry.path(), table));
+    const Result ours = interpret_text(stepnc_test::read_file(entry.path()), controller, options);
+    for (const auto& e : ours.errors) INFO(e.to_string(entry.path().filename().string()));
+    REQUIRE(ours.ok());
+    CHECK(compare_calls(canonical_calls(canonical_text(ours, 9)), canonical_calls(stepnc_test::read_file(listing))) == "");
+    ++compared;
+  }
+  for (const auto& entry : fs::directory_iterator(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/malformed")) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("comp_") || entry.path().extension() != ".ngc") continue;
+    INFO(name);
+    CHECK_FALSE(rs274(entry.path(), malformed_table));
+    ++refused;
+  }
+  fs::remove_all(dir);
+  CHECK(compared == 5);
+  CHECK(refused >= 9);
+}
 
 TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a named refusal", "[gcode][linuxcnc]") {
   if (std::system("command -v rs274 > /dev/null 2>&1") != 0) {
