@@ -82,6 +82,11 @@ constexpr CompensationRules fanuc_lathe_compensation{
     .startup = CompensationRules::Startup::perpendicular_to_next,
     .outside_corner = CompensationRules::OutsideCorner::intersection,
     .nose_radius = true};
+// 840D: NORM approach (square to the contour's first block at its start),
+// G450 transition circles at outside corners; D is the active tool's edge.
+constexpr CompensationRules siemens_compensation{.startup = CompensationRules::Startup::perpendicular_to_next,
+                                                 .outside_corner = CompensationRules::OutsideCorner::arc,
+                                                 .d_names_tool = false};
 
 constexpr Controller controllers[] = {
     {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ@^",
@@ -96,7 +101,8 @@ constexpr Controller controllers[] = {
      .tool_word_changes_tool = true, .feed_per_rev_default = true, .thread_pitch_letter = 'F',
      .compensation = fanuc_lathe_compensation},
     {.name = "siemens840d", .g_codes = siemens_g, .m_codes = siemens_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ",
-     .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true},
+     .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true,
+     .compensation = siemens_compensation},
 };
 
 }  // namespace

@@ -1112,11 +1112,7 @@ class Interpreter {
     auto fail = [&](const std::string& error) {
       if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
     };
-    double radius = 0;
-    if (const auto it = siemens_tools_.find(state_.tool); it != siemens_tools_.end() && it->second.diameter > 0)
-      radius = it->second.diameter / 2;
-    else if (const auto t = o_.tools.find(state_.tool); t != o_.tools.end())
-      radius = t->second.diameter / 2;
+    const double radius = tool_of(state_.tool).value_or(Tool{}).diameter / 2;
     milling::Planes planes;
     planes.rtp = length(0, "RTP");
     planes.rfp = length(1, "RFP");
@@ -1641,19 +1637,20 @@ class Interpreter {
       radius = to_mm(w.get('D')) / 2;
       if (radius < 0) stop("negative tool diameter", w.col('D'));
     } else {
-      const int tool = w.has('D') && !c_.compensation.nose_radius ? to_int(w.get('D'), w.col('D')) : state_.tool;
+      const bool d_tool = w.has('D') && c_.compensation.d_names_tool && !c_.compensation.nose_radius;
+      const int tool = d_tool ? to_int(w.get('D'), w.col('D')) : state_.tool;
       if (tool < 0) stop("negative D", w.col('D'));
       if (tool != 0) {
-        const auto it = o_.tools.find(tool);
-        if (it == o_.tools.end())
+        const auto known = tool_of(tool);
+        if (!known)
           stop(o_.tools.empty() ? fmt::format("G{}: no tool list gives tool {}'s radius (--tools)", code / 10, tool)
                                 : fmt::format("G{}: tool {} is not in the tool table", code / 10, tool),
-               w.has('D') ? w.col('D') : column);
+               d_tool ? w.col('D') : column);
         if (c_.compensation.nose_radius) {
-          radius = it->second.nose_radius;
-          tip = nose_tip(it->second.tip_direction, radius);
+          radius = known->nose_radius;
+          tip = nose_tip(known->tip_direction, radius);
         } else {
-          radius = it->second.diameter / 2;
+          radius = known->diameter / 2;
         }
       }
     }
@@ -1663,6 +1660,15 @@ class Interpreter {
     } catch (const compensation::Error& e) {
       stop(e.what(), column);
     }
+  }
+
+  // A tool's data: the program's $TC_DP values (840D) when they give its
+  // radius, else the tool list's.
+  std::optional<Tool> tool_of(int number) const {
+    if (const auto it = siemens_tools_.find(number); it != siemens_tools_.end() && it->second.diameter > 0)
+      return it->second;
+    if (const auto it = o_.tools.find(number); it != o_.tools.end()) return it->second;
+    return std::nullopt;
   }
 
   // Fanuc's imaginary tool nose numbers (0i-TF, "Imaginary tool nose

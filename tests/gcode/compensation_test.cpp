@@ -163,3 +163,32 @@ TEST_CASE("LinuxCNC: what is not queued goes before the held moves, as rs274 pri
   CHECK(r.calls[second_line].v[0] == Approx(45));
   CHECK(r.calls[second_line].v[1] == Approx(5));
 }
+
+TEST_CASE("840D G41 with the radius from $TC_DP6: NORM approach, G450 transition circles",
+          "[gcode][compensation][siemens]") {
+  const Result r = run("siemens840d",
+                       "$TC_DP6[1,1]=5\nT1 D1\nM6\nG17 G90 G94 F500\nG0 X-20 Y-20\nG41 G1 X0 Y0\nY60\nX100\nY0\nX0\n"
+                       "G40 G1 X-20 Y-20\nM30\n",
+                       {});
+  for (const auto& e : r.errors) INFO(e.to_string("840d"));
+  REQUIRE(r.ok());
+  // Square to the next block (+Y) at its start; the outside corners get
+  // arcs of the radius about the programmed corners, clockwise (G41).
+  check_path(feed_ends(r), {{-5, 0}, {-5, 60}, {100, 65}, {105, 0}, {0, -5}, {-20, -20}});
+  const auto arcs = of(r, CallKind::arc);
+  REQUIRE(arcs.size() == 3);
+  const double expected[3][4] = {{0, 65, 0, 60}, {105, 60, 100, 60}, {100, -5, 100, 0}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    INFO("arc " << i);
+    for (std::size_t k = 0; k < 4; ++k) CHECK(arcs[i]->v[k] == Approx(expected[i][k]).margin(1e-9));
+    CHECK(arcs[i]->v[4] == -1);
+  }
+  // Without $TC_DP6 the tool list gives the radius; with neither, an error.
+  const Result listed = run("siemens840d", "T1 D1\nM6\nG17 G90 F500\nG0 X-20 Y-20\nG41 G1 X0 Y0\nY60\nG40 X-20\nM30\n",
+                            {{1, {1, 0, 8}}});
+  REQUIRE(listed.ok());
+  CHECK(feed_ends(listed)[0].first == Approx(-4));
+  const Result none = run("siemens840d", "T1 D1\nM6\nG17 G90 F500\nG41 G1 X10 Y0\nM30\n", {});
+  REQUIRE(none.errors.size() == 1);
+  CHECK(none.errors[0].message == "G41: no tool list gives tool 1's radius (--tools)");
+}

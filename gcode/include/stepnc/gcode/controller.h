@@ -79,6 +79,9 @@ struct CompensationRules {
   // The radius: a lathe tool's nose radius, the programmed point its
   // imaginary tip (Fanuc tip direction); else half the tool diameter.
   bool nose_radius = false;
+  // D names the tool whose radius is used (LinuxCNC, Fanuc mill); else D
+  // is a cutting edge of the active tool (840D D1).
+  bool d_names_tool = true;
 };
 
 struct Controller {
