@@ -52,6 +52,7 @@ double sweep(Point a, Point c, int turn, Point b) {
 // The intersections of two elements.
 std::vector<Point> intersections(const Element& a, const Element& b) {
   std::vector<Point> out;
+  if ((!a.circle && length(a.direction) == 0) || (!b.circle && length(b.direction) == 0)) return out;
   if (!a.circle && !b.circle) {
     const double det = a.direction.x * b.direction.y - a.direction.y * b.direction.x;
     if (std::abs(det) < 1e-12 * length(a.direction) * length(b.direction)) return out;

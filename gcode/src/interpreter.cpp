@@ -252,7 +252,7 @@ class Interpreter {
     // While radius compensation holds moves, what LinuxCNC does not queue
     // (only moves, feed, spindle, coolant, dwell and comments are) goes first.
     const std::size_t at = comp_.immediate_position();
-    if (at < result_.calls.size() && !queued_while_compensating(kind)) {
+    if (at < result_.calls.size() && !capturing_ && !queued_while_compensating(kind)) {
       comp_.shifted_by_insert(at);
       return *result_.calls.insert(result_.calls.begin() + static_cast<std::ptrdiff_t>(at), std::move(call));
     }
@@ -1012,6 +1012,7 @@ class Interpreter {
   }
 
   void siemens_drilling(const NamedWord& n, const Block& block) {
+    if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
     CycleArguments arguments = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
     auto& a = arguments.a;
     auto& event = arguments.event;
@@ -1099,6 +1100,7 @@ class Interpreter {
   // The path is the one milling_cycles.cpp states; the tool radius comes
   // from $TC_DP6 or the tool list. The modal feed is restored afterwards.
   void siemens_feature_cycle(const NamedWord& n, const Block& block) {
+    if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
     const bool face = n.name == "CYCLE71";
     const bool circular = n.name == "POCKET2";
     CycleArguments arguments = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
@@ -1594,6 +1596,7 @@ class Interpreter {
   // ---- radius compensation (compensation.cpp) -------------------------------
 
   void compensate(void (compensation::Compensator::*step)()) {
+    if (capturing_) return;  // a cycle's contour being learnt: its calls are undone
     const bool offsetting = comp_.offsetting();
     try {
       (comp_.*step)();
@@ -1622,6 +1625,7 @@ class Interpreter {
   // G41.1/G42.1 (D: the diameter itself); a lathe table takes the current
   // tool's nose radius and tip direction.
   void cutter_compensation(int code, std::uint32_t column, const Words& w) {
+    if (capturing_) unsupported("G40/G41/G42 inside a cycle's contour", column);
     if (code == 400) {
       compensate(&compensation::Compensator::stop);
       return;
@@ -1863,6 +1867,8 @@ class Interpreter {
           break;
         }
       }
+      if (comp_.on()) compensate(m.kind == lathe::MoveKind::arc ? &compensation::Compensator::arc
+                                                                 : &compensation::Compensator::straight);
     }
     if (synchronised) emit(CallKind::feed_sync_stop);
   }
@@ -2010,6 +2016,10 @@ class Interpreter {
     const int code = meaning / 100;
     const std::string name = fmt::format("G{}", code);
     if (capturing_) stop(fmt::format("{} inside the contour of another cycle", name), column);
+    // G70 finishes the contour under tool nose radius compensation; the
+    // roughing cycles' passes would need the compensated contour.
+    if (comp_.offsetting() && code != 70)
+      unsupported(fmt::format("{} with tool nose radius compensation on (G41/G42)", name), column);
     const bool contour_cycle = meaning <= meaning_pattern_repeating;
     const bool end_point = w.has('X') || w.has('Z') || w.has('U') || w.has('W');
     const bool first_block = contour_cycle ? !w.has('P') && !w.has('Q') : !end_point;

@@ -192,3 +192,42 @@ TEST_CASE("840D G41 with the radius from $TC_DP6: NORM approach, G450 transition
   REQUIRE(none.errors.size() == 1);
   CHECK(none.errors[0].message == "G41: no tool list gives tool 1's radius (--tools)");
 }
+
+TEST_CASE("Fanuc lathe: G70 finishes under G42 as the same blocks programmed directly", "[gcode][compensation][lathe]") {
+  const std::map<int, Tool> tools = {{1, {1, 0, 0, 0.8, 3}}};
+  const Result cycle = run("fanuc-lathe",
+                           "G99 G00 X30. Z5.\nT0101\nG42 G00 X16. Z2.\nG70 P10 Q20\nN10 G01 Z0. F0.1\nX20. Z-2.\n"
+                           "N20 Z-20.\nG40 G00 X50.\nM30\n",
+                           tools);
+  const Result direct = run("fanuc-lathe",
+                            "G99 G00 X30. Z5.\nT0101\nG42 G00 X16. Z2.\nG01 Z0. F0.1\nX20. Z-2.\nZ-20.\nG00 X16. Z2.\n"
+                            "G40 G00 X50.\nM30\n",
+                            tools);
+  for (const auto& e : cycle.errors) INFO(e.to_string("g70"));
+  REQUIRE(cycle.ok());
+  REQUIRE(direct.ok());
+  std::vector<const Call*> a, b;
+  for (const auto& c : cycle.calls)
+    if (c.kind == CallKind::rapid || c.kind == CallKind::linear || c.kind == CallKind::arc) a.push_back(&c);
+  for (const auto& c : direct.calls)
+    if (c.kind == CallKind::rapid || c.kind == CallKind::linear || c.kind == CallKind::arc) b.push_back(&c);
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    INFO("move " << i);
+    CHECK(a[i]->kind == b[i]->kind);
+    for (std::size_t k = 0; k < 3; ++k) CHECK(a[i]->v[k] == Approx(b[i]->v[k]).margin(1e-9));
+  }
+  // The cylinder is cut at its programmed diameter (radius 10), the tip
+  // 0.8 beyond the chamfer's corner at Z-2 - 0.4686.
+  const auto feeds = of(cycle, CallKind::linear);
+  REQUIRE(feeds.size() >= 3);
+  CHECK(feeds[1]->v[0] == Approx(10));
+  CHECK(feeds[1]->v[2] == Approx(8 + 0.8 * std::sqrt(2.0) - 10.8 - 0.8));
+  // A roughing cycle under compensation is refused by name.
+  const Result rough = run("fanuc-lathe",
+                           "G99 G00 X30. Z5.\nT0101\nG42 G00 X16. Z2.\nG71 U1. R0.5\nG71 P10 Q20 U0.2 W0.1 F0.2\n"
+                           "N10 G01 X20. Z0.\nN20 Z-20.\nM30\n",
+                           tools);
+  REQUIRE(rough.unsupported());
+  CHECK(rough.errors[0].message == "unsupported: G71 with tool nose radius compensation on (G41/G42)");
+}
