@@ -807,6 +807,7 @@ class Interpreter {
     }
     // 15 coordinate system, 16 path control, 17 distance, 18 retract
     if (auto g = g_of(w, 12)) {
+      if (comp_.on()) stop("cannot change coordinate systems with cutter radius compensation on", g->second);
       coord_system_ = g->first < 590 ? (g->first - 530) / 10 : 6 + (g->first - 590);
       params_[5220] = coord_system_;
       Call& call = emit(CallKind::g5x_offset);
@@ -827,6 +828,10 @@ class Interpreter {
     bool machine_coordinates = suppress_frames_;
     bool axes_used = false;
     for (const auto& [code, column] : w.g) {
+      if (comp_.on() && (code == 280 || code == 300 || (code >= 920 && code <= 923)))
+        stop(code < 900 ? "cannot use G28 or G30 with cutter radius compensation on"
+                        : "cannot change axis offsets with cutter radius compensation on",
+             column);
       switch (code) {
         case 100: g10(w, column); axes_used = true; break;
         case 280: case 300: go_home(w, code == 280 ? 5161 : 5181); axes_used = true; break;
