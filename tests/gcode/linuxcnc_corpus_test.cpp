@@ -60,6 +60,16 @@ std::string linuxcnc_tool_table(const std::map<int, Tool>& tools) {
 
 }  // namespace
 
+// The tools of tests/gcode/data/tools.csv, which rs274's tool table is made from.
+static Options corpus_options() {
+  const auto list = stepnc::tooling::read_tool_list(
+      stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"), "tools.csv");
+  REQUIRE(list.ok());
+  Options options;
+  options.tools = tools_from(list);
+  return options;
+}
+
 // Hand-made radius compensation programs (tests/gcode/data/compensation/:
 // outside and inside contours, line-arc and arc-arc corners, rapids and
 // Z-only moves under compensation, an R-format entry arc, G18 with
@@ -70,11 +80,7 @@ TEST_CASE("radius compensation: hand-made programs against rs274 -g", "[gcode][l
     WARN("rs274 (Debian package linuxcnc-uspace) is not installed: the comparison is skipped");
     return;
   }
-  const auto list = stepnc::tooling::read_tool_list(
-      stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"), "tools.csv");
-  REQUIRE(list.ok());
-  Options options;
-  options.tools = tools_from(list);
+  const Options options = corpus_options();
   const auto controller = *stepnc::gcode::controller("rs274ngc");
   const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_comp_{}", ::getpid());
   fs::create_directories(dir);
@@ -118,11 +124,7 @@ TEST_CASE("every program linuxcnc-uspace ships: rs274's canonical calls, or a na
   const auto programs = shipped_programs();
   REQUIRE(programs.size() >= 100);
 
-  const auto list = stepnc::tooling::read_tool_list(
-      stepnc_test::read_file(fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/tools.csv"), "tools.csv");
-  REQUIRE(list.ok());
-  Options options;
-  options.tools = tools_from(list);
+  const Options options = corpus_options();
   const auto controller = *stepnc::gcode::controller("rs274ngc");
 
   const fs::path dir = fs::temp_directory_path() / fmt::format("stepnc_gcode_lcnc_{}", ::getpid());
