@@ -7,7 +7,7 @@
 #include "command.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
-#include "stepnc/gcode/tool_list.h"
+#include "stepnc/tooling/tool_list.h"
 
 namespace stepnc::cli {
 namespace {
@@ -32,10 +32,10 @@ int run_gcode(const GcodeOptions& options) {
   if (!options.tools.empty()) {
     const auto csv = read_input(options.tools);
     if (!csv) return exit_failure;
-    auto list = gcode::read_tool_list(*csv);
-    for (const auto& e : list.errors) fmt::print(stderr, "{}\n", e.to_string(options.tools));
+    const auto list = tooling::read_tool_list(*csv, options.tools);
+    for (const auto& e : list.errors) fmt::print(stderr, "{}\n", e);
     if (!list.ok()) return exit_invalid_input;
-    run.tools = std::move(list.tools);
+    run.tools = gcode::tools_from(list);
   }
   auto text = read_input(options.file);
   if (!text) return exit_failure;

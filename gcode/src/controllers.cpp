@@ -74,6 +74,21 @@ constexpr GCodeEntry siemens_g[] = {
 constexpr MCodeEntry siemens_m[] = {{0, 4}, {1, 4}, {2, 4}, {3, 7}, {4, 7}, {5, 7}, {6, 6},
                                     {7, 8}, {8, 8}, {9, 8}, {17, 4}, {30, 4}};
 
+// Fanuc 0i: start-up type A (parameter 5003 SUP = 0), corners of the offset
+// paths met at their intersection (Fanuc 0i-MF/TF, "Tool radius / tool nose
+// radius compensation").
+constexpr CompensationRules fanuc_compensation{.startup = CompensationRules::Startup::perpendicular_to_next,
+                                               .outside_corner = CompensationRules::OutsideCorner::intersection};
+constexpr CompensationRules fanuc_lathe_compensation{
+    .startup = CompensationRules::Startup::perpendicular_to_next,
+    .outside_corner = CompensationRules::OutsideCorner::intersection,
+    .nose_radius = true};
+// 840D: NORM approach (square to the contour's first block at its start),
+// G450 transition circles at outside corners; D is the active tool's edge.
+constexpr CompensationRules siemens_compensation{.startup = CompensationRules::Startup::perpendicular_to_next,
+                                                 .outside_corner = CompensationRules::OutsideCorner::arc,
+                                                 .d_names_tool = false};
+
 constexpr Controller controllers[] = {
     {.name = "rs274ngc", .g_codes = rs274ngc_g, .m_codes = rs274ngc_m, .letters = "ABCDEFGHIJKLMNPQRSTUVWXYZ@^",
      .bracket_expressions = true, .o_word_statements = true, .orient_words = true,
@@ -81,13 +96,15 @@ constexpr Controller controllers[] = {
     {.name = "fanuc-mill", .g_codes = fanuc_mill_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTXYZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true,
      .integer_is_least_increment = true, .dwell_p_milliseconds = true, .g80_clears_cycle_words = true,
-     .repeat_letter = 'K'},
+     .repeat_letter = 'K', .compensation = fanuc_compensation},
     {.name = "fanuc-lathe", .g_codes = fanuc_lathe_g, .m_codes = fanuc_m, .letters = "ABCDFGHIJKLMNPQRSTUWXZ",
      .bracket_expressions = true, .o_program_number = true, .bare_assignment_expressions = true, .diameter_x = true,
      .uw_incremental = true, .integer_is_least_increment = true, .dwell_p_milliseconds = true,
-     .tool_word_changes_tool = true, .feed_per_rev_default = true, .thread_pitch_letter = 'F'},
+     .tool_word_changes_tool = true, .feed_per_rev_default = true, .thread_pitch_letter = 'F',
+     .compensation = fanuc_lathe_compensation},
     {.name = "siemens840d", .g_codes = siemens_g, .m_codes = siemens_m, .letters = "ABCDFGHIJKLMNPQRSTUVWXYZ",
-     .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true},
+     .named_addresses = true, .dwell_f_seconds = true, .tool_offsets_on_machine = true,
+     .compensation = siemens_compensation},
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "lathe_cycles.h"
+#include "compensation.h"
 #include "milling_cycles.h"
 
 #include <algorithm>
@@ -165,6 +166,7 @@ class Interpreter {
   const Controller& c_;
   const Options& o_;
   Result result_;
+  compensation::Compensator comp_{result_.calls};  // G41/G42 (compensation.cpp)
   std::uint32_t block_ = 0, line_ = 0;
   bool ended_ = false;
   std::optional<std::uint32_t> jump_;  // the block to run next, when not the following one (M98, M99, G71)
@@ -247,8 +249,24 @@ class Interpreter {
     call.block = block_;
     call.plane = plane_;
     call.state = state_;
+    // While radius compensation holds moves, what LinuxCNC does not queue
+    // (only moves, feed, spindle, coolant, dwell and comments are) goes first.
+    const std::size_t at = comp_.immediate_position();
+    if (at < result_.calls.size() && !capturing_ && !queued_while_compensating(kind)) {
+      comp_.shifted_by_insert(at);
+      return *result_.calls.insert(result_.calls.begin() + static_cast<std::ptrdiff_t>(at), std::move(call));
+    }
     result_.calls.push_back(std::move(call));
     return result_.calls.back();
+  }
+  static bool queued_while_compensating(CallKind kind) {
+    switch (kind) {
+      case CallKind::rapid: case CallKind::linear: case CallKind::arc: case CallKind::dwell: case CallKind::feed_rate:
+      case CallKind::spindle_speed: case CallKind::spindle_clockwise: case CallKind::spindle_counterclockwise:
+      case CallKind::spindle_stop: case CallKind::flood_on: case CallKind::flood_off: case CallKind::mist_on:
+      case CallKind::mist_off: case CallKind::comment: return true;
+      default: return false;
+    }
   }
 
   // Positions in program coordinates; under G68 the program's XY are turned
@@ -756,6 +774,7 @@ class Interpreter {
     // 6 tool change
     for (const auto& [code, column] : w.m) {
       if (code == 6) {
+        if (comp_.on()) stop("cannot change tools with cutter radius compensation on", column);
         emit(CallKind::spindle_stop);
         state_.spindle_direction = 0;
         state_.tool = prepped_tool_;
@@ -812,6 +831,8 @@ class Interpreter {
     }
     // 11 plane, 12 units
     if (auto g = g_of(w, 2)) {
+      if (comp_.on() && g->first / 10 != comp_.plane())
+        stop("cannot change planes with cutter radius compensation on", g->second);
       if (g->first % 10 != 0) unsupported(fmt::format("G{:.1f} plane", g->first / 10.0), g->second);
       plane_ = g->first / 10;
       emit(CallKind::plane).v[0] = plane_;
@@ -820,8 +841,10 @@ class Interpreter {
       inch_ = g->first == 200;
       emit(CallKind::units);
     }
-    // 13 cutter compensation (G40 only), 14 tool length
+    // 13 cutter compensation, 14 tool length
+    if (auto g = g_of(w, 7)) cutter_compensation(g->first, g->second, w);
     if (auto g = g_of(w, 8)) {
+      if (comp_.on()) stop("cannot change the tool length offset with cutter radius compensation on", g->second);
       double length = 0;
       if (g->first == 430 || g->first == meaning_negative_length_offset) {
         int tool = state_.tool;
@@ -841,6 +864,7 @@ class Interpreter {
     }
     // 15 coordinate system, 16 path control, 17 distance, 18 retract
     if (auto g = g_of(w, 12)) {
+      if (comp_.on()) stop("cannot change coordinate systems with cutter radius compensation on", g->second);
       coord_system_ = g->first < 590 ? (g->first - 530) / 10 : 6 + (g->first - 590);
       params_[5220] = coord_system_;
       Call& call = emit(CallKind::g5x_offset);
@@ -861,6 +885,10 @@ class Interpreter {
     bool machine_coordinates = suppress_frames_;
     bool axes_used = false;
     for (const auto& [code, column] : w.g) {
+      if (comp_.on() && (code == 280 || code == 300 || (code >= 920 && code <= 923)))
+        stop(code < 900 ? "cannot use G28 or G30 with cutter radius compensation on"
+                        : "cannot change axis offsets with cutter radius compensation on",
+             column);
       switch (code) {
         case 100: g10(w, column); axes_used = true; break;
         case 280: case 300: go_home(w, code == 280 ? 5161 : 5181); axes_used = true; break;
@@ -1057,6 +1085,7 @@ class Interpreter {
   }
 
   void siemens_drilling(const NamedWord& n, const Block& block) {
+    if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
     CycleArguments arguments = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
     auto& a = arguments.a;
     auto& event = arguments.event;
@@ -1144,6 +1173,7 @@ class Interpreter {
   // The path is the one milling_cycles.cpp states; the tool radius comes
   // from $TC_DP6 or the tool list. The modal feed is restored afterwards.
   void siemens_feature_cycle(const NamedWord& n, const Block& block) {
+    if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
     const bool face = n.name == "CYCLE71";
     const bool circular = n.name == "POCKET2";
     CycleArguments arguments = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
@@ -1157,11 +1187,7 @@ class Interpreter {
     auto fail = [&](const std::string& error) {
       if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
     };
-    double radius = 0;
-    if (const auto it = siemens_tools_.find(state_.tool); it != siemens_tools_.end() && it->second.diameter > 0)
-      radius = it->second.diameter / 2;
-    else if (const auto t = o_.tools.find(state_.tool); t != o_.tools.end())
-      radius = t->second.diameter / 2;
+    const double radius = tool_of(state_.tool).value_or(Tool{}).diameter / 2;
     milling::Planes planes;
     planes.rtp = length(0, "RTP");
     planes.rfp = length(1, "RFP");
@@ -1567,10 +1593,6 @@ class Interpreter {
       case 52: case 53: unsupported("G5.2/G5.3 NURBS blocks", column);
       case 331: unsupported("G33.1 rigid tapping", column);
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
-      case 410: case 411: case 420: case 421:
-        unsupported(c_.diameter_x ? "G41/G42 tool nose radius compensation (with its tip direction)"
-                                  : "G41/G42 cutter radius compensation",
-                    column);
       case 431: case 432: unsupported(fmt::format("G{:.1f} dynamic tool length offset", code / 10.0), column);
       case 520: unsupported("G52 local offset", column);
       case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
@@ -1627,15 +1649,22 @@ class Interpreter {
   }
 
   void motion(const Words& w, const Block& block, bool machine_coordinates) {
+    if (comp_.on() && motion_ != 0 && motion_ != 10 && motion_ != 20 && motion_ != 30)
+      stop(fmt::format("G{:g} with cutter radius compensation on (G40 first)", motion_ > 5000 ? motion_ / 100 : motion_ / 10.0));
+    if (comp_.offsetting() && machine_coordinates) stop("G53 with cutter radius compensation on");
     for (char c : std::string_view("UVW"))
       if (w.has(c) && !c_.uw_incremental) unsupported("U, V, W axes", w.col(c));
     switch (motion_) {
-      case 0: move(CallKind::rapid, target(w, machine_coordinates)); return;
+      case 0:
+        move(CallKind::rapid, target(w, machine_coordinates));
+        compensate(&compensation::Compensator::straight);
+        return;
       case 10: {
         const auto end = target(w, machine_coordinates);
         if (inverse_time_) inverse_time_feed(w, straight_length(program_position(), end));
         if (state_.feed <= 0) stop("G1 with zero feed rate");
         move(CallKind::linear, end);
+        compensate(&compensation::Compensator::straight);
         return;
       }
       case 51: quadratic_spline(w); return;
@@ -1767,6 +1796,99 @@ class Interpreter {
               static_cast<double>(clockwise ? -turns : turns), end[normal], end[3], end[4], end[5]};
     set_program_position(end);
     last_move_ = end;
+    compensate(&compensation::Compensator::arc);
+  }
+
+  // ---- radius compensation (compensation.cpp) -------------------------------
+
+  void compensate(void (compensation::Compensator::*step)()) {
+    if (capturing_) return;  // a cycle's contour being learnt: its calls are undone
+    const bool offsetting = comp_.offsetting();
+    try {
+      (comp_.*step)();
+    } catch (const compensation::Error& e) {
+      stop(e.what());
+    }
+    if (!offsetting) return;
+    // The tool is where the compensated calls took it: what a tool change
+    // re-reads (last_move_), not the programmed point.
+    const auto [first, second, normal] = plane_axes();
+    for (auto it = result_.calls.rbegin(); it != result_.calls.rend(); ++it) {
+      if (it->kind == CallKind::arc) {
+        last_move_[first] = it->v[0];
+        last_move_[second] = it->v[1];
+      } else if (it->kind == CallKind::rapid || it->kind == CallKind::linear) {
+        last_move_[first] = it->v[first];
+        last_move_[second] = it->v[second];
+      } else {
+        continue;
+      }
+      break;
+    }
+  }
+
+  // G40, G41/G42 (D: a tool number, whose diameter is used), LinuxCNC's
+  // G41.1/G42.1 (D: the diameter itself); a lathe table takes the current
+  // tool's nose radius and tip direction.
+  void cutter_compensation(int code, std::uint32_t column, const Words& w) {
+    if (capturing_) unsupported("G40/G41/G42 inside a cycle's contour", column);
+    if (code == 400) {
+      compensate(&compensation::Compensator::stop);
+      return;
+    }
+    if (comp_.on()) stop("cannot turn cutter radius compensation on when it is already on", column);
+    if (plane_ != 17 && plane_ != 18) stop("cutter radius compensation works in the XY (G17) and XZ (G18) planes only", column);
+    const auto side = code == 410 || code == 411 ? compensation::Side::left : compensation::Side::right;
+    const auto [first, second, normal] = plane_axes();
+    compensation::Point tip;
+    double radius = 0;
+    if (code == 411 || code == 421) {
+      if (!w.has('D')) stop(fmt::format("G{:.1f} needs D, the tool diameter", code / 10.0), column);
+      radius = to_mm(w.get('D')) / 2;
+      if (radius < 0) stop("negative tool diameter", w.col('D'));
+    } else {
+      const bool d_tool = w.has('D') && c_.compensation.d_names_tool && !c_.compensation.nose_radius;
+      const int tool = d_tool ? to_int(w.get('D'), w.col('D')) : state_.tool;
+      if (tool < 0) stop("negative D", w.col('D'));
+      if (tool != 0) {
+        const auto known = tool_of(tool);
+        if (!known)
+          stop(o_.tools.empty() ? fmt::format("G{}: no tool list gives tool {}'s radius (--tools)", code / 10, tool)
+                                : fmt::format("G{}: tool {} is not in the tool table", code / 10, tool),
+               d_tool ? w.col('D') : column);
+        if (c_.compensation.nose_radius) {
+          radius = known->nose_radius;
+          tip = nose_tip(known->tip_direction, radius);
+        } else {
+          radius = known->diameter / 2;
+        }
+      }
+    }
+    const auto pos = program_position();
+    try {
+      comp_.start(side, radius, c_.compensation, plane_, first, second, tip, {pos[first], pos[second]}, pos[normal]);
+    } catch (const compensation::Error& e) {
+      stop(e.what(), column);
+    }
+  }
+
+  // A tool's data: the program's $TC_DP values (840D) when they give its
+  // radius, else the tool list's.
+  std::optional<Tool> tool_of(int number) const {
+    if (const auto it = siemens_tools_.find(number); it != siemens_tools_.end() && it->second.diameter > 0)
+      return it->second;
+    if (const auto it = o_.tools.find(number); it != o_.tools.end()) return it->second;
+    return std::nullopt;
+  }
+
+  // Fanuc's imaginary tool nose numbers (0i-TF, "Imaginary tool nose
+  // direction", X up and Z to the right): where the programmed tip lies
+  // seen from the nose centre, as (Z, X) in the G18 plane; 0 and 9 the centre.
+  static compensation::Point nose_tip(int direction, double r) {
+    static constexpr double z[10] = {0, 1, -1, -1, 1, 1, 0, -1, 0, 0};
+    static constexpr double x[10] = {0, 1, 1, -1, -1, 0, 1, 0, -1, 0};
+    if (direction < 0 || direction > 9) return {};
+    return {z[direction] * r, x[direction] * r};
   }
 
   // ---- canned cycles (G73, G74, G76, G81-G89), XY plane ----------------
@@ -2064,6 +2186,8 @@ class Interpreter {
           break;
         }
       }
+      if (comp_.on()) compensate(m.kind == lathe::MoveKind::arc ? &compensation::Compensator::arc
+                                                                 : &compensation::Compensator::straight);
     }
     if (synchronised) emit(CallKind::feed_sync_stop);
   }
@@ -2245,6 +2369,10 @@ class Interpreter {
     const int code = meaning / 100;
     const std::string name = fmt::format("G{}", code);
     if (capturing_) stop(fmt::format("{} inside the contour of another cycle", name), column);
+    // G70 finishes the contour under tool nose radius compensation; the
+    // roughing cycles' passes would need the compensated contour.
+    if (comp_.offsetting() && code != 70)
+      unsupported(fmt::format("{} with tool nose radius compensation on (G41/G42)", name), column);
     const bool contour_cycle = meaning <= meaning_pattern_repeating;
     const bool end_point = w.has('X') || w.has('Z') || w.has('U') || w.has('W');
     const bool first_block = contour_cycle ? !w.has('P') && !w.has('Q') : !end_point;
@@ -2517,6 +2645,7 @@ class Interpreter {
   // M2/M30 (RS274NGC 3.6.1): offsets and modes back to their defaults,
   // spindle and coolant off.
   void program_end() {
+    compensate(&compensation::Compensator::stop);
     coord_system_ = 1;
     plane_ = 17;
     incremental_ = false;

@@ -89,8 +89,7 @@ ImportResult import_program(std::string_view program_text, const ImportOptions& 
   }
   // The interpreter refuses a T the list does not name, at its block.
   gcode::Options run;
-  for (const tooling::Tool& tool : options.tools->tools)
-    run.tools[tool.number] = gcode::Tool{tool.number, tool.length.value_or(0), tool.diameter.value_or(0)};
+  run.tools = gcode::tools_from(*options.tools);
   const gcode::Result motion = gcode::interpret_text(std::string(program_text), *controller, run);
   for (const gcode::Diagnostic& error : motion.errors) result.errors.push_back(error.to_string(options.program_file));
   if (!motion.ok()) {

@@ -229,9 +229,20 @@ TEST_CASE("stepnc gcode: canonical, JSON and plot output; exit codes 1, 2, 3; no
   CHECK(invalid.exit_code == 1);
   CHECK_THAT(invalid.out, Catch::Contains("stepnc_cli_gcode_bad.ngc:2:8: error: expected a number"));
   CHECK_FALSE(fs::exists(out));
-  const fs::path comp = write_temp("stepnc_cli_gcode_comp.ngc", "G21 F100\nG41 D1\nM2\n");
-  const Run refused = stepnc("gcode " + comp.string());
+  const fs::path probe = write_temp("stepnc_cli_gcode_probe.ngc", "G21 F100\nG38.2 Z-1\nM2\n");
+  const Run refused = stepnc("gcode " + probe.string());
   CHECK(refused.exit_code == 3);
-  CHECK_THAT(refused.out, Catch::Contains("2:1: error: unsupported: G41/G42 cutter radius compensation"));
+  CHECK_THAT(refused.out, Catch::Contains("2:1: error: unsupported: G38.x probing"));
+  // Cutter compensation takes the radius from the tool list, read by tooling/.
+  const fs::path comp = write_temp("stepnc_cli_gcode_comp.ngc", "G21 F100\nG0 X-10\nG41 D1 G1 X0\nX20\nG40 X30\nM2\n");
+  const fs::path tools = write_temp("stepnc_cli_gcode_tools.csv", "tool,diameter,tip_direction\n1,10,\n");
+  const Run compensated = stepnc("gcode " + comp.string() + " --tools " + tools.string() + " --canonical");
+  CHECK(compensated.exit_code == 0);
+  CHECK_THAT(compensated.out, Catch::Contains("STRAIGHT_FEED(20.0000, 5.0000,"));
+  CHECK(stepnc("gcode " + comp.string()).exit_code == 1);  // no tool list: no radius
+  const fs::path typo = write_temp("stepnc_cli_gcode_typo.csv", "tool,diameter,tip_direction\n1,10,12\n");
+  const Run bad_list = stepnc("gcode " + comp.string() + " --tools " + typo.string());
+  CHECK(bad_list.exit_code == 1);
+  CHECK_THAT(bad_list.out, Catch::Contains("stepnc_cli_gcode_typo.csv:2:6: error: '12' is not a tip direction (0 to 9)"));
   CHECK(stepnc("gcode " + program.string() + " -c heidenhain").exit_code == 2);
 }

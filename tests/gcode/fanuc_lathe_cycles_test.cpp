@@ -278,9 +278,6 @@ TEST_CASE("Lathe cycle errors name the word and the block", "[gcode][fanuc][lath
   const Result inside = lathe("G99\nG00 X60. Z2.\nG70 P10 Q20\nM30\nN10 G00 X20.\nG01 Z-10. E1\nN20 X60.\n");
   REQUIRE(inside.errors.size() == 1);
   CHECK(inside.errors[0].pos.line == 6);
-  const Result tip = lathe("G00 X60. Z2.\nG42 G01 X50. F0.2\nM30\n");
-  REQUIRE(tip.unsupported());
-  CHECK(tip.errors[0].message == "unsupported: G41/G42 tool nose radius compensation (with its tip direction)");
 }
 
 // G71 type II: a pocket between Z-20 and Z-30 (radius 10 there, 15 on the

@@ -56,10 +56,6 @@ TEST_CASE("Fanuc mill: K repeats a canned cycle, macro variables take bare expre
 }
 
 TEST_CASE("Fanuc: what the table does not run yet is refused by name", "[gcode][fanuc]") {
-  const Result lathe = run("fanuc-lathe", "G00 X80. Z2.\nG41 G01 X70. F0.2\nM30\n");
-  REQUIRE(lathe.unsupported());
-  CHECK(lathe.errors[0].message == "unsupported: G41/G42 tool nose radius compensation (with its tip direction)");
-  CHECK(lathe.errors[0].pos.line == 2);
   const Result sub = run("fanuc-mill", "M98 P1000\nM30\n");  // no O1000 in this file
   REQUIRE(sub.unsupported());
   CHECK(sub.errors[0].message == "unsupported: subprogram O1000 outside this file");

@@ -7,7 +7,7 @@
 #include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
-#include "stepnc/gcode/tool_list.h"
+#include "stepnc/tooling/tool_list.h"
 
 using namespace stepnc::gcode;
 
@@ -119,19 +119,25 @@ TEST_CASE("G92, G10 L2 and G43 shift the program coordinates as LinuxCNC does", 
   CHECK(rapids[4]->v[0] == Approx(-3));
 }
 
-TEST_CASE("the tool list CSV: columns by name, errors with line and column", "[gcode][tools]") {
-  const auto good = read_tool_list("tool,kind,name,diameter,length\n1,endmill,EM,10,75.5\n2,twist_drill,D,6,\n");
+TEST_CASE("the tool list through tooling: the fields the interpreter uses", "[gcode][tools]") {
+  const auto good = stepnc::tooling::read_tool_list(
+      "tool,kind,name,diameter,length,insert,tip_direction\n1,endmill,EM,10,75.5,,\n2,twist_drill,D,6,,,\n"
+      "T0303,general_turning_tool,OD,,,CNMG120408,3\n",
+      "t.csv");
   REQUIRE(good.ok());
-  CHECK(good.tools.at(1).diameter == 10);
-  CHECK(good.tools.at(1).length == 75.5);
-  CHECK(good.tools.at(2).length == 0);
-  const auto typo = read_tool_list("tool,lenght\n1,5\n");
+  const auto tools = tools_from(good);
+  CHECK(tools.at(1).diameter == 10);
+  CHECK(tools.at(1).length == 75.5);
+  CHECK(tools.at(2).length == 0);
+  CHECK(tools.at(3).nose_radius == 0.8);
+  CHECK(tools.at(3).tip_direction == 3);
+  CHECK(tools.at(3).diameter == 0);
+  const auto typo = stepnc::tooling::read_tool_list("tool,lenght\n1,5\n", "t.csv");
   REQUIRE(typo.errors.size() == 1);
-  CHECK(typo.errors[0].to_string("t.csv") == "t.csv:1:6: error: unknown column 'lenght'\n  tool,lenght");
-  const auto bad = read_tool_list("tool,length\n1,abc\n");
+  CHECK(typo.errors[0] == "t.csv:1:6: error: unknown column 'lenght'");
+  const auto bad = stepnc::tooling::read_tool_list("tool,length\n1,abc\n", "t.csv");
   REQUIRE(bad.errors.size() == 1);
-  CHECK(bad.errors[0].pos.line == 2);
-  CHECK(bad.errors[0].pos.column == 3);
+  CHECK(bad.errors[0] == "t.csv:2:3: error: 'abc' is not a non-negative number (length)");
 }
 
 TEST_CASE("JSON carries calls with provenance and state, cycles with their words", "[gcode][output]") {

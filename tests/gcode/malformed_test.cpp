@@ -26,7 +26,7 @@ TEST_CASE("malformed programs: exact diagnostics with line and column, no crash"
   std::sort(files.begin(), files.end());
   REQUIRE(files.size() >= 15);
   Options options;
-  options.tools = {{1, {1, 50, 10}}, {2, {2, 60, 6}}};
+  options.tools = {{1, {1, 50, 10, 0.8, 3}}, {2, {2, 60, 6}}};  // tool 1 also a lathe tool: r 0.8, tip 3
   options.max_blocks = 100'000;
   for (const fs::path& file : files) {
     INFO(file.filename().string());

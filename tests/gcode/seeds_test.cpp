@@ -8,7 +8,7 @@
 
 #include "calls_of_kind.h"
 #include "stepnc/gcode/interpreter.h"
-#include "stepnc/gcode/tool_list.h"
+#include "stepnc/tooling/tool_list.h"
 #include "test_files.h"
 
 namespace fs = std::filesystem;
@@ -21,10 +21,10 @@ std::string sample(const char* name) { return stepnc_test::read_file(fs::path(ST
 }  // namespace
 
 TEST_CASE("seed 004 Fig. 10 (Fanuc mill): 3 tool changes, 4 canned cycles, helical entries as helices", "[gcode][seeds]") {
-  const auto tools = read_tool_list(sample("seed004_tools.csv"));
+  const auto tools = stepnc::tooling::read_tool_list(sample("seed004_tools.csv"), "seed004_tools.csv");
   REQUIRE(tools.ok());
   Options options;
-  options.tools = tools.tools;
+  options.tools = tools_from(tools);
   const Result r = interpret_text(sample("seed004_fig10.nc"), *controller("fanuc-mill"), options);
   for (const auto& e : r.errors) INFO(e.to_string("seed004_fig10.nc"));
   REQUIRE(r.ok());

@@ -62,6 +62,15 @@ TEST_CASE("every column of the tool list is read", "[tooling]") {
   CHECK(list.find(7) == nullptr);
 }
 
+TEST_CASE("the tip direction is Fanuc's imaginary tool nose number", "[tooling]") {
+  const ToolList list = read_tool_list("tool,insert,tip_direction\n1,CNMG120408,3\n2,,0\n3,,\n", "t.csv");
+  REQUIRE(list.ok());
+  CHECK(*list.find(1)->tip_direction == 3);
+  CHECK(*list.find(1)->nose_radius == 0.8);
+  CHECK(*list.find(2)->tip_direction == 0);
+  CHECK_FALSE(list.find(3)->tip_direction);
+}
+
 TEST_CASE("explicit cells win over decoded designations", "[tooling]") {
   const ToolList list = read_tool_list(
       "tool,holder,insert,nose_radius,side_cutting_edge_angle,hand\n1,PCLNR2525M12,CNMG120408,0.4,93,left\n", "t.csv");
@@ -89,6 +98,8 @@ TEST_CASE("bad tool lists name file, line and column", "[tooling]") {
         "t.csv:2:3: error: insert 'CNMG12': not an ISO 1832 designation this library decodes");
   CHECK(first_error("tool,available\n1,maybe\n") == "t.csv:2:3: error: available: 'maybe' is neither yes nor no");
   CHECK(first_error("kind,tool\nendmill,\n") == "t.csv:2:9: error: the row has no tool number");
+  CHECK(first_error("tool,tip_direction\n1,10\n") == "t.csv:2:3: error: '10' is not a tip direction (0 to 9)");
+  CHECK(first_error("tool,tip_direction\n1,3.\n") == "t.csv:2:3: error: '3.' is not a tip direction (0 to 9)");
   CHECK(first_error("") == "t.csv: error: no header row");
 }
 

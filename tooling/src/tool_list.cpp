@@ -15,7 +15,7 @@ namespace {
 const std::set<std::string_view> columns = {
     "tool",   "kind",   "name",        "diameter",        "corner_radius", "length",  "flutes",
     "holder", "insert", "nose_radius", "cutting_edge_length", "side_cutting_edge_angle",
-    "end_cutting_edge_angle", "hand", "width", "available", "life_minutes", "used_minutes"};
+    "end_cutting_edge_angle", "hand", "width", "available", "life_minutes", "used_minutes", "tip_direction"};
 
 struct Cell {
   std::string text;
@@ -139,6 +139,15 @@ ToolList read_tool_list(std::string_view csv, std::string_view file_name) {
       else if (column == "width") tool.width = number();
       else if (column == "life_minutes") tool.life_minutes = number();
       else if (column == "used_minutes") tool.used_minutes = number();
+      else if (column == "tip_direction") {
+        // Fanuc's imaginary tool nose number: 0 (nose centre) to 9 (nose centre again).
+        if (cell.size() == 1 && cell[0] >= '0' && cell[0] <= '9') {
+          tool.tip_direction = cell[0] - '0';
+        } else {
+          fail(i, fmt::format("'{}' is not a tip direction (0 to 9)", cell));
+          ok = false;
+        }
+      }
     }
     const auto column_index = [&](std::string_view name) {
       return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());

@@ -14,6 +14,8 @@ void run_one(const std::uint8_t* data, std::size_t size) {
   Options options;
   options.max_blocks = 20'000;
   options.max_calls = 200'000;
+  // Tools 1 and 2 give G41/G42 a radius (and the lathe a nose radius and tip).
+  options.tools = {{1, {1, 20, 6, 0.8, 3}}, {2, {2, 30, 10, 0.4, 2}}};
   const Result result = interpret_text(std::string(reinterpret_cast<const char*>(data), size), table, options);
   // Whatever ran must print; an error must carry a position.
   (void)canonical_text(result);

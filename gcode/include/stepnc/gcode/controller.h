@@ -66,6 +66,28 @@ struct RepetitiveCycleDefaults {
   double thread_finish_allowance_mm = 0;  // G76 d (5141)
 };
 
+// How G41/G42 radius compensation starts and turns outside corners (one
+// mechanism, src/compensation.cpp; inside corners always meet at the
+// intersection of the offset paths).
+struct CompensationRules {
+  enum class Startup : std::uint8_t {
+    perpendicular_to_entry,  // LinuxCNC: the entry move ends one radius off its own end, square to it
+    perpendicular_to_next,   // Fanuc start-up type A: square to the next move at its start
+  };
+  enum class OutsideCorner : std::uint8_t {
+    arc,           // LinuxCNC: an arc of the radius about the programmed corner
+    intersection,  // Fanuc: the offset paths' intersection; past 90 degrees two lines one radius beyond
+  };
+  Startup startup = Startup::perpendicular_to_entry;
+  OutsideCorner outside_corner = OutsideCorner::arc;
+  // The radius: a lathe tool's nose radius, the programmed point its
+  // imaginary tip (Fanuc tip direction); else half the tool diameter.
+  bool nose_radius = false;
+  // D names the tool whose radius is used (LinuxCNC, Fanuc mill); else D
+  // is a cutting edge of the active tool (840D D1).
+  bool d_names_tool = true;
+};
+
 struct Controller {
   std::string_view name;
   std::span<const GCodeEntry> g_codes;
@@ -99,6 +121,7 @@ struct Controller {
   // Fanuc mill G76: the direction of the shift Q at the bottom (parameter 5101 RD1/RD2).
   double fine_boring_shift_x = 1, fine_boring_shift_y = 0;
   RepetitiveCycleDefaults repetitive{};
+  CompensationRules compensation{};
 };
 
 // The controllers we know: rs274ngc, fanuc-lathe, fanuc-mill, siemens840d.

@@ -16,6 +16,10 @@
 #include "stepnc/gcode/controller.h"
 #include "stepnc/gcode/syntax.h"
 
+namespace stepnc::tooling {
+struct ToolList;
+}
+
 namespace stepnc::gcode {
 
 enum class CallKind : std::uint8_t {
@@ -82,8 +86,10 @@ struct CycleEvent {
 
 struct Tool {
   int number = 0;
-  double length = 0;    // mm, the tool length offset G43 applies
-  double diameter = 0;  // mm
+  double length = 0;       // mm, the tool length offset G43 applies
+  double diameter = 0;     // mm; cutter compensation offsets by half of it (G41/G42 D)
+  double nose_radius = 0;  // mm, a turning tool's nose radius (Fanuc lathe G41/G42)
+  int tip_direction = 0;   // Fanuc's imaginary tool nose number 0-9 (0: the nose centre is programmed)
 };
 
 struct Options {
@@ -92,6 +98,11 @@ struct Options {
   std::size_t max_blocks = 50'000'000;  // executed-block budget: loops end with an error, never hang
   std::size_t max_calls = 100'000'000;  // call budget: a cycle of a billion pecks ends with an error
 };
+
+// The interpreter's view of the shop's tool list (tooling::read_tool_list):
+// tool number -> length, diameter, nose radius and tip direction; empty
+// cells are 0.
+std::map<int, Tool> tools_from(const tooling::ToolList& list);
 
 struct Result {
   std::vector<Call> calls;

@@ -34,6 +34,9 @@ struct Tool {
   bool available = true;                 ///< `available`
   std::optional<double> life_minutes;    ///< `life_minutes`
   std::optional<double> used_minutes;    ///< `used_minutes`
+  /// `tip_direction`: Fanuc's imaginary tool nose number (0-9), which side of
+  /// the nose circle the programmed point lies on (0 and 9: its centre)
+  std::optional<int> tip_direction;
   int line = 0;                          ///< line in the file
 };
 
