@@ -231,8 +231,28 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
   for (const auto& run : section.runs) {
     const bool vertical = std::all_of(run.begin(), run.end(), [](const Move& m) { return m.vertical(); });
     if (vertical) continue;  // read as a hole (milling_holes.cpp)
-    double flat = 0, sloped = 0;
-    for (const Move& m : run) (m.horizontal() ? flat : sloped) += xy_length(m);
+    // Sloped moves that explain themselves: a descent that ends where a
+    // layer starts (an approach: helix, ramp, zig-zag ramp) and the climb
+    // that ends the run (a retract). The rest is 3-axis motion.
+    double flat = 0, sloped = 0, descent = 0;
+    for (std::size_t i = 0; i < run.size(); ++i) {
+      const Move& m = run[i];
+      if (m.horizontal()) {
+        flat += xy_length(m);
+        descent = 0;
+      } else if (m.to.z < m.from.z) {
+        descent += xy_length(m);
+        const bool layer_follows = i + 1 < run.size() && run[i + 1].horizontal();
+        if (i + 1 == run.size()) sloped += descent;
+        if (!layer_follows) continue;
+        descent = 0;
+      } else {
+        const bool last_climb = std::all_of(run.begin() + static_cast<std::ptrdiff_t>(i), run.end(),
+                                            [](const Move& rest) { return rest.to.z >= rest.from.z - eps; });
+        if (!last_climb) sloped += xy_length(m) + descent;
+        descent = 0;
+      }
+    }
     if (flat <= 0 || sloped > max_sloped_share * (flat + sloped)) {
       three_axis.push_back(&run);
       continue;

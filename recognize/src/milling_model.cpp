@@ -38,17 +38,22 @@ class Writer {
     return &d;
   }
   ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, bool along_y = false) {
+    // Parts before the whole, as the authoring samples write them.
+    auto* location = point(name + ": LOCATION", at.x, at.y, at.z);
+    auto* axis = direction("AXIS", 0, 0, 1);
+    auto* ref = along_y ? direction("REF_DIRECTION", 0, 1, 0) : direction("REF_DIRECTION", 1, 0, 0);
     auto& a = m_.create<ms::axis2_placement_3d>();
     a.name = name;
-    a.location = point(name + ": LOCATION", at.x, at.y, at.z);
-    a.axis = direction("AXIS", 0, 0, 1);
-    a.ref_direction = along_y ? direction("REF_DIRECTION", 0, 1, 0) : direction("REF_DIRECTION", 1, 0, 0);
+    a.location = location;
+    a.axis = axis;
+    a.ref_direction = ref;
     return &a;
   }
   ms::plane* plane(const std::string& name, Vec3 at) {
+    auto* position = placement(name, at);
     auto& p = m_.create<ms::plane>();
     p.name = name;
-    p.position = placement(name, at);
+    p.position = position;
     return &p;
   }
   ms::toleranced_length_measure* length(double size) {

@@ -5,7 +5,8 @@ O0004
 (Repairs: roughing layers 2-5 restored from the comment at L24, 5 layers of 5.9, each)
 (as layer 1: a helix on R7.2 about X70 Y55 from where layer 1 ends, the same rings.)
 (Finishing layers 2-6 restored from the comment at L49, 6 layers to Z-30: Z-10 to Z-30,)
-(5 apart; layer 1 keeps the printed Z-2. Each as layer 1; the last ends as L74-L75.)
+(5 apart; layer 1 keeps the printed Z-2. Each as layer 1, closing its outer ring at X70 Y101)
+(as layer 1 does, so L74 is layer 6's last corner and L75 lifts from X70.)
 (Without these layers the roughing leaves 24.1 mm of floor, not the 0.5 the paper states.)
 G54 G90 G21 G40 G49 M5 M9
 G0 Z100. (Move to the secure plane)
@@ -265,6 +266,7 @@ G1 X55.
 G2 X54. Y40. I0. J1.
 G1 Y100.
 G2 X55. Y101. I1. J0.
+G1 X70. (REPAIR: closes layer 6 as layer 1 closes; from X55 the printed L75 ramp leaves 0.5 under the wall)
 (Layers 2-6 above: restored)
 G1 X70. Z15. (End of finishing)
 M30
