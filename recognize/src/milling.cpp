@@ -38,6 +38,13 @@ void import_milling(const gcode::Result& motion, const ImportOptions& options, I
   recognised.top_z = options.stock && options.stock->shape == Stock::Shape::block
                          ? options.stock->origin_z + options.stock->size_z
                          : 0;
+  if (options.stock && options.stock->shape == Stock::Shape::block) {
+    const Stock& b = *options.stock;
+    recognised.stock_top = machining::polygons::make_area({{b.origin_x, b.origin_y},
+                                                           {b.origin_x + b.size_x, b.origin_y},
+                                                           {b.origin_x + b.size_x, b.origin_y + b.size_y},
+                                                           {b.origin_x, b.origin_y + b.size_y}});
+  }
   // The security plane: the highest rapid (Fig. 10 L2 "secure plane" Z100).
   bool any_rapid = false;
   for (const gcode::Call& call : motion.calls)

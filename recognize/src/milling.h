@@ -95,13 +95,15 @@ struct Operation {
 };
 
 struct Feature {
-  std::string entity;  // round_hole, closed_pocket, region_projection
+  std::string entity;  // round_hole, closed_pocket, planar_face, region_projection
   std::string id;
   Vec3 origin;         // placement at the top face
   bool along_y = false;
   double depth = 0;
   double diameter = 0;                // round_hole
   bool through = false;
+  double tip = 0;                     // round_hole: the lowest tool tip
+  bool conical = false;               // round_hole: that tip is a drill's point (118 deg)
   double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket
   machining::polygons::Ring outline;                // general profile, relative to origin
   std::vector<std::size_t> operations;
@@ -115,6 +117,7 @@ struct Recognised {
   std::vector<Operation> operations;  // workplan order
   double security_z = 0;
   double top_z = 0;
+  std::optional<machining::polygons::Area> stock_top;  // the block's top face, when the stock is known
 };
 
 // The calls cut at tool and spindle changes, with rapids between feed runs.

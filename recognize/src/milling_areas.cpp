@@ -92,6 +92,7 @@ double winding(const std::vector<Move>& layer) {
 
 struct Layer {
   double z = 0;
+  std::size_t run = 0;         // the run it is in (section.runs)
   std::vector<Move> moves;
   std::vector<Move> approach;  // the sloped moves that led down to it
 };
@@ -123,6 +124,16 @@ void read_approach(const std::vector<Move>& approach, Operation& op) {
                           lines_of(approach)});
 }
 
+// A run's cutter-location points, arcs as chords.
+std::vector<Vec3> path_of(const std::vector<Move>& run) {
+  std::vector<Vec3> path{run.front().from};
+  for (const Move& m : run) {
+    const auto points = move_points(m);
+    path.insert(path.end(), points.begin() + 1, points.end());
+  }
+  return path;
+}
+
 void freeform(const Section& section, const std::vector<const std::vector<Move>*>& runs, const std::string& why,
               Recognised& out) {
   if (runs.empty()) return;
@@ -134,15 +145,12 @@ void freeform(const Section& section, const std::vector<const std::vector<Move>*
   std::vector<std::uint32_t> lines;
   double lowest = 1e300;
   for (const auto* run : runs) {
-    std::vector<Vec3> path{run->front().from};
     for (const Move& m : *run) {
-      const auto points = move_points(m);
-      path.insert(path.end(), points.begin() + 1, points.end());
       feed = std::max(feed, m.setting.feed);
       lowest = std::min(lowest, m.to.z);
       lines.push_back(m.line);
     }
-    op.toolpaths.push_back(std::move(path));
+    op.toolpaths.push_back(path_of(*run));
   }
   op.setting.feed = feed;
   op.first_line = lines.front();
@@ -196,20 +204,33 @@ std::vector<Vec3> move_points(const Move& m) {
 }
 
 polygons::Area swept_area(const std::vector<Move>& moves, double radius) {
-  // One polygon per straight piece: the piece thickened by the radius
-  // (a rectangle with round ends), united.
-  std::vector<polygons::Ring> pieces;
+  // The path as XY points, then one polygon per straight piece (the piece
+  // thickened by the radius) and a disc at the ends and wherever the path
+  // turns enough for the pieces' joint to miss the disc by 0.5 um.
+  std::vector<Vec2> path;
   for (const Move& m : moves) {
     const auto points = move_points(m);
-    for (std::size_t i = 1; i < points.size(); ++i) {
-      const Vec2 a{points[i - 1].x, points[i - 1].y}, b{points[i].x, points[i].y};
-      const double len = std::hypot(b.x - a.x, b.y - a.y);
-      pieces.push_back(polygons::circle(b, radius));
-      if (i == 1) pieces.push_back(polygons::circle(a, radius));
-      if (len < 1e-6) continue;
-      const double nx = -(b.y - a.y) / len * radius, ny = (b.x - a.x) / len * radius;
-      pieces.push_back({{a.x + nx, a.y + ny}, {a.x - nx, a.y - ny}, {b.x - nx, b.y - ny}, {b.x + nx, b.y + ny}});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Vec2 p{points[i].x, points[i].y};
+      if (path.empty() || std::hypot(p.x - path.back().x, p.y - path.back().y) > 1e-6) path.push_back(p);
     }
+  }
+  std::vector<polygons::Ring> pieces;
+  if (path.empty()) return {};
+  const double min_turn = 2 * std::acos(std::max(-1.0, 1 - 0.0005 / std::max(radius, 1e-3)));
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    bool disc = i == 0 || i + 1 == path.size();
+    if (!disc) {
+      const double in = std::atan2(path[i].y - path[i - 1].y, path[i].x - path[i - 1].x);
+      const double out = std::atan2(path[i + 1].y - path[i].y, path[i + 1].x - path[i].x);
+      disc = std::abs(std::remainder(out - in, 2 * M_PI)) > min_turn;
+    }
+    if (disc) pieces.push_back(polygons::circle(path[i], radius));
+    if (i == 0) continue;
+    const Vec2 a = path[i - 1], b = path[i];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    const double nx = -(b.y - a.y) / len * radius, ny = (b.x - a.x) / len * radius;
+    pieces.push_back({{a.x + nx, a.y + ny}, {a.x - nx, a.y - ny}, {b.x - nx, b.y - ny}, {b.x + nx, b.y + ny}});
   }
   // Unite in a balanced tree, so each union stays small.
   std::vector<polygons::Area> areas;
@@ -229,6 +250,7 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
   std::vector<Layer> layers;
   std::vector<const std::vector<Move>*> three_axis;
   for (const auto& run : section.runs) {
+    const std::size_t run_index = static_cast<std::size_t>(&run - section.runs.data());
     const bool vertical = std::all_of(run.begin(), run.end(), [](const Move& m) { return m.vertical(); });
     if (vertical) continue;  // read as a hole (milling_holes.cpp)
     // Sloped moves that explain themselves: a descent that ends where a
@@ -253,7 +275,18 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
         descent = 0;
       }
     }
-    if (flat <= 0 || sloped > max_sloped_share * (flat + sloped)) {
+    // Rule M3b (ours): constant-Z pieces less than 0.01 mm apart are a
+    // 3-axis path rounded to the program's resolution, not layers.
+    bool fine_steps = false;
+    double last_z = 0;
+    bool have_z = false;
+    for (const Move& m : run) {
+      if (!m.horizontal()) continue;
+      if (have_z && std::abs(m.to.z - last_z) > eps && std::abs(m.to.z - last_z) < 0.01) fine_steps = true;
+      last_z = m.to.z;
+      have_z = true;
+    }
+    if (flat <= 0 || fine_steps || sloped > max_sloped_share * (flat + sloped)) {
       three_axis.push_back(&run);
       continue;
     }
@@ -267,7 +300,7 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
         if (!layers.empty() && std::abs(layers.back().z - m.to.z) <= eps && !pending.empty()) {
           layers.back().approach.insert(layers.back().approach.end(), pending.begin(), pending.end());
         } else {
-          layers.push_back({m.to.z, {}, pending});
+          layers.push_back({m.to.z, run_index, {}, pending});
         }
         pending.clear();
       }
@@ -276,8 +309,9 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
   }
   if (!three_axis.empty())
     freeform(section, three_axis,
-             fmt::format("T{}: more than {:.0f}% of the XY path changes Z (rule M3, ours): 3-axis motion", tool,
-                         max_sloped_share * 100),
+             fmt::format("T{}: more than {:.0f}% of the XY path changes Z outside approaches and retracts, or "
+                         "constant-Z pieces under 0.01 mm apart (rules M3, M3b, ours): 3-axis motion",
+                         tool, max_sloped_share * 100),
              out);
   if (layers.empty()) return;
 
@@ -292,14 +326,15 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
     op.entity = "bottom_and_side_milling";
     op.tool = tool;
     op.setting = section.setting;
-    std::vector<Move> all;
     double feed = 0;
     for (const Layer* layer : group) {
       op.layers.push_back(layer->z);
-      all.insert(all.end(), layer->moves.begin(), layer->moves.end());
       for (const Move& m : layer->moves) feed = std::max(feed, m.setting.feed);
     }
     op.setting.feed = feed;
+    // Its runs as they are, should the feature not be read (then a freeform operation).
+    for (std::size_t i = 0; i < group.size(); ++i)
+      if (i == 0 || group[i]->run != group[i - 1]->run) op.toolpaths.push_back(path_of(section.runs[group[i]->run]));
     op.first_line = group.front()->approach.empty() ? group.front()->moves.front().line : group.front()->approach.front().line;
     op.last_line = group.back()->moves.back().line;
     op.retract_plane = group.front()->approach.empty() ? group.front()->z : group.front()->approach.front().from.z;
@@ -346,20 +381,40 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
     op.decisions.push_back({"rule M5 (ours): the most frequent layer step and ring/stroke gap",
                             fmt::format("axial depth {:g}, radial depth {:g}", op.axial.value_or(0), op.radial.value_or(0)),
                             layer_lines});
-    op.area = swept_area(all, radius);
+    // The cutting area: layers that repeat a path (a pocket's layers) are swept once.
+    std::vector<std::vector<long long>> swept;
+    for (const Layer* layer : group) {
+      std::vector<long long> key;
+      for (const Move& m : layer->moves)
+        for (const double v : {m.from.x, m.from.y, m.to.x, m.to.y, m.centre.x, m.centre.y})
+          key.push_back(std::llround(v * 1000));
+      if (std::find(swept.begin(), swept.end(), key) != swept.end()) continue;
+      swept.push_back(std::move(key));
+      const polygons::Area area = swept_area(layer->moves, radius);
+      op.area = op.area.empty() ? area : polygons::unite(op.area, area);
+    }
+
+    // SEEDS-SPEC 4.2.4 rule 5: a face mill, or a layer that sweeps the
+    // whole top of the stock, mills a planar face.
+    bool face = tools.kind(tool) == "facemill";
+    if (out.stock_top && !face) face = polygons::subtract(*out.stock_top, op.area).empty();
+    if (face)
+      op.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: tool is a face mill, or the cutting area covers the stock's top -> planar face",
+                              tools.kind(tool) == "facemill" ? "planar_face (face mill)" : "planar_face (the whole top is swept)",
+                              layer_lines});
 
     // Seed 004 §4.1 step 4: operations that machine the same feature merge
-    // under it (their cutting areas overlap by half the smaller).
+    // under it (their cutting areas overlap by half the larger).
     std::size_t feature = out.features.size();
     for (std::size_t f = 0; f < out.features.size(); ++f) {
       const Feature& candidate = out.features[f];
-      if (candidate.entity == "round_hole" || candidate.entity == "region_projection" || candidate.area.empty()) continue;
+      if (candidate.entity != (face ? "planar_face" : "milled") || candidate.area.empty()) continue;
       const double common = polygons::area(polygons::intersect(candidate.area, op.area));
-      if (common > 0.5 * std::min(polygons::area(candidate.area), polygons::area(op.area))) feature = f;
+      if (common > 0.5 * std::max(polygons::area(candidate.area), polygons::area(op.area))) feature = f;
     }
     if (feature == out.features.size()) {
       Feature pocket;
-      pocket.entity = "milled";
+      pocket.entity = face ? "planar_face" : "milled";
       pocket.origin = {0, 0, out.top_z};
       pocket.deepest = out.top_z;
       out.features.push_back(std::move(pocket));

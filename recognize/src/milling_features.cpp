@@ -47,17 +47,59 @@ void hole_depths(Feature& hole, const ImportOptions& options, double top) {
       return;
     }
   }
-  hole.depth = top - hole.deepest;
+  hole.depth = top - hole.tip;
   hole.decisions.push_back({"SEEDS-SPEC 4.5.8: without a stock bottom below it the hole is blind",
-                            fmt::format("blind, depth {:g} to where the full diameter reaches", hole.depth), {}});
+                            fmt::format("blind, depth {:g} to the deepest tip, {} bottom", hole.depth,
+                                        hole.conical ? "conical (118 deg drill point)" : "flat"),
+                            {}});
+}
+
+
+// A planar face: the band its layers swept over the stock (or over the
+// cutting area without one), travelling along X, its floor the lowest layer.
+void planar_face(Feature& f, Recognised& out, int number) {
+  const polygons::Area& band = out.stock_top ? *out.stock_top : f.area;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& ring : band.rings)
+    for (const Vec2 p : ring) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  f.id = fmt::format("PLANAR FACE{}", number);
+  // ISO 14649-10 planar_face: the removal band lies to the right of the
+  // course of travel, which starts at the placement.
+  f.origin = {dimension(x0), dimension(y1), out.top_z};
+  f.length = dimension(x1 - x0);
+  f.width = dimension(y1 - y0);
+  f.depth = dimension(out.top_z - f.deepest);
+  std::vector<std::uint32_t> lines;
+  for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+  f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: face mill or whole top -> planar_face",
+                         fmt::format("planar_face {:g} along X x {:g}, {:g} deep ({})", f.length, f.width, f.depth,
+                                     out.stock_top ? "the stock's top" : "the swept band"),
+                         lines});
+  for (std::size_t k = 0; k < f.operations.size(); ++k) {
+    Operation& op = out.operations[f.operations[k]];
+    const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
+    op.entity = bottom > 0.005 ? "plane_rough_milling" : "plane_finish_milling";
+    if (bottom > 0.005) op.allowance_bottom = bottom;
+    op.allowance_side.reset();
+    op.decisions.push_back({"SEEDS-SPEC 4.5.6: the operation that reaches the floor is the finish",
+                            fmt::format("{}, bottom allowance {:g}", op.entity, bottom), {op.first_line}});
+  }
 }
 
 }  // namespace
 
 void finish_features(const Tools& tools, const ImportOptions& options, Recognised& out) {
-  const double top = out.top_z;
-  int holes = 0, pockets = 0, regions = 0;
+  int holes = 0, pockets = 0, regions = 0, faces = 0;
+  // Faces first: what they leave is the top of the features below them.
+  double face_floor = out.top_z;
+  for (Feature& f : out.features)
+    if (f.entity == "planar_face") {
+      planar_face(f, out, ++faces);
+      face_floor = std::min(face_floor, f.deepest);
+    }
+  const double top = face_floor;
   for (Feature& f : out.features) {
+    if (f.entity == "planar_face") continue;
     if (f.entity == "round_hole") {
       f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
       f.origin.z = top;
@@ -89,10 +131,15 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
     std::vector<std::uint32_t> lines;
     for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
     if (outers.size() != 1 || f.area.rings.size() != 1) {
+      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+      for (const auto& r : f.area.rings)
+        for (const Vec2 p : r) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+      f.outline = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};  // the extent of the cutting area
       f.entity = "region_projection";
       f.id = fmt::format("REGION{}", ++regions);
       f.decisions.push_back({"rule M6 (ours): a cutting area of several outlines or with islands is not read",
-                             "kept as a region with its operations' layers", lines});
+                             "a region; its operations keep their motion as freeform operations", lines});
+      for (const std::size_t o : f.operations) out.operations[o].entity = "freeform_operation";
       continue;
     }
     const polygons::Ring& ring = *outers.front();
@@ -180,6 +227,8 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
                              : op.entity == "counter_sinking"                ? "COUNTERSINK"
                              : op.entity == "bottom_and_side_rough_milling"  ? "ROUGH"
                              : op.entity == "bottom_and_side_finish_milling" ? "FINISH"
+                             : op.entity == "plane_rough_milling"            ? "ROUGH"
+                             : op.entity == "plane_finish_milling"           ? "FINISH"
                                                                              : "FREEFORM";
     const std::string& feature = out.features[op.feature].id;
     op.id = fmt::format("{} {}", verb, feature.substr(0, feature.find(' ')));

@@ -61,6 +61,7 @@ std::size_t hole_at(Recognised& out, Vec2 at) {
   hole.entity = "round_hole";
   hole.origin = {at.x, at.y, out.top_z};
   hole.deepest = out.top_z;
+  hole.tip = out.top_z;
   out.features.push_back(std::move(hole));
   return out.features.size() - 1;
 }
@@ -121,6 +122,12 @@ void add_operation(const std::vector<CycleCall>& calls, const Tools& tools, cons
   Feature& hole = out.features[op.feature];
   // Depth that the full diameter reaches.
   hole.deepest = std::min(hole.deepest, bottom + drill_tip(tools, tool));
+  if (bottom < hole.tip - 1e-6) {
+    hole.tip = bottom;
+    hole.conical = drill_tip(tools, tool) > 0;
+  } else if (bottom < hole.tip + 1e-6 && drill_tip(tools, tool) == 0) {
+    hole.conical = false;  // a flat tool reached as deep: a flat bottom
+  }
   hole.diameter = std::max(hole.diameter, 2 * tools.radius(tool));
   hole.operations.push_back(out.operations.size());
   (void)options;

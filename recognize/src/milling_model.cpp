@@ -177,13 +177,24 @@ ms::machining_operation* drilling_type(meta::Model& m, Writer& w, const Operatio
 }
 
 ms::machining_operation* milling_op(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
-  mill::bottom_and_side_milling* o = nullptr;
-  if (op.entity == "bottom_and_side_rough_milling") o = &common<mill::bottom_and_side_rough_milling>(m, w, op, tools);
-  else o = &common<mill::bottom_and_side_finish_milling>(m, w, op, tools);
-  o->axial_cutting_depth = op.axial;
-  o->radial_cutting_depth = op.radial;
-  o->allowance_side = op.allowance_side;
-  o->allowance_bottom = op.allowance_bottom;
+  mill::two5d_milling_operation* o = nullptr;
+  if (op.entity.starts_with("plane_")) {
+    mill::plane_milling* plane = nullptr;
+    if (op.entity == "plane_rough_milling") plane = &common<mill::plane_rough_milling>(m, w, op, tools);
+    else plane = &common<mill::plane_finish_milling>(m, w, op, tools);
+    plane->axial_cutting_depth = op.axial;
+    plane->allowance_bottom = op.allowance_bottom;
+    o = plane;
+  } else {
+    mill::bottom_and_side_milling* side = nullptr;
+    if (op.entity == "bottom_and_side_rough_milling") side = &common<mill::bottom_and_side_rough_milling>(m, w, op, tools);
+    else side = &common<mill::bottom_and_side_finish_milling>(m, w, op, tools);
+    side->axial_cutting_depth = op.axial;
+    side->radial_cutting_depth = op.radial;
+    side->allowance_side = op.allowance_side;
+    side->allowance_bottom = op.allowance_bottom;
+    o = side;
+  }
   if (op.strategy == "contour_parallel") {
     auto& s = m.create<mill::contour_parallel>();
     s.allow_multiple_passes = true;
@@ -268,8 +279,32 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       hole.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
       hole.diameter = w.length(f.diameter);
       if (f.through) hole.bottom_condition = &m.create<ms::through_bottom_condition>();
-      else hole.bottom_condition = &m.create<ms::flat_hole_bottom>();
+      else if (f.conical) {
+        auto& cone = m.create<ms::conical_hole_bottom>();
+        cone.tip_angle = 118;
+        hole.bottom_condition = &cone;
+      } else {
+        hole.bottom_condition = &m.create<ms::flat_hole_bottom>();
+      }
       out = &hole;
+    } else if (f.entity == "planar_face") {
+      auto& face = m.create<ms::planar_face>();
+      face.feature_placement = w.placement(f.id, f.origin);
+      face.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      auto* along = w.direction("COURSE OF TRAVEL", 1, 0, 0);
+      auto* distance = w.length(f.length);
+      auto& path = m.create<ms::linear_path>();
+      path.distance = distance;
+      path.its_direction = along;
+      face.course_of_travel = &path;
+      auto& width = m.create<ms::numeric_parameter>();
+      width.parameter_name = "PROFILE LENGTH";
+      width.its_parameter_value = f.width;
+      width.its_parameter_unit = "MM";
+      auto& band = m.create<ms::linear_profile>();
+      band.profile_length = &width;
+      face.removal_boundary = &band;
+      out = &face;
     } else if (f.entity == "closed_pocket") {
       auto& pocket = m.create<ms::closed_pocket>();
       pocket.feature_placement = w.placement(f.id, f.origin, f.along_y);
@@ -314,7 +349,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
   for (const Operation& op : r.operations) {
     ms::machining_operation* o = nullptr;
     if (op.entity == "freeform_operation") o = freeform_op(m, w, op, tools);
-    else if (op.entity.starts_with("bottom_and_side")) o = milling_op(m, w, op, tools);
+    else if (op.entity.starts_with("bottom_and_side") || op.entity.starts_with("plane_")) o = milling_op(m, w, op, tools);
     else o = drilling_type(m, w, op, tools);
     features[op.feature]->its_operations.push_back(o);
     auto& step = m.create<ms::machining_workingstep>();
