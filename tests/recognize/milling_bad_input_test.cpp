@@ -40,3 +40,28 @@ TEST_CASE("stepnc import refuses milling programs it cannot read, naming the lin
   CHECK_THAT(bad.out, Catch::Contains("p.nc:3:"));
   CHECK_FALSE(std::filesystem::exists(out));
 }
+
+TEST_CASE("stepnc import of Fig. 10 writes a project that validates, with --explain and --report", "[recognize][milling][cli]") {
+  const auto dir = stepnc_test::scratch_directory("import-milling-cli");
+  const std::string samples = std::string(STEPNC_SOURCE_DIR) + "/samples/gcode/";
+  const auto out = (dir / "fig10.stp").string(), report = (dir / "fig10.json").string();
+  const auto run = shell("{} import " + samples + "seed004_fig10_restored.nc --controller fanuc-mill --tools " + samples +
+                         "seed004_tools.csv --stock block:100:120:50 -o " + out + " --explain --report " + report + " 2>&1");
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.out, Catch::Contains("WS ROUGH POCKET1: bottom_and_side_rough_milling on closed_pocket POCKET1 with T1"));
+  CHECK_THAT(run.out, Catch::Contains("side allowance 1, bottom allowance 0.5"));
+  CHECK(stepnc_test::read_file(report).find("\"workingstep\": \"WS REAM HOLE1\"") != std::string::npos);
+  const auto valid = shell("{} validate --strict --no-rules " + out + " 2>&1");
+  CHECK(valid.exit_code == 0);
+  // With the rules: only representation_item.wr1 and the axis2_placement_3d.wr4 that follows from it,
+  // as for samples/milling/seed004_fig10.stp.
+  const auto rules = shell("{} validate --strict " + out + " 2>&1");
+  std::size_t others = 0;
+  for (std::size_t at = 0; (at = rules.out.find("error:", at)) != std::string::npos; ++at) {
+    const std::string line = rules.out.substr(at, rules.out.find('\n', at) - at);
+    if (line.find("representation_item.wr1") == std::string::npos && line.find("axis2_placement_3d.wr4") == std::string::npos)
+      ++others;
+  }
+  CHECK(others == 0);
+  CHECK(shell("{} post " + out + " -d fanuc 2>/dev/null").exit_code == 0);
+}
