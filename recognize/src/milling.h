@@ -6,6 +6,7 @@
 // ISO 14649 project written from what was recognised (milling_model.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -147,7 +148,18 @@ void write_model(const Recognised& recognised, const Tools& tools, const ImportO
 // Swept region of moves at one Z by a tool of `radius` (Clipper union).
 machining::polygons::Area swept_area(const std::vector<Move>& moves, double radius);
 
-// Points along a move (arcs every <= 0.5 mm).
+// The XY bounding box of points.
+struct Box {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  template <class Point>
+  void add(const Point& p) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  machining::polygons::Ring ring() const { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+};
+Box bounds(const std::vector<machining::polygons::Ring>& rings);
+
+// Points along a move (arcs as chords within Clipper's chordal tolerance).
 std::vector<Vec3> move_points(const Move& move);
 
 }  // namespace stepnc::recognize::milling

@@ -163,10 +163,10 @@ void freeform(const Section& section, const std::vector<const std::vector<Move>*
   region.entity = "region_projection";
   region.origin = {0, 0, out.top_z};
   region.deepest = lowest;
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  Box extent;
   for (const auto& path : op.toolpaths)
-    for (const Vec3& p : path) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  region.outline = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};  // the extent of the CL data
+    for (const Vec3& p : path) extent.add(p);
+  region.outline = extent.ring();  // the extent of the CL data
   region.operations.push_back(out.operations.size());
   region.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: x, y and z all vary -> region", "feature region_projection", {}});
   op.feature = out.features.size();
@@ -175,6 +175,13 @@ void freeform(const Section& section, const std::vector<const std::vector<Move>*
 }
 
 }  // namespace
+
+Box bounds(const std::vector<polygons::Ring>& rings) {
+  Box box;
+  for (const auto& ring : rings)
+    for (const Vec2 p : ring) box.add(p);
+  return box;
+}
 
 std::vector<Vec3> move_points(const Move& m) {
   if (m.kind != Move::Kind::arc) return {m.from, m.to};

@@ -58,10 +58,7 @@ void hole_depths(Feature& hole, const ImportOptions& options, double top) {
 // A planar face: the band its layers swept over the stock (or over the
 // cutting area without one), travelling along X, its floor the lowest layer.
 void planar_face(Feature& f, Recognised& out, int number) {
-  const polygons::Area& band = out.stock_top ? *out.stock_top : f.area;
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const auto& ring : band.rings)
-    for (const Vec2 p : ring) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  const auto [x0, y0, x1, y1] = bounds((out.stock_top ? *out.stock_top : f.area).rings);
   f.id = fmt::format("PLANAR FACE{}", number);
   // ISO 14649-10 planar_face: the removal band lies to the right of the
   // course of travel, which starts at the placement.
@@ -131,10 +128,7 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
     std::vector<std::uint32_t> lines;
     for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
     if (outers.size() != 1 || f.area.rings.size() != 1) {
-      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-      for (const auto& r : f.area.rings)
-        for (const Vec2 p : r) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-      f.outline = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};  // the extent of the cutting area
+      f.outline = bounds(f.area.rings).ring();  // the extent of the cutting area
       f.entity = "region_projection";
       f.id = fmt::format("REGION{}", ++regions);
       f.decisions.push_back({"rule M6 (ours): a cutting area of several outlines or with islands is not read",
@@ -143,10 +137,7 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
       continue;
     }
     const polygons::Ring& ring = *outers.front();
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const Vec2 p : ring) {
-      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-    }
+    const auto [x0, y0, x1, y1] = bounds({ring});
     const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
     const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
     f.origin = {dimension(centre.x), dimension(centre.y), top};
