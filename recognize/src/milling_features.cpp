@@ -197,7 +197,11 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
         op.allowance_bottom = bottom;
       } else if (k > 0) {
         const Operation& before = out.operations[f.operations[k - 1]];
-        if (before.allowance_side && *before.allowance_side > 0) op.radial = before.allowance_side;
+        if (before.allowance_side && *before.allowance_side > 0) {
+          op.radial = before.allowance_side;
+          op.decisions.push_back({"rule M5 (ours): a finish after a rough engages the wall by the rough's side allowance",
+                                  fmt::format("radial depth {:g}", *op.radial), {op.first_line}});
+        }
       }
       op.decisions.push_back({"SEEDS-SPEC 4.5.6: the group that reaches the final walls and floor is the finish; "
                               "allowances = final - reached",
