@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: Apache-2.0
+// Features from what their operations cut (SEEDS-SPEC 4.2.4 rule 5, 4.5.6):
+// a cutting area that is a rounded rectangle is a closed pocket with a
+// rectangular profile and its corner radius, a disc a milled round hole,
+// any other single outline a closed pocket with a general profile; the
+// deepest layer is the floor. The operations that stop short of the final
+// walls or floor are roughing, their allowances what they left.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "milling.h"
+
+namespace stepnc::recognize::milling {
+
+namespace polygons = machining::polygons;
+
+namespace {
+
+constexpr double fit = 0.02;  // mm: how far an outline may stray from the shape it is read as
+
+double round_to(double value, double step) { return std::round(value / step) * step; }
+
+// A dimension read from a cutting area (exact to a few um): to 0.01 mm when
+// it is that close to it, else to 1 um.
+double dimension(double value) {
+  const double hundredths = round_to(value, 0.01);
+  return std::abs(value - hundredths) < 0.003 ? hundredths : round_to(value, 1e-3);
+}
+
+// Distance from p to the boundary of a rectangle of half sizes (hx, hy) with
+// corner radius r about the origin (negative inside).
+double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r) {
+  const double qx = std::abs(p.x) - (hx - r), qy = std::abs(p.y) - (hy - r);
+  return std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0) - r;
+}
+
+void hole_depths(Feature& hole, const ImportOptions& options, double top) {
+  if (options.stock && options.stock->shape == Stock::Shape::block) {
+    const double floor = options.stock->origin_z;
+    if (hole.deepest <= floor + 1e-6) {
+      hole.through = true;
+      hole.depth = top - floor;
+      hole.decisions.push_back({"SEEDS-SPEC 4.2.6 (hole depth): the full diameter passes the stock's bottom",
+                                fmt::format("through, depth {:g} (stock bottom Z {:g})", hole.depth, floor), {}});
+      return;
+    }
+  }
+  hole.depth = top - hole.tip;
+  hole.decisions.push_back({"SEEDS-SPEC 4.5.8: without a stock bottom below it the hole is blind",
+                            fmt::format("blind, depth {:g} to the deepest tip, {} bottom", hole.depth,
+                                        hole.conical ? "conical (118 deg drill point)" : "flat"),
+                            {}});
+}
+
+
+// A planar face: the band its layers swept over the stock (or over the
+// cutting area without one), travelling along X, its floor the lowest layer.
+void planar_face(Feature& f, Recognised& out, int number) {
+  const auto [x0, y0, x1, y1] = bounds((out.stock_top ? *out.stock_top : f.area).rings);
+  f.id = fmt::format("PLANAR FACE{}", number);
+  // ISO 14649-10 planar_face: the removal band lies to the right of the
+  // course of travel, which starts at the placement.
+  f.origin = {dimension(x0), dimension(y1), out.top_z};
+  f.length = dimension(x1 - x0);
+  f.width = dimension(y1 - y0);
+  f.depth = dimension(out.top_z - f.deepest);
+  std::vector<std::uint32_t> lines;
+  for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+  f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: face mill or whole top -> planar_face",
+                         fmt::format("planar_face {:g} along X x {:g}, {:g} deep ({})", f.length, f.width, f.depth,
+                                     out.stock_top ? "the stock's top" : "the swept band"),
+                         lines});
+  for (std::size_t k = 0; k < f.operations.size(); ++k) {
+    Operation& op = out.operations[f.operations[k]];
+    const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
+    op.entity = bottom > 0.005 ? "plane_rough_milling" : "plane_finish_milling";
+    if (bottom > 0.005) op.allowance_bottom = bottom;
+    op.allowance_side.reset();
+    op.decisions.push_back({"SEEDS-SPEC 4.5.6: the operation that reaches the floor is the finish",
+                            fmt::format("{}, bottom allowance {:g}", op.entity, bottom), {op.first_line}});
+  }
+}
+
+}  // namespace
+
+void finish_features(const Tools& tools, const ImportOptions& options, Recognised& out) {
+  int holes = 0, pockets = 0, regions = 0, faces = 0;
+  // Faces first: what they leave is the top of the features below them.
+  double face_floor = out.top_z;
+  for (Feature& f : out.features)
+    if (f.entity == "planar_face") {
+      planar_face(f, out, ++faces);
+      face_floor = std::min(face_floor, f.deepest);
+    }
+  const double top = face_floor;
+  for (Feature& f : out.features) {
+    if (f.entity == "planar_face") continue;
+    if (f.entity == "round_hole") {
+      f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
+      f.origin.z = top;
+      std::vector<std::uint32_t> lines;
+      for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+      f.decisions.insert(f.decisions.begin(),
+                         {"seed 004 §4.1 (case study): tool type plus canned cycles -> hole",
+                          fmt::format("round_hole at ({:g}, {:g}), diameter {:g} from the largest tool", f.origin.x,
+                                      f.origin.y, f.diameter),
+                          lines});
+      hole_depths(f, options, top);
+      continue;
+    }
+    if (f.entity == "region_projection") {
+      f.id = fmt::format("REGION{}", ++regions);
+      continue;
+    }
+    // A milled feature: its outline from the area its operations cut.
+    f.depth = round_to(top - f.deepest, 1e-4);
+    std::vector<const polygons::Ring*> outers;
+    for (const auto& ring : f.area.rings) {
+      double a = 0;
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Vec2 p = ring[i], q = ring[(i + 1) % ring.size()];
+        a += p.x * q.y - q.x * p.y;
+      }
+      if (a > 0) outers.push_back(&ring);
+    }
+    std::vector<std::uint32_t> lines;
+    for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+    if (outers.size() != 1 || f.area.rings.size() != 1) {
+      f.outline = bounds(f.area.rings).ring();  // the extent of the cutting area
+      f.entity = "region_projection";
+      f.id = fmt::format("REGION{}", ++regions);
+      f.decisions.push_back({"rule M6 (ours): a cutting area of several outlines or with islands is not read",
+                             "a region; its operations keep their motion as freeform operations", lines});
+      for (const std::size_t o : f.operations) out.operations[o].entity = "freeform_operation";
+      continue;
+    }
+    const polygons::Ring& ring = *outers.front();
+    const auto [x0, y0, x1, y1] = bounds({ring});
+    const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
+    const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
+    f.origin = {dimension(centre.x), dimension(centre.y), top};
+    // The corner radius: first from the area (w h - (4 - pi) r^2), then the
+    // radius within 0.1 mm of it that fits the outline best.
+    const double estimate = std::sqrt(std::max(0.0, (w * h - a) / (4 - M_PI)));
+    auto misfit = [&](double r) {
+      double worst = 0;
+      for (const Vec2 p : ring)
+        worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, w / 2, h / 2, r)));
+      return worst;
+    };
+    double corner = std::min(estimate, std::min(w, h) / 2), worst = misfit(corner);
+    for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, std::min(w, h) / 2); r += 0.001)
+      if (const double m = misfit(r); m < worst) worst = m, corner = r;
+    corner = dimension(corner);
+    if (std::abs(w - h) < fit && std::abs(corner - w / 2) < fit && worst < fit) {
+      f.entity = "round_hole";
+      f.diameter = dimension(w);
+      f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
+      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a disc -> hole (hole milling)",
+                             fmt::format("round_hole diameter {:g} at ({:g}, {:g}), depth {:g}", f.diameter, f.origin.x,
+                                         f.origin.y, f.depth),
+                             lines});
+    } else if (worst < fit) {
+      f.entity = "closed_pocket";
+      f.id = fmt::format("POCKET{}", ++pockets);
+      f.along_y = h > w + fit;  // the profile's length along the placement's ref_direction
+      f.length = dimension(std::max(w, h));
+      f.width = dimension(std::min(w, h));
+      f.corner_radius = corner;
+      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a rounded rectangle -> closed_pocket",
+                             fmt::format("closed_pocket {:g} x {:g}, corner radius {:g}, depth {:g}, centre ({:g}, {:g}), "
+                                         "long side along {} (outline within {:.3f})",
+                                         f.length, f.width, f.corner_radius, f.depth, f.origin.x, f.origin.y,
+                                         f.along_y ? "Y" : "X", worst),
+                             lines});
+    } else {
+      f.entity = "closed_pocket";
+      f.id = fmt::format("POCKET{}", ++pockets);
+      for (const Vec2 p : ring) f.outline.push_back({p.x - f.origin.x, p.y - f.origin.y});
+      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: any other single outline -> closed_pocket, general profile",
+                             fmt::format("closed_pocket with a general profile of {} points, depth {:g}", ring.size(), f.depth),
+                             lines});
+    }
+    // Rough or finish: what each operation left of the final outline and floor.
+    for (std::size_t k = 0; k < f.operations.size(); ++k) {
+      Operation& op = out.operations[f.operations[k]];
+      double side = 1e300;
+      for (const Vec2 p : ring) side = std::min(side, polygons::signed_distance(op.area, p));
+      side = std::max(0.0, dimension(side));
+      const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
+      const bool rough = side > 0.005 || bottom > 0.005;
+      op.entity = rough ? "bottom_and_side_rough_milling" : "bottom_and_side_finish_milling";
+      if (rough) {
+        op.allowance_side = side;
+        op.allowance_bottom = bottom;
+      } else if (k > 0) {
+        const Operation& before = out.operations[f.operations[k - 1]];
+        if (before.allowance_side && *before.allowance_side > 0) {
+          op.radial = before.allowance_side;
+          op.decisions.push_back({"rule M5 (ours): a finish after a rough engages the wall by the rough's side allowance",
+                                  fmt::format("radial depth {:g}", *op.radial), {op.first_line}});
+        }
+      }
+      op.decisions.push_back({"SEEDS-SPEC 4.5.6: the group that reaches the final walls and floor is the finish; "
+                              "allowances = final - reached",
+                              rough ? fmt::format("{}: side allowance {:g}, bottom allowance {:g}", op.entity, side, bottom)
+                                    : fmt::format("{}: reaches the walls and floor", op.entity),
+                              {op.first_line}});
+    }
+  }
+  (void)tools;
+  // Ids of the operations, as Fig. 11 names them.
+  for (Operation& op : out.operations) {
+    const std::string verb = op.entity == "drilling"                         ? "DRILL"
+                             : op.entity == "center_drilling"                ? "CENTRE DRILL"
+                             : op.entity == "multistep_drilling"             ? "PECK DRILL"
+                             : op.entity == "reaming"                        ? "REAM"
+                             : op.entity == "boring"                         ? "BORE"
+                             : op.entity == "tapping"                        ? "TAP"
+                             : op.entity == "counter_sinking"                ? "COUNTERSINK"
+                             : op.entity == "bottom_and_side_rough_milling"  ? "ROUGH"
+                             : op.entity == "bottom_and_side_finish_milling" ? "FINISH"
+                             : op.entity == "plane_rough_milling"            ? "ROUGH"
+                             : op.entity == "plane_finish_milling"           ? "FINISH"
+                                                                             : "FREEFORM";
+    const std::string& feature = out.features[op.feature].id;
+    op.id = fmt::format("{} {}", verb, feature.substr(0, feature.find(' ')));
+  }
+}
+
+}  // namespace stepnc::recognize::milling

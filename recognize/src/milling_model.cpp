@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: Apache-2.0
+// The recognised features and operations written as an ISO 14649 project
+// (Part 10 project, workplan, setup, workpiece; Part 11 operations,
+// strategies and technology; Part 111 tools), shaped as seed 004 Fig. 11
+// and samples/milling/seed004_fig10.stp.
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "machining_schema.h"
+#include "milling.h"
+#include "milling_machine_tool_schema.h"
+#include "milling_schema.h"
+
+namespace stepnc::recognize::milling {
+
+namespace ms = machining_schema;
+namespace mill = milling_schema;
+namespace mt = milling_machine_tool_schema;
+
+namespace {
+
+class Writer {
+ public:
+  explicit Writer(meta::Model& model) : m_(model) {}
+
+  ms::cartesian_point* point(const std::string& name, double x, double y, double z) {
+    auto& p = m_.create<ms::cartesian_point>();
+    p.name = name;
+    p.coordinates = {x, y, z};
+    return &p;
+  }
+  ms::direction* direction(const char* name, double x, double y, double z) {
+    auto& d = m_.create<ms::direction>();
+    d.name = name;
+    d.direction_ratios = {x, y, z};
+    return &d;
+  }
+  ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, bool along_y = false) {
+    // Parts before the whole, as the authoring samples write them.
+    auto* location = point(name + ": LOCATION", at.x, at.y, at.z);
+    auto* axis = direction("AXIS", 0, 0, 1);
+    auto* ref = along_y ? direction("REF_DIRECTION", 0, 1, 0) : direction("REF_DIRECTION", 1, 0, 0);
+    auto& a = m_.create<ms::axis2_placement_3d>();
+    a.name = name;
+    a.location = location;
+    a.axis = axis;
+    a.ref_direction = ref;
+    return &a;
+  }
+  ms::plane* plane(const std::string& name, Vec3 at) {
+    auto* position = placement(name, at);
+    auto& p = m_.create<ms::plane>();
+    p.name = name;
+    p.position = position;
+    return &p;
+  }
+  ms::toleranced_length_measure* length(double size) {
+    // The program does not say the tolerance; ISO 14649's default class.
+    auto& t = m_.create<ms::plus_minus_value>();
+    t.upper_limit = 0.1;
+    t.lower_limit = 0.1;
+    t.significant_digits = 3;
+    auto& l = m_.create<ms::toleranced_length_measure>();
+    l.theoretical_size = size;
+    l.implicit_tolerance = &t;
+    return &l;
+  }
+  mill::milling_technology* technology(const Setting& s) {
+    // Fig. 11 #57: F2400 mm/min = 0.04 m/s; S1200 M3 = -20 rev/s (clockwise negative).
+    auto& t = m_.create<mill::milling_technology>();
+    t.feedrate = s.feed / 60000.0;
+    t.feedrate_reference = ms::tool_reference_point::tcp;
+    t.spindle = (s.direction < 0 ? 1.0 : -1.0) * s.spindle / 60.0;
+    t.synchronize_spindle_with_feed = false;
+    t.inhibit_feedrate_override = false;
+    t.inhibit_spindle_override = false;
+    return &t;
+  }
+  mill::milling_machine_functions* functions(bool coolant) {
+    auto*& f = functions_[coolant];
+    if (!f) {
+      f = &m_.create<mill::milling_machine_functions>();
+      f->coolant = coolant;
+      f->through_spindle_coolant = false;
+      f->chip_removal = false;
+    }
+    return f;
+  }
+  mt::milling_cutting_tool* tool(const Tools& tools, int number) {
+    auto*& out = tools_[number];
+    if (out) return out;
+    const tooling::Tool* listed = tools.find(number);
+    const std::string kind = listed ? listed->kind : "";
+    mt::milling_machine_tool_body* body = nullptr;
+    if (kind == "twist_drill" || kind == "drill") body = &m_.create<mt::twist_drill>();
+    else if (kind == "center_drill" || kind == "centerdrill") body = &m_.create<mt::center_drill>();
+    else if (kind == "reamer") body = &m_.create<mt::reamer>();
+    else if (kind == "tapered_reamer") body = &m_.create<mt::tapered_reamer>();
+    else if (kind == "tap") body = &m_.create<mt::tap>();
+    else if (kind == "countersink") body = &m_.create<mt::countersink>();
+    else if (kind == "boring_tool") body = &m_.create<mt::boring_tool>();
+    else if (kind == "facemill") body = &m_.create<mt::facemill>();
+    else if (kind == "ballnose_endmill" || kind == "ball_endmill") body = &m_.create<mt::ball_endmill>();
+    else if (kind == "bullnose_endmill") body = &m_.create<mt::bullnose_endmill>();
+    else body = &m_.create<mt::endmill>();
+    auto& size = m_.create<mt::milling_tool_dimension>();
+    size.diameter = listed && listed->diameter ? *listed->diameter : 0;
+    if (kind == "twist_drill" || kind == "drill") size.tool_tip_half_angle = 59;  // 118 deg point
+    if (listed && listed->corner_radius) size.edge_radius = *listed->corner_radius;
+    body->dimension = &size;
+    if (listed && listed->flutes) body->number_of_teeth = *listed->flutes;
+    if (listed && !listed->hand.empty())
+      body->hand_of_cut = listed->hand == "left" ? mt::hand::left : listed->hand == "neutral" ? mt::hand::neutral : mt::hand::right;
+    auto& edge = m_.create<ms::cutting_component>();
+    const double assembly = listed && listed->length ? *listed->length : 0;
+    edge.tool_offset_length = assembly;
+    auto& t = m_.create<mt::milling_cutting_tool>();
+    t.its_id = listed && !listed->name.empty() ? listed->name : fmt::format("T{}", number);
+    t.its_tool_body = body;
+    t.its_cutting_edge = {&edge};
+    if (assembly > 0) t.overall_assembly_length = assembly;
+    out = &t;
+    return out;
+  }
+
+ private:
+  meta::Model& m_;
+  std::map<bool, mill::milling_machine_functions*> functions_;
+  std::map<int, mt::milling_cutting_tool*> tools_;
+};
+
+template <class T>
+T& common(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
+  auto& o = m.create<T>();
+  o.its_id = op.id;
+  o.retract_plane = op.retract_plane;
+  o.its_tool = w.tool(tools, op.tool);
+  o.its_technology = w.technology(op.setting);
+  o.its_machine_functions = w.functions(op.setting.coolant);
+  return o;
+}
+
+ms::machining_operation* drilling_type(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
+  mill::drilling_type_operation* o = nullptr;
+  if (op.entity == "drilling") o = &common<mill::drilling>(m, w, op, tools);
+  else if (op.entity == "center_drilling") o = &common<mill::center_drilling>(m, w, op, tools);
+  else if (op.entity == "counter_sinking") o = &common<mill::counter_sinking>(m, w, op, tools);
+  else if (op.entity == "tapping") {
+    auto& t = common<mill::tapping>(m, w, op, tools);
+    t.compensation_chuck = false;
+    o = &t;
+  } else if (op.entity == "multistep_drilling") {
+    auto& d = common<mill::multistep_drilling>(m, w, op, tools);
+    d.first_depth = op.first_depth;
+    d.depth_of_step = op.depth_of_step;
+    d.retract_distance = op.retract_distance;
+    o = &d;
+  } else {
+    mill::boring_operation* b = nullptr;
+    if (op.entity == "reaming") b = &common<mill::reaming>(m, w, op, tools);
+    else b = &common<mill::boring>(m, w, op, tools);
+    b->spindle_stop_at_bottom = op.spindle_stop_at_bottom;
+    o = b;
+  }
+  if (op.dwell > 0) o->dwell_time_bottom = op.dwell;
+  if (op.reduced_feed_at_start || op.reduced_feed_at_end) {
+    auto& s = m.create<mill::drilling_type_strategy>();
+    s.reduced_feed_at_start = op.reduced_feed_at_start;
+    s.depth_of_start = op.depth_of_start;
+    s.reduced_feed_at_end = op.reduced_feed_at_end;
+    s.depth_of_end = op.depth_of_end;
+    o->its_machining_strategy = &s;
+  }
+  return o;
+}
+
+ms::machining_operation* milling_op(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
+  mill::two5d_milling_operation* o = nullptr;
+  if (op.entity.starts_with("plane_")) {
+    mill::plane_milling* plane = nullptr;
+    if (op.entity == "plane_rough_milling") plane = &common<mill::plane_rough_milling>(m, w, op, tools);
+    else plane = &common<mill::plane_finish_milling>(m, w, op, tools);
+    plane->axial_cutting_depth = op.axial;
+    plane->allowance_bottom = op.allowance_bottom;
+    o = plane;
+  } else {
+    mill::bottom_and_side_milling* side = nullptr;
+    if (op.entity == "bottom_and_side_rough_milling") side = &common<mill::bottom_and_side_rough_milling>(m, w, op, tools);
+    else side = &common<mill::bottom_and_side_finish_milling>(m, w, op, tools);
+    side->axial_cutting_depth = op.axial;
+    side->radial_cutting_depth = op.radial;
+    side->allowance_side = op.allowance_side;
+    side->allowance_bottom = op.allowance_bottom;
+    o = side;
+  }
+  if (op.strategy == "contour_parallel") {
+    auto& s = m.create<mill::contour_parallel>();
+    s.allow_multiple_passes = true;
+    s.rotation_direction = op.rotation < 0 ? ms::rot_direction::cw : ms::rot_direction::ccw;
+    s.cutmode = op.climb ? mill::cutmode_type::climb : mill::cutmode_type::conventional;
+    o->its_machining_strategy = &s;
+  } else if (op.strategy == "bidirectional_milling") {
+    auto& s = m.create<mill::bidirectional_milling>();
+    s.allow_multiple_passes = true;
+    o->its_machining_strategy = &s;
+  }
+  if (op.approach == "plunge_helix") {
+    auto& a = m.create<mill::plunge_helix>();
+    a.radius = std::round(op.approach_radius * 1000) / 1000;
+    a.angle = std::round(op.approach_angle * 10) / 10;
+    o->approach = &a;
+  } else if (op.approach == "plunge_ramp") {
+    auto& a = m.create<mill::plunge_ramp>();
+    a.angle = std::round(op.approach_angle * 10) / 10;
+    o->approach = &a;
+  } else if (op.approach == "plunge_toolaxis") {
+    o->approach = &m.create<mill::plunge_toolaxis>();
+  }
+  return o;
+}
+
+ms::machining_operation* freeform_op(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
+  auto& o = common<mill::freeform_operation>(m, w, op, tools);
+  auto& list = m.create<ms::toolpath_list>();
+  for (const auto& path : op.toolpaths) {
+    auto& line = m.create<ms::polyline>();
+    line.name = "CL DATA";
+    for (const Vec3& p : path) line.points.push_back(w.point("", p.x, p.y, p.z));
+    auto& cl = m.create<ms::cutter_location_trajectory>();
+    cl.its_priority = true;
+    cl.its_type = ms::toolpath_type::contact;
+    cl.basiccurve = &line;
+    list.its_list.push_back(&cl);
+  }
+  o.its_toolpath = &list;
+  return &o;
+}
+
+}  // namespace
+
+void write_model(const Recognised& r, const Tools& tools, const ImportOptions& options, ImportResult& result) {
+  result.header.schemas = {"MACHINING_SCHEMA", "MILLING_SCHEMA", "MILLING_MACHINE_TOOL_SCHEMA"};
+  result.model = std::make_unique<meta::Model>();
+  meta::Model& m = *result.model;
+  Writer w(m);
+  auto* origin = w.placement("SETUP", {0, 0, 0});
+  auto* security = w.plane("SECURITY PLANE", {0, 0, r.security_z});
+
+  auto& workpiece = m.create<ms::workpiece>();
+  workpiece.its_id = "WORKPIECE";
+  workpiece.global_tolerance = 0.01;
+  if (options.stock && options.stock->shape == Stock::Shape::block) {
+    const Stock& s = *options.stock;
+    auto& block = m.create<ms::block>();
+    block.name = "STOCK";
+    block.position = w.placement("STOCK", {s.origin_x, s.origin_y, s.origin_z});
+    block.x = s.size_x;
+    block.y = s.size_y;
+    block.z = s.size_z;
+    workpiece.its_bounding_geometry = &block;
+  }
+  auto& workpiece_setup = m.create<ms::workpiece_setup>();
+  workpiece_setup.its_workpiece = &workpiece;
+  workpiece_setup.its_origin = origin;
+  auto& setup = m.create<ms::setup>();
+  setup.its_id = "MAIN SETUP";
+  setup.its_origin = origin;
+  setup.its_secplane = security;
+  setup.its_workpiece_setup = {&workpiece_setup};
+
+  std::vector<ms::manufacturing_feature*> features;
+  for (const Feature& f : r.features) {
+    ms::manufacturing_feature* out = nullptr;
+    if (f.entity == "round_hole") {
+      auto& hole = m.create<ms::round_hole>();
+      hole.feature_placement = w.placement(f.id, f.origin);
+      hole.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      hole.diameter = w.length(f.diameter);
+      if (f.through) hole.bottom_condition = &m.create<ms::through_bottom_condition>();
+      else if (f.conical) {
+        auto& cone = m.create<ms::conical_hole_bottom>();
+        cone.tip_angle = 118;
+        hole.bottom_condition = &cone;
+      } else {
+        hole.bottom_condition = &m.create<ms::flat_hole_bottom>();
+      }
+      out = &hole;
+    } else if (f.entity == "planar_face") {
+      auto& face = m.create<ms::planar_face>();
+      face.feature_placement = w.placement(f.id, f.origin);
+      face.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      auto* along = w.direction("COURSE OF TRAVEL", 1, 0, 0);
+      auto* distance = w.length(f.length);
+      auto& path = m.create<ms::linear_path>();
+      path.distance = distance;
+      path.its_direction = along;
+      face.course_of_travel = &path;
+      auto& width = m.create<ms::numeric_parameter>();
+      width.parameter_name = "PROFILE LENGTH";
+      width.its_parameter_value = f.width;
+      width.its_parameter_unit = "MM";
+      auto& band = m.create<ms::linear_profile>();
+      band.profile_length = &width;
+      face.removal_boundary = &band;
+      out = &face;
+    } else if (f.entity == "closed_pocket") {
+      auto& pocket = m.create<ms::closed_pocket>();
+      pocket.feature_placement = w.placement(f.id, f.origin, f.along_y);
+      pocket.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+      if (f.outline.empty()) {
+        auto& outline = m.create<ms::rectangular_closed_profile>();
+        outline.placement = w.placement(f.id + ": OUTLINE", {0, 0, 0});
+        outline.profile_width = w.length(f.width);
+        outline.profile_length = w.length(f.length);
+        pocket.feature_boundary = &outline;
+        pocket.orthogonal_radius = w.length(f.corner_radius);
+      } else {
+        auto& line = m.create<ms::polyline>();
+        line.name = f.id + ": OUTLINE";
+        for (const Vec2 p : f.outline) line.points.push_back(w.point("", p.x, p.y, 0));
+        line.points.push_back(line.points.front());
+        auto& outline = m.create<ms::general_closed_profile>();
+        outline.placement = w.placement(f.id + ": OUTLINE", {0, 0, 0});
+        outline.closed_profile_shape = &line;
+        pocket.feature_boundary = &outline;
+      }
+      out = &pocket;
+    } else {
+      auto& region = m.create<ms::region_projection>();
+      region.feature_placement = w.placement(f.id, f.origin);
+      auto& line = m.create<ms::polyline>();
+      line.name = f.id + ": EXTENT";
+      for (const Vec2 p : f.outline) line.points.push_back(w.point("", p.x, p.y, 0));
+      line.points.push_back(line.points.front());
+      region.proj_curve = &line;
+      region.proj_dir = w.direction("PROJECTION", 0, 0, -1);
+      region.depth = w.length(std::max(0.0, r.top_z - f.deepest));
+      out = &region;
+    }
+    out->its_id = f.id;
+    out->its_workpiece = &workpiece;
+    features.push_back(out);
+  }
+
+  std::vector<ms::executable*> steps;
+  for (const Operation& op : r.operations) {
+    ms::machining_operation* o = nullptr;
+    if (op.entity == "freeform_operation") o = freeform_op(m, w, op, tools);
+    else if (op.entity.starts_with("bottom_and_side") || op.entity.starts_with("plane_")) o = milling_op(m, w, op, tools);
+    else o = drilling_type(m, w, op, tools);
+    features[op.feature]->its_operations.push_back(o);
+    auto& step = m.create<ms::machining_workingstep>();
+    step.its_id = "WS " + op.id;
+    step.its_secplane = security;
+    step.its_feature = features[op.feature];
+    step.its_operation = o;
+    steps.push_back(&step);
+  }
+  auto& workplan = m.create<ms::workplan>();
+  workplan.its_id = "MAIN WORKPLAN";
+  workplan.its_setup = &setup;
+  workplan.its_elements = steps;
+  auto& project = m.create<ms::project>();
+  project.its_id = options.program_file.empty() ? "IMPORTED PROGRAM" : options.program_file;
+  project.main_workplan = &workplan;
+  project.its_workpieces = {&workpiece};
+}
+
+}  // namespace stepnc::recognize::milling

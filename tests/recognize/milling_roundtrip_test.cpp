@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: Apache-2.0
+// Round trips on our own output: a milling sample posted to RS274NGC and
+// to Fanuc, then imported, gives back its features (type, size within
+// 0.01 mm, placement) and its operation types in order. The samples that
+// do not round-trip yet are listed with the reason (recognize/README.md).
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "machining_schema.h"
+#include "milling_test_support.h"
+#include "stepnc/exchange/model_file.h"
+#include "stepnc/machining/iso14649.h"
+#include "stepnc/meta/registry.h"
+
+using namespace stepnc;
+using namespace stepnc_test::milling;
+namespace ms = machining_schema;
+
+namespace {
+
+void steps_of(const ms::executable* e, std::vector<const ms::machining_workingstep*>& out) {
+  if (const auto* step = dynamic_cast<const ms::machining_workingstep*>(e)) out.push_back(step);
+  if (const auto* plan = dynamic_cast<const ms::program_structure*>(e))
+    if (const auto* workplan = dynamic_cast<const ms::workplan*>(plan)) {
+      for (const auto* child : workplan->its_elements) steps_of(child, out);
+    }
+  if (const auto* group = dynamic_cast<const ms::non_sequential*>(e))
+    for (const auto* child : group->its_elements) steps_of(child, out);
+}
+
+std::string size(const ms::toleranced_length_measure* m) { return m ? fmt::format("{:.2f}", m->theoretical_size) : "-"; }
+
+struct Frame {
+  double x = 0, y = 0, ux = 1, uy = 0;  // origin and ref_direction in XY
+  std::pair<double, double> at(double px, double py) const { return {x + px * ux - py * uy, y + px * uy + py * ux}; }
+};
+
+Frame frame_of(const ms::axis2_placement_3d* p) {
+  Frame f;
+  if (!p) return f;
+  f.x = p->location->coordinates[0];
+  f.y = p->location->coordinates[1];
+  if (p->ref_direction) {
+    const auto& d = p->ref_direction->direction_ratios;
+    const double n = std::hypot(d[0], d[1]);
+    f.ux = d[0] / n, f.uy = d[1] / n;
+  }
+  return f;
+}
+
+// A pocket's outline in the setup's XY: its bounding box.
+std::string pocket_box(const ms::closed_pocket& pocket) {
+  const Frame feature = frame_of(pocket.feature_placement);
+  std::vector<std::pair<double, double>> corners;
+  if (const auto* r = dynamic_cast<const ms::rectangular_closed_profile*>(pocket.feature_boundary)) {
+    const Frame profile = frame_of(r->placement);
+    const double l = r->profile_length->theoretical_size / 2, w = r->profile_width->theoretical_size / 2;
+    for (const auto& [px, py] : {std::pair{-l, -w}, {l, -w}, {l, w}, {-l, w}}) {
+      const auto local = profile.at(px, py);
+      corners.push_back(feature.at(local.first, local.second));
+    }
+  } else if (const auto* g = dynamic_cast<const ms::general_closed_profile*>(pocket.feature_boundary)) {
+    if (const auto* line = dynamic_cast<const ms::polyline*>(g->closed_profile_shape))
+      for (const auto* p : line->points) corners.push_back(feature.at(p->coordinates[0], p->coordinates[1]));
+  }
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const auto& [x, y] : corners) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  return fmt::format("x {:.2f}..{:.2f} y {:.2f}..{:.2f} r{}", x0, x1, y0, y1, size(pocket.orthogonal_radius));
+}
+
+double depth_of(const ms::machining_feature& f) {
+  const double top = f.feature_placement->location->coordinates[2];
+  const auto* depth = dynamic_cast<const ms::plane*>(f.depth);
+  return depth ? top + depth->position->location->coordinates[2] : top;
+}
+
+// One line per workingstep: operation, feature type, size and placement
+// in the setup's frame.
+std::string summary(const meta::Model& model) {
+  std::string out;
+  for (const auto* project : all_of<ms::project>(model)) {
+    std::vector<const ms::machining_workingstep*> steps;
+    steps_of(project->main_workplan, steps);
+    for (const auto* step : steps) {
+      const auto* f = step->its_feature;
+      std::string feature{f->entity_info().name};
+      if (const auto* hole = dynamic_cast<const ms::round_hole*>(f)) {
+        const auto& c = hole->feature_placement->location->coordinates;
+        feature += fmt::format(" at ({:.2f}, {:.2f}) D{}", c[0], c[1], size(hole->diameter));
+      }
+      if (const auto* pocket = dynamic_cast<const ms::closed_pocket*>(f)) feature += fmt::format(" {}", pocket_box(*pocket));
+      if (const auto* mf = dynamic_cast<const ms::machining_feature*>(f)) feature += fmt::format(" floor Z{:.2f}", depth_of(*mf));
+      out += fmt::format("{} on {}\n", step->its_operation->entity_info().name, feature);
+    }
+  }
+  return out;
+}
+
+std::string round_trip(const std::string& sample, const std::string& dialect) {
+  static const meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
+  const auto read = exchange::read_model_text(sample_text(sample), sample, registry);
+  REQUIRE(read.ok());
+  const Posted posted = post(read.file->model, dialect);
+  // The stock, as the user would give it (--stock): the sample's block.
+  const auto described = machining::describe_project(read.file->model);
+  const auto& w = described.project.workpiece;
+  std::string stock;
+  if (w.block_max.x > w.block_min.x)
+    stock = fmt::format("block:{}:{}:{}@{},{},{}", w.block_max.x - w.block_min.x, w.block_max.y - w.block_min.y,
+                        w.block_max.z - w.block_min.z, w.block_min.x, w.block_min.y, w.block_min.z);
+  const auto imported = import(posted.text, posted.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc", stock);
+  if (!imported.result.ok()) return "import failed: " + imported.result.errors.front();
+  const std::string want = summary(read.file->model), got = summary(*imported.result.model);
+  return want == got ? "" : "want:\n" + want + "got:\n" + got;
+}
+
+}  // namespace
+
+TEST_CASE("seed 004's part posted and imported again gives back its features and operations", "[recognize][milling][posters]") {
+  for (const std::string dialect : {"rs274ngc", "fanuc"}) {
+    INFO(dialect);
+    CHECK(round_trip("milling/seed004_fig10.stp", dialect) == "");
+  }
+}
+
+// Every other milling sample: which round-trip today (asserted, so a
+// regression shows) and which not (recognize/README.md says why).
+TEST_CASE("round trips of every milling sample through both dialects", "[recognize][milling][posters]") {
+  // Not yet: l_pocket_island (an island: the cutting area has a hole, so a
+  // region with freeform operations), open_pocket_step and open_profiles
+  // (open pockets and steps are read as closed pockets: the stock edge is
+  // not used yet). facing_toolpath and nested_setup_functions come back
+  // with plane_finish_milling where the sample has a freeform_operation
+  // with an explicit zig-zag: the face rule reads what the toolpath does.
+  const std::vector<std::string> round_trips = {"milling/example1.stp", "milling/hole_milling.stp",
+                                                "milling/seed004_fig10.stp"};
+  for (const std::string sample :
+       {"milling/example1.stp", "milling/hole_milling.stp", "milling/l_pocket_island.stp", "milling/open_pocket_step.stp",
+        "milling/open_profiles.stp", "milling/facing_toolpath.stp", "milling/nested_setup_functions.stp",
+        "milling/seed004_fig10.stp"})
+    for (const std::string dialect : {"rs274ngc", "fanuc"}) {
+      const std::string difference = round_trip(sample, dialect);
+      WARN(sample << " as " << dialect << ": " << (difference.empty() ? "round-trips" : difference));
+      const bool expected = std::find(round_trips.begin(), round_trips.end(), sample) != round_trips.end();
+      CHECK(difference.empty() == expected);
+    }
+}
