@@ -96,8 +96,8 @@ void recognise_operation(const Group& group, const std::vector<Group>& groups, s
           : cycle.name == "G72" ? "stock removal in facing"
                                 : "pattern repeating");
       // Allowances U (diameter) and W; the depth of cut from the first block (0i) or D (0-T).
-      out.allowance_x = word(cycle, 'U') / 2;
-      out.allowance_z = word(cycle, 'W');
+      out.allowance_x = std::abs(word(cycle, 'U')) / 2;  // negative U: an internal contour
+      out.allowance_z = std::abs(word(cycle, 'W'));
       const double depth = has_word(cycle, facing ? 'w' : 'u') ? word(cycle, facing ? 'w' : 'u') : word(cycle, 'D');
       if (depth > 0 && cycle.name != "G73") out.cutting_depths = {depth};
       decisions.push_back({rule, fmt::format("allowance {:g} mm on the radius (U{:g}), {:g} mm in Z (W); depth of cut {:g} mm",
