@@ -30,6 +30,12 @@ void import_turning(const gcode::Result& result, std::string_view program_text, 
         break;
       }
 
+  for (Group& group : groups)
+    for (std::size_t i = group.first_move(); i < group.end_move(); ++i)
+      if (motion.moves[i].kind == Move::Kind::feed) {
+        group.cut.add(motion.moves[i].from);
+        group.cut.add(motion.moves[i].to);
+      }
   std::vector<Recognised> ops(groups.size());
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const tooling::Tool* tool = options.tools->find(groups[g].tool);
@@ -38,8 +44,7 @@ void import_turning(const gcode::Result& result, std::string_view program_text, 
                                        motion.moves[groups[g].first_move()].line, groups[g].tool));
       return;
     }
-    const std::vector<Recognised> earlier(ops.begin(), ops.begin() + static_cast<std::ptrdiff_t>(g));
-    recognise_operation(groups[g], groups, g, earlier, motion, result, *tool, ops[g], groups[g].decisions);
+    recognise_operation(groups[g], groups, g, std::span<const Recognised>(ops.data(), g), motion, result, *tool, ops[g], groups[g].decisions);
   }
   Workpiece workpiece = estimate_stock(motion, groups, ops, options, groups.front().decisions);
   const Workpiece stock = workpiece;

@@ -76,7 +76,58 @@ std::vector<Vec2> cutting_shape(const tooling::Tool& tool, double angle, Edge& e
   }
 }
 
+// The union of many swept areas, halves first: the areas of neighbouring
+// moves overlap each other, so one Clipper call over thousands of them
+// meets every crossing at once; halving keeps each call's crossings few.
+poly::Area unite_all(const std::vector<poly::Ring>& rings, std::size_t first, std::size_t end) {
+  if (end - first <= 16) {
+    poly::Area some;
+    some.rings.assign(rings.begin() + static_cast<std::ptrdiff_t>(first), rings.begin() + static_cast<std::ptrdiff_t>(end));
+    return poly::unite(some, {});
+  }
+  const std::size_t middle = first + (end - first) / 2;
+  return poly::unite(unite_all(rings, first, middle), unite_all(rings, middle, end));
+}
+
 }  // namespace
+
+SegmentGrid::SegmentGrid(std::vector<Segment> segments) : segments_(std::move(segments)) {
+  for (const Segment& s : segments_) {
+    box_.add(s.from);
+    box_.add(s.to);
+  }
+  if (segments_.empty()) return;
+  cell_ = std::max(0.25, std::max(box_.z_hi - box_.z_lo, box_.x_hi - box_.x_lo) / 1024);
+  for (std::uint32_t n = 0; n < segments_.size(); ++n) {
+    const Segment& s = segments_[n];
+    const auto i0 = static_cast<std::int64_t>(std::floor((std::min(s.from.z, s.to.z) - box_.z_lo) / cell_));
+    const auto i1 = static_cast<std::int64_t>(std::floor((std::max(s.from.z, s.to.z) - box_.z_lo) / cell_));
+    const auto j0 = static_cast<std::int64_t>(std::floor((std::min(s.from.x, s.to.x) - box_.x_lo) / cell_));
+    const auto j1 = static_cast<std::int64_t>(std::floor((std::max(s.from.x, s.to.x) - box_.x_lo) / cell_));
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j) cells_[key(i, j)].push_back(n);
+  }
+}
+
+double SegmentGrid::distance(Point p, double reach) const {
+  double best = reach * 2 + 1;
+  const auto i0 = static_cast<std::int64_t>(std::floor((p.z - reach - box_.z_lo) / cell_));
+  const auto i1 = static_cast<std::int64_t>(std::floor((p.z + reach - box_.z_lo) / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor((p.x - reach - box_.x_lo) / cell_));
+  const auto j1 = static_cast<std::int64_t>(std::floor((p.x + reach - box_.x_lo) / cell_));
+  for (std::int64_t i = i0; i <= i1; ++i)
+    for (std::int64_t j = j0; j <= j1; ++j) {
+      const auto found = cells_.find(key(i, j));
+      if (found == cells_.end()) continue;
+      for (const std::uint32_t n : found->second) {
+        const Segment& s = segments_[n];
+        const double dz = s.to.z - s.from.z, dx = s.to.x - s.from.x, l2 = dz * dz + dx * dx;
+        const double t = l2 > 0 ? std::clamp(((p.z - s.from.z) * dz + (p.x - s.from.x) * dx) / l2, 0.0, 1.0) : 0;
+        best = std::min(best, std::hypot(p.z - s.from.z - t * dz, p.x - s.from.x - t * dx));
+      }
+    }
+  return best;
+}
 
 Workpiece estimate_stock(const Motion& motion, const std::vector<Group>& groups, const std::vector<Recognised>& ops,
                          const ImportOptions& options, std::vector<Decision>& decisions) {
@@ -157,16 +208,25 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
                                    counted[static_cast<int>(Edge::both)], counted[static_cast<int>(Edge::tip)], none),
                        {}});
   // (3) subtract, keep the boundary the machining areas made.
-  const poly::Area removed = poly::unite(swept, {});
+  const poly::Area removed = swept.rings.empty() ? poly::Area{} : unite_all(swept.rings, 0, swept.rings.size());
   const poly::Area remaining = poly::subtract(workpiece.area, removed);
+  std::vector<Segment> removed_edges;
+  Box near;
+  for (const poly::Ring& ring : removed.rings)
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      removed_edges.push_back({from_plane(ring[i]), from_plane(ring[(i + 1) % ring.size()])});
+      near.add(from_plane(ring[i]));
+    }
+  const SegmentGrid boundary(std::move(removed_edges));
   std::vector<Segment> pieces;
   for (const poly::Ring& ring : remaining.rings)
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-      const Vec2 mid{(a.x + b.x) / 2, (a.y + b.y) / 2};
-      if (std::hypot(b.x - a.x, b.y - a.y) < 1e-4) continue;
-      if (std::abs(poly::signed_distance(removed, mid)) < 1e-4 && mid.y > 1e-6)
-        pieces.push_back({from_plane(a), from_plane(b)});
+      const Point mid{(a.x + b.x) / 2, (a.y + b.y) / 2};
+      if (std::hypot(b.x - a.x, b.y - a.y) < 1e-4 || mid.z < near.z_lo - 1e-3 || mid.z > near.z_hi + 1e-3 ||
+          mid.x < near.x_lo - 1e-3 || mid.x > near.x_hi + 1e-3)
+        continue;
+      if (boundary.distance(mid, 1e-4) < 1e-4 && mid.x > 1e-6) pieces.push_back({from_plane(a), from_plane(b)});
     }
   // The pip a facing cut that stops on the axis leaves under its end edge
   // (r <= L sin K'_r) is not a profile segment (our decision; the seed's

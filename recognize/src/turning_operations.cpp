@@ -24,25 +24,6 @@ bool has_word(const gcode::CycleEvent& cycle, char letter) {
   return std::any_of(cycle.parameters.begin(), cycle.parameters.end(), [&](const auto& p) { return p.first == letter; });
 }
 
-struct Box {
-  double z_lo = 1e300, z_hi = -1e300, x_lo = 1e300, x_hi = -1e300;
-  bool overlaps(const Box& o) const { return z_lo <= o.z_hi && o.z_lo <= z_hi && x_lo <= o.x_hi && o.x_lo <= x_hi; }
-};
-Box cut_box(const Group& group, const Motion& motion) {
-  Box box;
-  for (std::size_t i = group.first_move(); i < group.end_move(); ++i) {
-    const Move& m = motion.moves[i];
-    if (m.kind != Move::Kind::feed) continue;
-    for (const Point p : {m.from, m.to}) {
-      box.z_lo = std::min(box.z_lo, p.z);
-      box.z_hi = std::max(box.z_hi, p.z);
-      box.x_lo = std::min(box.x_lo, p.x);
-      box.x_hi = std::max(box.x_hi, p.x);
-    }
-  }
-  return box;
-}
-
 bool is_rough(const std::string& operation) { return operation.find("_rough") != std::string::npos; }
 
 // The facts Table 3's rules read.
@@ -70,7 +51,7 @@ struct Candidate {
 }  // namespace
 
 void recognise_operation(const Group& group, const std::vector<Group>& groups, std::size_t index,
-                         const std::vector<Recognised>& earlier, const Motion& motion, const gcode::Result& result,
+                         std::span<const Recognised> earlier, const Motion& motion, const gcode::Result& result,
                          const tooling::Tool& tool, Recognised& out, std::vector<Decision>& decisions) {
   const auto lines = lines_of(motion, group.first_move(), group.end_move());
   out.internal = internal_tool(tool);
@@ -168,7 +149,7 @@ void recognise_operation(const Group& group, const std::vector<Group>& groups, s
     }
   }
   for (std::size_t i = group.first_move(); i < group.end_move(); ++i) f.dwell = f.dwell || motion.moves[i].kind == Move::Kind::dwell;
-  const Box box = cut_box(group, motion);
+  const Box& box = group.cut;
   const gcode::MotionState& state = leads.empty() ? motion.moves[group.first_move()].state : leads.front()->state;
   auto family_of = [](const std::string& op) {
     if (op.rfind("facing", 0) == 0) return Family::facing;
@@ -192,7 +173,7 @@ void recognise_operation(const Group& group, const std::vector<Group>& groups, s
   auto rough_in_area = [&](Family family, bool internal) {
     for (std::size_t g = 0; g < earlier.size(); ++g)
       if (earlier[g].family == family && earlier[g].internal == internal && is_rough(earlier[g].operation) &&
-          cut_box(groups[g], motion).overlaps(box))
+          groups[g].cut.overlaps(box))
         return true;
     return false;
   };

@@ -7,7 +7,10 @@
 
 #include <cstdint>
 #include <optional>
+#include <algorithm>
+#include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "stepnc/gcode/interpreter.h"
@@ -39,8 +42,37 @@ struct Stroke {
   std::size_t longest_run = 0;          // most interpolations in a row
 };
 
+// Where a group's feed moves lie in (z, x).
+struct Box {
+  double z_lo = 1e300, z_hi = -1e300, x_lo = 1e300, x_hi = -1e300;
+  bool overlaps(const Box& o) const { return z_lo <= o.z_hi && o.z_lo <= z_hi && x_lo <= o.x_hi && o.x_lo <= x_hi; }
+  void add(Point p) {
+    z_lo = std::min(z_lo, p.z);
+    z_hi = std::max(z_hi, p.z);
+    x_lo = std::min(x_lo, p.x);
+    x_hi = std::max(x_hi, p.x);
+  }
+};
+
+// Segments bucketed on a square grid: the nearest one to a point, looked
+// for only in the cells within `reach` (long programs make thousands).
+class SegmentGrid {
+ public:
+  explicit SegmentGrid(std::vector<Segment> segments);
+  // The distance to the nearest segment, or a value above `reach` when none is within it.
+  double distance(Point p, double reach) const;
+
+ private:
+  std::int64_t key(std::int64_t i, std::int64_t j) const { return i * 4'000'003 + j; }
+  std::vector<Segment> segments_;
+  Box box_;
+  double cell_ = 1;
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> cells_;
+};
+
 // A group of strokes: one operation workingstep.
 struct Group {
+  Box cut;                           // its feed moves
   std::vector<Stroke> strokes;
   int tool = 0;
   int cycle = -1;                    // the cycle event it maps (a run of one kind)
@@ -85,7 +117,7 @@ std::vector<Group> divide(const Motion& motion, const gcode::Result& result, con
 
 // turning_operations.cpp: the cycle method and Table 3.
 void recognise_operation(const Group& group, const std::vector<Group>& groups, std::size_t index,
-                         const std::vector<Recognised>& earlier, const Motion& motion, const gcode::Result& result,
+                         std::span<const Recognised> earlier, const Motion& motion, const gcode::Result& result,
                          const tooling::Tool& tool, Recognised& out, std::vector<Decision>& decisions);
 
 // turning_areas.cpp: stock, Fig. 9 machining areas, subtraction, Xegments, Table 4.

@@ -100,19 +100,13 @@ void recognise_strategy(const Group& group, const Motion& motion, const tooling:
   for (std::size_t i = 1; i < leads.size(); ++i)
     alternating = alternating && angular_distance(leads[i], leads[i - 1]) > 150;
   const bool run = std::any_of(group.strokes.begin(), group.strokes.end(), [](const Stroke& s) { return s.longest_run > 2; });
-  bool follows = !out.profile.empty();
-  for (const Segment& seg : out.profile) {
-    const Point mid{(seg.from.z + seg.to.z) / 2, (seg.from.x + seg.to.x) / 2};
-    double best = 1e300;
-    for (std::size_t i = group.first_move(); i < group.end_move(); ++i) {
-      const Move& m = moves[i];
-      if (m.kind != Move::Kind::feed) continue;
-      const double dz = m.to.z - m.from.z, dx = m.to.x - m.from.x, l2 = dz * dz + dx * dx;
-      const double t = l2 > 0 ? std::clamp(((mid.z - m.from.z) * dz + (mid.x - m.from.x) * dx) / l2, 0.0, 1.0) : 0;
-      best = std::min(best, std::hypot(mid.z - m.from.z - t * dz, mid.x - m.from.x - t * dx));
-    }
-    follows = follows && best < 0.01;
-  }
+  std::vector<Segment> path;
+  for (std::size_t i = group.first_move(); i < group.end_move(); ++i)
+    if (moves[i].kind == Move::Kind::feed) path.push_back({moves[i].from, moves[i].to});
+  const SegmentGrid along(std::move(path));
+  const bool follows = !out.profile.empty() && std::all_of(out.profile.begin(), out.profile.end(), [&](const Segment& s) {
+    return along.distance({(s.from.z + s.to.z) / 2, (s.from.x + s.to.x) / 2}, 0.01) < 0.01;
+  });
   const bool dwell = std::any_of(moves.begin() + static_cast<std::ptrdiff_t>(group.first_move()),
                                  moves.begin() + static_cast<std::ptrdiff_t>(group.end_move()),
                                  [](const Move& m) { return m.kind == Move::Kind::dwell; });
