@@ -264,6 +264,12 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
   out.feature = table4_feature(out.family, segments, row);
   if (out.family == Family::facing && out.feature == "revolved_flat" && row.find("circular_face") != std::string::npos)
     out.feature_note = "circular_face";
+  if (out.feature == "outer_diameter" || out.feature == "revolved_round") {
+    // Written as the general_revolution of the same profile: the posters read neither entity.
+    row += fmt::format("; written as general_revolution with its profile (the posters read no {})", out.feature);
+    out.feature_note = out.feature;
+    out.feature = "general_revolution";
+  }
   if (out.feature.empty()) {
     out.feature = "general_revolution";
     row += "; project rule: the machined boundary is kept as a general_revolution";

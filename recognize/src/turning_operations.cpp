@@ -270,6 +270,9 @@ void recognise_operation(const Group& group, const std::vector<Group>& groups, s
   }
   out.operation = best->operation;
   out.family = family_of(best->operation);
+  if (is_rough(out.operation))
+    decisions.push_back({"ISO 14649-12 " + out.operation + ".wr1 (a roughing operation states its allowance)",
+                         "allowance 0: the motion does not say what the finish leaves", {}});
   decisions.push_back({"decision 2.5.7 (strong rules filter, most weak rules win, rough before finish, table order)",
                        fmt::format("operation {}{} with {} weak rule(s)", best->internal ? "internal " : "",
                                    best->operation, best_score),
