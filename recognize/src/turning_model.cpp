@@ -12,10 +12,9 @@
 #include <fmt/format.h>
 
 #include "machining_schema.h"
-#include "milling_machine_tool_schema.h"
 #include "milling_schema.h"
-#include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
+#include "stepnc/tooling/typed_tool.h"
 #include "turning_steps.h"
 
 namespace stepnc::recognize::turning {
@@ -23,9 +22,7 @@ namespace {
 
 namespace ms = machining_schema;
 namespace mi = milling_schema;
-namespace mt = milling_machine_tool_schema;
 namespace ts = turning_schema;
-namespace tt = turning_machine_tool_schema;
 
 // ISO 14649 units from NC units.
 constexpr double per_second = 1.0 / 60;            // rev/min -> rev/s, m/min -> m/s
@@ -71,50 +68,9 @@ class Writer {
   }
 
   ms::cutting_tool* tool(const tooling::Tool& tool) {
-    if (auto found = tools_.find(tool.number); found != tools_.end()) return found->second;
-    auto& edge = m_.create<ms::cutting_component>();
-    edge.tool_offset_length = tool.length.value_or(0);
-    ms::cutting_tool* made = nullptr;
-    if (drilling_tool(tool)) {
-      auto& dimension = m_.create<mt::milling_tool_dimension>();
-      dimension.diameter = tool.diameter.value_or(0);
-      mt::milling_machine_tool_body* body = nullptr;
-      if (tool.kind == "center_drill")
-        body = &m_.create<mt::center_drill>();
-      else
-        body = &m_.create<mt::twist_drill>();
-      body->dimension = &dimension;
-      body->number_of_teeth = tool.flutes.value_or(2);
-      auto& cutter = m_.create<mt::milling_cutting_tool>();
-      cutter.its_tool_body = body;
-      made = &cutter;
-    } else {
-      auto& dimension = m_.create<tt::turning_tool_dimension>();
-      dimension.nose_radius = tool.nose_radius;
-      dimension.side_cutting_edge_angle = tool.side_cutting_edge_angle;
-      dimension.end_cutting_edge_angle = tool.end_cutting_edge_angle;
-      dimension.cutting_edge_length = tool.cutting_edge_length;
-      tt::turning_machine_tool_body* body = nullptr;
-      if (tool.kind == "grooving_tool") {
-        auto& groover = m_.create<tt::grooving_tool>();
-        groover.cutting_width = tool.width.value_or(0);
-        body = &groover;
-      } else {
-        body = &m_.create<tt::general_turning_tool>();
-      }
-      body->dimension = &dimension;
-      if (tool.hand == "left") body->hand_of_tool = tt::hand_of_tool_type::left;
-      else if (tool.hand == "neutral") body->hand_of_tool = tt::hand_of_tool_type::neutral;
-      else if (tool.hand == "right") body->hand_of_tool = tt::hand_of_tool_type::right;
-      auto& cutter = m_.create<tt::turning_machine_tool>();
-      cutter.its_tool_body = body;
-      made = &cutter;
-    }
-    made->its_id = tool.name.empty() ? fmt::format("T{}", tool.number) : tool.name;
-    made->its_cutting_edge = {&edge};
-    if (tool.length) made->overall_assembly_length = tool.length;
-    tools_[tool.number] = made;
-    return made;
+    auto [found, added] = tools_.try_emplace(tool.number, nullptr);
+    if (added) found->second = &tooling::write_typed_tool(m_, tool);
+    return found->second;
   }
 
   // Function 3: S and F as the program runs them.
