@@ -19,12 +19,17 @@ namespace stepnc::recognize {
 
 /// The raw material, when the user knows it (`--stock`).
 struct Stock {
+  /// Bar stock or a block.
   enum class Shape { cylinder, block };
-  Shape shape = Shape::cylinder;
+  Shape shape = Shape::cylinder;         ///< which one
   double diameter = 0;  ///< cylinder: diameter, mm
   double length = 0;    ///< cylinder: length along Z, mm
-  double size_x = 0, size_y = 0, size_z = 0;  ///< block: extents, mm
-  double origin_x = 0, origin_y = 0, origin_z = 0;  ///< block: the corner of least x, y, z (default 0, 0, -size_z)
+  double size_x = 0;    ///< block: extent along x, mm
+  double size_y = 0;    ///< block: extent along y, mm
+  double size_z = 0;    ///< block: extent along z, mm
+  double origin_x = 0;  ///< block: the corner of least x, y, z (default 0, 0, -size_z)
+  double origin_y = 0;  ///< block: see origin_x
+  double origin_z = 0;  ///< block: see origin_x
 };
 
 /// Reads `cylinder:D:L` or `block:X:Y:Z[@x,y,z]`; on failure returns
@@ -47,7 +52,8 @@ struct ImportedStep {
   std::string operation;    ///< entity name of the operation (contouring_rough, drilling, ...)
   std::string feature;      ///< entity name and its_id of the feature ("closed_pocket POCKET1")
   int tool = 0;             ///< T number
-  std::uint32_t first_line = 0, last_line = 0;  ///< program lines covered
+  std::uint32_t first_line = 0;  ///< first program line covered
+  std::uint32_t last_line = 0;   ///< last program line covered
   std::vector<Decision> decisions;  ///< in the order they were made
 };
 
@@ -57,18 +63,18 @@ struct ImportOptions {
   std::optional<ProcessKind> kind;             ///< default: turning for lathe controllers, else milling
   const tooling::ToolList* tools = nullptr;    ///< required: every T the program calls must be listed
   std::string tools_file;                      ///< the list's file name, for messages
-  std::optional<Stock> stock;
+  std::optional<Stock> stock;                  ///< `--stock`, when given
   std::string program_file;                    ///< the program's file name, for messages and the project's name
 };
 
 /// The project, or why there is none.
 struct ImportResult {
   std::unique_ptr<meta::Model> model;   ///< the ISO 14649 project; null when errors is not empty
-  meta::FileHeader header;
+  meta::FileHeader header;              ///< the Part 21 header to write it with
   std::vector<ImportedStep> steps;      ///< in workplan order
   std::vector<std::string> errors;      ///< "file:line:column: error: message"; tool errors name the tool list
   bool unsupported = false;             ///< the program uses what the importer refuses by name (exit 3)
-  bool ok() const { return errors.empty() && model != nullptr; }
+  bool ok() const { return errors.empty() && model != nullptr; }  ///< a model and no error
 };
 
 /// Interprets the program with the controller's table, then applies the

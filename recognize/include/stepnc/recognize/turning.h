@@ -33,8 +33,8 @@ double trajectory_angle(Point from, Point to);
 
 /// The dominant axis of a direction (decision 2.5.4: a 30 degree cone).
 enum class Axis { plus_z, plus_x, minus_z, minus_x, diagonal };
-Axis dominant_axis(double angle);
-std::string_view to_string(Axis axis);
+Axis dominant_axis(double angle);  ///< the axis within 30 degrees of `angle`, else diagonal
+std::string_view to_string(Axis axis);  ///< "+Z", "-X", ..., "diagonal"
 
 /// The third division's "similar direction" (decision 2.5.4): the same
 /// dominant axis, or two diagonals within 15 degrees.
@@ -42,7 +42,7 @@ bool similar_direction(double a, double b);
 
 /// Fig. 9: which edge of a general turning tool cuts along a direction.
 enum class Edge { side, end, both, none, tip };
-std::string_view to_string(Edge edge);
+std::string_view to_string(Edge edge);  ///< the paper's name of the edge
 
 /// The Fig. 9 table for a general turning tool with side cutting edge angle
 /// K_r and end cutting edge angle K'_r (degrees), the angle in the frame of
@@ -62,8 +62,9 @@ enum class Family { facing, contouring, grooving, drilling };
 
 /// One remaining profile segment ("Xegment", §4.3 (3)).
 struct Segment {
-  Point from, to;
-  bool arc = false;
+  Point from;        ///< start
+  Point to;          ///< end
+  bool arc = false;  ///< chords of one arc, merged
 };
 
 /// Table 4: the feature entity for a family and its remaining profile, or
@@ -79,8 +80,10 @@ std::string table4_feature(Family family, const std::vector<Segment>& segments, 
 /// internal: x' <= x, z' >= z; grooving inserts their width behind it),
 /// feed moves cut, rapids do not.
 struct MachinedProfile {
-  double z_min = 0, bin = 0;
-  std::vector<double> outer, inner;
+  double z_min = 0;            ///< z of the first bin's start, mm
+  double bin = 0;              ///< bin length along z, mm
+  std::vector<double> outer;   ///< radius left outside, per bin
+  std::vector<double> inner;   ///< radius opened from the axis, per bin
   std::vector<std::string> errors;  ///< the program did not run
 };
 
