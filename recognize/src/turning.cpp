@@ -47,12 +47,12 @@ void import_turning(const gcode::Result& result, std::string_view program_text, 
     recognise_operation(groups[g], groups, g, std::span<const Recognised>(ops.data(), g), motion, result, *tool, ops[g], groups[g].decisions);
   }
   Workpiece workpiece = estimate_stock(motion, groups, ops, options, groups.front().decisions);
-  const Workpiece stock = workpiece;
+  const Workpiece& stock = workpiece;  // write_model reads only the stock cylinder
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const tooling::Tool& tool = *options.tools->find(groups[g].tool);
-    const Workpiece before = workpiece;
+    const Point top = workpiece.top();
     recognise_feature(groups[g], motion, tool, workpiece, ops[g], groups[g].decisions);
-    recognise_strategy(groups[g], motion, tool, before, ops[g], groups[g].decisions);
+    recognise_strategy(groups[g], motion, tool, top, ops[g], groups[g].decisions);
   }
   out.header.schemas = {"MACHINING_SCHEMA", "TURNING_SCHEMA", "TURNING_MACHINE_TOOL_SCHEMA", "MILLING_SCHEMA",
                         "MILLING_MACHINE_TOOL_SCHEMA"};

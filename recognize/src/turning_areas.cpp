@@ -5,7 +5,9 @@
 // machined boundary ("Xegments") and the Table 4 feature.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -129,6 +131,15 @@ double SegmentGrid::distance(Point p, double reach) const {
   return best;
 }
 
+Point Workpiece::top() const {
+  Point top{-1e300, -1e300};
+  for (const poly::Area& area : tiles)
+    for (const poly::Ring& ring : area.rings)
+      for (const Vec2 v : ring) top = {std::max(top.z, v.x), std::max(top.x, v.y)};
+  if (top.z < -1e299) return {front, radius};
+  return top;
+}
+
 Workpiece estimate_stock(const Motion& motion, const std::vector<Group>& groups, const std::vector<Recognised>& ops,
                          const ImportOptions& options, std::vector<Decision>& decisions) {
   Workpiece w;
@@ -177,7 +188,11 @@ Workpiece estimate_stock(const Motion& motion, const std::vector<Group>& groups,
   } else {
     decisions.push_back({"seed 002 §4.3 (1) second vertex", fmt::format("Z {:.3f}, the lowest Z of the program", w.back), {}});
   }
-  w.area = poly::make_area({{w.back, 0}, {w.front, 0}, {w.front, w.radius}, {w.back, w.radius}});
+  for (std::size_t k = 0;; ++k) {
+    const double z = std::max(w.back, w.border(k)), end = std::min(w.front, w.border(k + 1));
+    if (z >= w.front) break;
+    w.tiles.push_back(poly::make_area({{z, 0}, {end, 0}, {end, w.radius}, {z, w.radius}}));
+  }
   return w;
 }
 
@@ -209,7 +224,6 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
                        {}});
   // (3) subtract, keep the boundary the machining areas made.
   const poly::Area removed = swept.rings.empty() ? poly::Area{} : unite_all(swept.rings, 0, swept.rings.size());
-  const poly::Area remaining = poly::subtract(workpiece.area, removed);
   std::vector<Segment> removed_edges;
   Box near;
   for (const poly::Ring& ring : removed.rings)
@@ -219,25 +233,50 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
     }
   const SegmentGrid boundary(std::move(removed_edges));
   std::vector<Segment> pieces;
-  for (const poly::Ring& ring : remaining.rings)
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
-      const Point mid{(a.x + b.x) / 2, (a.y + b.y) / 2};
-      if (std::hypot(b.x - a.x, b.y - a.y) < 1e-4 || mid.z < near.z_lo - 1e-3 || mid.z > near.z_hi + 1e-3 ||
-          mid.x < near.x_lo - 1e-3 || mid.x > near.x_hi + 1e-3)
-        continue;
-      if (boundary.distance(mid, 1e-4) < 1e-4 && mid.x > 1e-6) pieces.push_back({from_plane(a), from_plane(b)});
+  if (!removed.rings.empty() && !workpiece.tiles.empty()) {
+    const auto tile_of = [&](double z) {
+      return static_cast<std::size_t>(std::clamp(std::floor((z - workpiece.border(1)) / workpiece.tile) + 1, 0.0,
+                                                 static_cast<double>(workpiece.tiles.size() - 1)));
+    };
+    for (std::size_t k = tile_of(near.z_lo - 1e-3); k <= tile_of(near.z_hi + 1e-3); ++k) {
+      poly::Area& remaining = workpiece.tiles[k];
+      remaining = poly::subtract(remaining, removed);
+      for (const poly::Ring& ring : remaining.rings)
+        for (std::size_t i = 0; i < ring.size(); ++i) {
+          const Vec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+          const Point mid{(a.x + b.x) / 2, (a.y + b.y) / 2};
+          if (std::hypot(b.x - a.x, b.y - a.y) < 1e-4 || mid.z < near.z_lo - 1e-3 || mid.z > near.z_hi + 1e-3 ||
+              mid.x < near.x_lo - 1e-3 || mid.x > near.x_hi + 1e-3)
+            continue;
+          if (boundary.distance(mid, 1e-4) < 1e-4 && mid.x > 1e-6) pieces.push_back({from_plane(a), from_plane(b)});
+        }
     }
-  // The pip a facing cut that stops on the axis leaves under its end edge
-  // (r <= L sin K'_r) is not a profile segment (our decision; the seed's
-  // program overshoots the axis, X-0.233, to avoid it).
-  const double pip = edge_length(tool) * std::sin(end_angle(tool) * degree) + 1e-6;
-  pieces.erase(std::remove_if(pieces.begin(), pieces.end(),
-                              [&](const Segment& s) {
-                                return out.family == Family::facing && std::min(s.from.x, s.to.x) < 1e-6 &&
-                                       std::max(s.from.x, s.to.x) <= pip;
-                              }),
-               pieces.end());
+  }
+  // Pieces end to end, across the tiles: each chain from a piece nothing leads into.
+  {
+    auto at = [](Point p) { return std::make_pair(std::llround(p.z * 1e5), std::llround(p.x * 1e5)); };
+    std::map<std::pair<long long, long long>, std::size_t> starting;
+    std::set<std::pair<long long, long long>> ending;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      starting.emplace(at(pieces[i].from), i);
+      ending.insert(at(pieces[i].to));
+    }
+    std::vector<bool> used(pieces.size(), false);
+    std::vector<Segment> ordered;
+    auto follow = [&](std::size_t i) {
+      while (!used[i]) {
+        used[i] = true;
+        ordered.push_back(pieces[i]);
+        const auto next = starting.find(at(pieces[i].to));
+        if (next == starting.end()) break;
+        i = next->second;
+      }
+    };
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+      if (!ending.count(at(pieces[i].from))) follow(i);
+    for (std::size_t i = 0; i < pieces.size(); ++i) follow(i);
+    pieces = std::move(ordered);
+  }
   // Chains of pieces end to end; collinear pieces merge; short turning chords of one sense make an arc.
   std::vector<Segment> segments;
   auto direction = [](const Segment& s) { return std::atan2(s.to.x - s.from.x, s.to.z - s.from.z); };
@@ -259,6 +298,16 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
     }
     segments.push_back(piece);
   }
+  // The pip a facing cut that stops on the axis leaves under its end edge
+  // (r <= L sin K'_r) is not a profile segment (our decision; the seed's
+  // program overshoots the axis, X-0.233, to avoid it).
+  const double pip = edge_length(tool) * std::sin(end_angle(tool) * degree) + 1e-6;
+  segments.erase(std::remove_if(segments.begin(), segments.end(),
+                                [&](const Segment& s) {
+                                  return out.family == Family::facing && std::min(s.from.x, s.to.x) < 1e-6 &&
+                                         std::max(s.from.x, s.to.x) <= pip;
+                                }),
+                 segments.end());
   out.profile = segments;
   std::string row;
   out.feature = table4_feature(out.family, segments, row);
@@ -279,7 +328,6 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
                                    segments.size()),
                        {}});
   decisions.push_back({"seed 002 Table 4 (mapping matrix)", fmt::format("feature {} ({})", out.feature, row), {}});
-  workpiece.area = remaining;
 }
 
 }  // namespace stepnc::recognize::turning

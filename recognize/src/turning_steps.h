@@ -123,8 +123,16 @@ void recognise_operation(const Group& group, const std::vector<Group>& groups, s
 // turning_areas.cpp: stock, Fig. 9 machining areas, subtraction, Xegments, Table 4.
 struct Workpiece {
   double front = 0, back = 0, radius = 0;  // the stock cylinder
-  double bore = 0;                          // radius already open on the axis (none)
-  machining::polygons::Area area;           // the remaining workpiece in (z, x)
+  // The remaining workpiece in (z, x), in tiles of `tile` mm along z from
+  // `back`: a workingstep's Booleans touch only the tiles it cuts, so a long
+  // bar of many parts costs what its parts cost.
+  // A face lying on a tile border would not be split where the cut ends,
+  // so the borders sit off round values: back + 0.000731 + k tile (k >= 1).
+  double tile = 10;
+  std::vector<machining::polygons::Area> tiles;
+  double border(std::size_t k) const { return k == 0 ? back : back + 0.000731 + static_cast<double>(k) * tile; }
+  // The highest z and x the remaining workpiece reaches.
+  Point top() const;
 };
 Workpiece estimate_stock(const Motion& motion, const std::vector<Group>& groups, const std::vector<Recognised>& ops,
                          const ImportOptions& options, std::vector<Decision>& decisions);
@@ -132,7 +140,8 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
                        Recognised& out, std::vector<Decision>& decisions);
 
 // turning_strategies.cpp: Table 5, approach and retract.
-void recognise_strategy(const Group& group, const Motion& motion, const tooling::Tool& tool, const Workpiece& workpiece,
+// `top`: the workpiece's highest z and x before the group cut it.
+void recognise_strategy(const Group& group, const Motion& motion, const tooling::Tool& tool, Point top,
                         Recognised& out, std::vector<Decision>& decisions);
 
 // turning_model.cpp: the ISO 14649 project.

@@ -28,7 +28,7 @@ double axis_angle(double angle) { return std::fmod(std::round(angle / 90) * 90, 
 
 }  // namespace
 
-void recognise_strategy(const Group& group, const Motion& motion, const tooling::Tool& tool, const Workpiece& workpiece,
+void recognise_strategy(const Group& group, const Motion& motion, const tooling::Tool& tool, Point top,
                         Recognised& out, std::vector<Decision>& decisions) {
   const auto& moves = motion.moves;
   // Approach and retract (§4.4): the rapids before the first and after the last interpolation.
@@ -117,10 +117,7 @@ void recognise_strategy(const Group& group, const Motion& motion, const tooling:
   // Representative values (decision 2.5.15): cutting depths of every stroke from the workpiece, the median lift.
   if (out.cutting_depths.empty() && out.family != Family::drilling) {
     // From the workpiece as the earlier workingsteps left it.
-    double level = -1e300;
-    for (const auto& ring : workpiece.area.rings)
-      for (const auto& v : ring) level = std::max(level, along_z ? v.y : v.x);
-    if (level < -1e299) level = along_z ? workpiece.radius : workpiece.front;
+    double level = along_z ? top.x : top.z;
     for (const double l : levels) {
       out.cutting_depths.push_back(std::round(std::abs(level - l) * 1e6) / 1e6);
       level = l;
