@@ -333,7 +333,12 @@ class Describer {
   void turning_feature(const ts::turning_feature& f, Feature& out) {
     const double z0 = f.feature_placement ? point(f.feature_placement->location).z : 0;
     if (as<ts::revolved_flat>(&f)) {
-      if (std::abs(z0) > 1e-9) error(f, f.its_id, "the faced front must be at z = 0");
+      // Generated facing passes assume the front at z = 0; explicit toolpaths
+      // (an imported program's own motion) say where the face is.
+      const bool explicit_only = !f.its_operations.empty() &&
+                                 std::all_of(f.its_operations.begin(), f.its_operations.end(),
+                                             [](const ms::machining_operation* op) { return op && op->its_toolpath; });
+      if (std::abs(z0) > 1e-9 && !explicit_only) error(f, f.its_id, "the faced front must be at z = 0");
       out.shape = TurningFace{};
     } else if (auto* revolution = as<ts::general_revolution>(&f)) {
       const auto* profile = revolution->outer_edge_profile;

@@ -14,6 +14,7 @@
 #include "stepnc/machining/iso14649.h"
 #include "stepnc/machining/motion.h"
 #include "stepnc/meta/validate.h"
+#include "stepnc/tooling/typed_tool.h"
 #include "turning_machine_tool_schema.h"
 #include "turning_schema.h"
 
@@ -182,46 +183,9 @@ class Planner {
   }
 
   ms::cutting_tool& typed_tool(const tooling::Tool& tool) {
-    if (auto found = tools_.find(tool.number); found != tools_.end()) return *found->second;
-    auto& edge = model_.create<ms::cutting_component>();
-    edge.tool_offset_length = tool.length.value_or(0);
-    ms::cutting_tool* made = nullptr;
-    if (tool.kind == "center_drill") {
-      auto& dimension = model_.create<mt::milling_tool_dimension>();
-      dimension.diameter = tool.diameter.value_or(0);
-      auto& body = model_.create<mt::center_drill>();
-      body.dimension = &dimension;
-      body.number_of_teeth = tool.flutes.value_or(2);
-      auto& cutter = model_.create<mt::milling_cutting_tool>();
-      cutter.its_tool_body = &body;
-      made = &cutter;
-    } else {
-      auto& dimension = model_.create<tt::turning_tool_dimension>();
-      dimension.nose_radius = tool.nose_radius;
-      dimension.side_cutting_edge_angle = tool.side_cutting_edge_angle;
-      dimension.end_cutting_edge_angle = tool.end_cutting_edge_angle;
-      dimension.cutting_edge_length = tool.cutting_edge_length;
-      tt::turning_machine_tool_body* body = nullptr;
-      if (tool.kind == "grooving_tool") {
-        auto& groover = model_.create<tt::grooving_tool>();
-        groover.cutting_width = tool.width.value_or(0);
-        body = &groover;
-      } else {
-        body = &model_.create<tt::general_turning_tool>();
-      }
-      body->dimension = &dimension;
-      if (tool.hand == "left") body->hand_of_tool = tt::hand_of_tool_type::left;
-      else if (tool.hand == "neutral") body->hand_of_tool = tt::hand_of_tool_type::neutral;
-      else if (tool.hand == "right") body->hand_of_tool = tt::hand_of_tool_type::right;
-      auto& cutter = model_.create<tt::turning_machine_tool>();
-      cutter.its_tool_body = body;
-      made = &cutter;
-    }
-    made->its_id = tool.name.empty() ? fmt::format("T{}", tool.number) : tool.name;
-    made->its_cutting_edge = {&edge};
-    if (tool.length) made->overall_assembly_length = tool.length;
-    tools_[tool.number] = made;
-    return *made;
+    auto [found, added] = tools_.try_emplace(tool.number, nullptr);
+    if (added) found->second = &tooling::write_typed_tool(model_, tool);
+    return *found->second;
   }
 
   void bind_technology(ms::machining_operation& op, OperationKind kind, const Source& where) {

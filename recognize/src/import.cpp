@@ -102,7 +102,7 @@ ImportResult import_program(std::string_view program_text, const ImportOptions& 
   result.header.originating_system = "stepnc import";
   const ProcessKind kind = options.kind.value_or(is_lathe(options.controller) ? ProcessKind::turning : ProcessKind::milling);
   if (kind == ProcessKind::turning)
-    import_turning(motion, options, result);
+    import_turning(motion, program_text, options, result);
   else
     import_milling(motion, options, result);
   if (!result.errors.empty()) result.model.reset();

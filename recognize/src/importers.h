@@ -9,7 +9,9 @@
 namespace stepnc::recognize {
 
 // Seed 002 (G2STEP): Fanuc lathe motion to turning workingsteps.
-void import_turning(const gcode::Result& motion, const ImportOptions& options, ImportResult& result);
+// The program's text is read again for what the calls do not carry (G50 S).
+void import_turning(const gcode::Result& motion, std::string_view program_text, const ImportOptions& options,
+                    ImportResult& result);
 
 // Seed 004: milling motion to milling and drilling workingsteps.
 void import_milling(const gcode::Result& motion, const ImportOptions& options, ImportResult& result);
