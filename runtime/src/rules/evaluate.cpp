@@ -10,11 +10,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -332,15 +334,32 @@ class Interpreter {
   }
 
   // A global rule: runs its body, then reports each domain rule's result.
-  std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule) {
+  // `known(i)` gives the result of domain rule i when it was already
+  // evaluated (a fused rule, Checker::FusedRule), or throws what it threw.
+  std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule,
+                              const std::function<std::optional<Truth>(std::size_t)>& known) {
     Frame frame(pool_, rule.frame);
     steps_ = 0;
     forget_results();
     execute(rule.body.nodes, rule.body.root, frame);
     std::vector<Truth> results;
-    for (const meta::DomainRuleInfo& where : rule.where)
-      results.push_back(truth_of(eval(where.expression.nodes, where.expression.root, frame)));
+    for (std::size_t i = 0; i < rule.where.size(); ++i) {
+      const meta::DomainRuleInfo& where = rule.where[i];
+      if (const std::optional<Truth> result = known(i))
+        results.push_back(*result);
+      else
+        results.push_back(truth_of(eval(where.expression.nodes, where.expression.root, frame)));
+    }
     return results;
+  }
+
+  // One element's predicate of a global rule's `SIZEOF(QUERY(v <* E | p)) = 0`
+  // (see Checker::FusedRule): p with v bound to `element`.
+  Truth predicate(const Node* nodes, std::uint32_t query, std::uint32_t frame_size, Value element) {
+    Frame frame(pool_, frame_size);
+    steps_ = 0;
+    frame.slots.at(nodes[query].slot) = std::move(element);
+    return truth_of(eval(nodes, nodes[query].first + 1, frame));
   }
 
   /// Drops the kept FUNCTION results: called before each instance is checked.
@@ -1190,6 +1209,7 @@ class Checker {
   Checker(const meta::Model& model, std::size_t limit) : model_(model), interpreter_(model), limit_(limit) {}
 
   std::vector<Violation> run() {
+    fuse_global_rules();
     std::vector<meta::Instance*> order;
     for (meta::Instance* instance : model_.in_id_order(order)) {
       if (full()) break;
@@ -1207,6 +1227,100 @@ class Checker {
   std::vector<Violation> violations_;
   std::size_t errors_ = 0, warnings_ = 0;
   std::vector<const meta::SchemaInfo*> schemas_;
+
+  // A global rule's domain rule `SIZEOF(QUERY(v <* E | p)) = 0` (the usual
+  // form: "no E is such that p") in a RULE with no statements or locals:
+  // p is evaluated on each E while that instance is checked, so it shares
+  // the FUNCTION results its WHERE rules computed (using_representations in
+  // both representation_item.wr1 and geometric_representation_item_3d), and
+  // the rule is reported in its place with the others. Same result: QUERY
+  // evaluates p on every element whatever the order, the SIZEOF of its
+  // result is never `?`, and the first element whose p cannot be evaluated
+  // makes the rule not evaluated, as it would.
+  struct FusedRule {
+    const meta::AlgorithmInfo* rule;
+    std::size_t where;       // which domain rule
+    std::uint32_t query;     // the QUERY node
+    std::uint32_t frame;     // slots
+    const meta::EntityInfo* entity;
+    bool holds_for_some = false;  // some E has p TRUE: the rule is violated
+    bool unevaluable = false;
+    std::string reason;
+  };
+  std::vector<FusedRule> fused_;
+  // Per concrete entity, the fused rules over one of its supertypes.
+  std::unordered_map<const meta::EntityInfo*, std::vector<std::size_t>> fused_for_;
+
+  static std::optional<std::uint32_t> fusable_query(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo& where) {
+    const Node& body = rule.body.node();
+    if (body.kind != NodeKind::Block || body.count != 0) return std::nullopt;
+    const Node* nodes = where.expression.nodes;
+    const Node& root = where.expression.node();
+    if (root.kind != NodeKind::Operation || root.op != Operator::Equal || root.count != 2) return std::nullopt;
+    const Node& size = nodes[root.first];
+    const Node& zero = nodes[root.first + 1];
+    if (size.kind != NodeKind::Builtin || size.builtin != Builtin::Sizeof || size.count != 1) return std::nullopt;
+    if (zero.kind != NodeKind::Integer || zero.integer != 0) return std::nullopt;
+    const Node& query = nodes[size.first];
+    if (query.kind != NodeKind::Query || query.count != 2 || nodes[query.first].kind != NodeKind::Population)
+      return std::nullopt;
+    return size.first;
+  }
+
+  // The global rules of the schemas the model's entities come from, in the
+  // form above.
+  void fuse_global_rules() {
+    std::unordered_set<const meta::EntityInfo*> entities;
+    const meta::EntityInfo* last = nullptr;
+    for (meta::Instance* instance : model_.instances())
+      if (&instance->entity_info() != last) entities.insert(last = &instance->entity_info());
+    std::vector<const meta::SchemaInfo*> schemas;
+    for (const meta::EntityInfo* entity : entities)
+      for (const meta::Upcast& up : entity->upcasts)
+        if (up.entity->schema && std::find(schemas.begin(), schemas.end(), up.entity->schema) == schemas.end())
+          schemas.push_back(up.entity->schema);
+    for (const meta::SchemaInfo* schema : schemas)
+      for (const meta::AlgorithmInfo* rule : schema->rules)
+        for (std::size_t i = 0; i < rule->where.size(); ++i)
+          if (const auto query = fusable_query(*rule, rule->where[i])) {
+            const meta::DomainRuleInfo& where = rule->where[i];
+            fused_.push_back({rule, i, *query, std::max(rule->frame, where.frame),
+                              where.expression.nodes[where.expression.nodes[*query].first].entity, false, false, {}});
+          }
+    for (const meta::EntityInfo* entity : entities) {
+      std::vector<std::size_t>& applicable = fused_for_[entity];
+      for (std::size_t f = 0; f < fused_.size(); ++f)
+        if (fused_[f].entity && entity->is_a(*fused_[f].entity)) applicable.push_back(f);
+    }
+  }
+
+  void check_fused(meta::Instance& instance) {
+    const auto it = fused_for_.find(&instance.entity_info());
+    if (it == fused_for_.end()) return;
+    for (const std::size_t f : it->second) {
+      FusedRule& fused = fused_[f];
+      if (fused.unevaluable) continue;  // decided (a TRUE is not: a later element may not be evaluable)
+      const meta::DomainRuleInfo& where = fused.rule->where[fused.where];
+      try {
+        if (interpreter_.predicate(where.expression.nodes, fused.query, fused.frame, Value::of_instance(&instance)) ==
+            Truth::True)
+          fused.holds_for_some = true;
+      } catch (const Unevaluable& reason) {
+        fused.unevaluable = true;
+        fused.reason = reason.what();
+      }
+    }
+  }
+
+  // The result of domain rule `where` of `rule` when it was fused.
+  std::optional<Truth> fused_result(const meta::AlgorithmInfo& rule, std::size_t where) const {
+    for (const FusedRule& fused : fused_)
+      if (fused.rule == &rule && fused.where == where) {
+        if (fused.unevaluable) throw Unevaluable(fused.reason);
+        return fused.holds_for_some ? Truth::False : Truth::True;
+      }
+    return std::nullopt;
+  }
 
   // Evaluation stops once `limit` rules are violated; rules that cannot be
   // evaluated (warnings) are kept up to `limit` too, without stopping it.
@@ -1260,6 +1374,7 @@ class Checker {
       if (!attribute.stored()) continue;
       if (auto ref = meta::get(instance, attribute)) check_value(instance, attribute, *ref);
     }
+    check_fused(instance);
   }
 
   static bool has_type_rules(const meta::TypeInfo& type, int depth = 0) {
@@ -1369,7 +1484,8 @@ class Checker {
         if (full()) return;
         Violation base = violation(Violation::Kind::GlobalRule, 0, rule->name);
         try {
-          const std::vector<Truth> results = interpreter_.run_rule(*rule);
+          const std::vector<Truth> results =
+              interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
           for (std::size_t i = 0; i < results.size(); ++i)
             if (results[i] == Truth::False) {
               Violation v = base;
