@@ -51,17 +51,22 @@ struct Partial {
   std::vector<std::pair<std::string_view, std::shared_ptr<Value>>> attributes;
 };
 
+// 72 bytes, and only one counted pointer to copy: text views the
+// constant tables or the model (neither changes during a check), or
+// `heap`, which owns it, the elements or the partial value.
 struct Value {
   enum class Kind : std::uint8_t { Indeterminate, Integer, Real, Logical, String, Binary, Enumeration, Instance, Partial, Aggregate };
   Kind kind = Kind::Indeterminate;
   Truth logical = Truth::Unknown;
   std::int64_t integer = 0;  // Integer; Aggregate: the lower index
   double real = 0;
-  std::string text;  // String, Binary (bits), Enumeration (item)
+  std::string_view text;  // String, Binary (bits), Enumeration (item)
   const meta::TypeInfo* type = nullptr;  // the named type the value was declared with, if any
   meta::Instance* instance = nullptr;
-  std::shared_ptr<Partial> partial;
-  std::shared_ptr<Elements> elements;
+  std::shared_ptr<void> heap;  // Aggregate: Elements; Partial: Partial; String, Binary: its std::string when owned
+
+  Elements* elements() const { return static_cast<Elements*>(heap.get()); }
+  Partial* partial() const { return static_cast<Partial*>(heap.get()); }
 
   bool indeterminate() const { return kind == Kind::Indeterminate; }
   bool number() const { return kind == Kind::Integer || kind == Kind::Real; }
@@ -87,10 +92,17 @@ struct Value {
     return r;
   }
   static Value of_bool(bool b) { return of_truth(b ? Truth::True : Truth::False); }
-  static Value of_string(std::string s) {
+  // A string that lives as long as the check (constant tables, the model).
+  static Value of_view(std::string_view s, Kind kind = Kind::String) {
     Value r;
-    r.kind = Kind::String;
-    r.text = std::move(s);
+    r.kind = kind;
+    r.text = s;
+    return r;
+  }
+  static Value of_string(std::string s) {
+    auto owned = std::make_shared<std::string>(std::move(s));
+    Value r = of_view(*owned);
+    r.heap = std::move(owned);
     return r;
   }
   static Value of_instance(meta::Instance* i) {
@@ -101,11 +113,20 @@ struct Value {
     }
     return r;
   }
-  static Value of_elements(Elements e, std::int64_t lower = 1) {
+  static Value of_shared(std::shared_ptr<Elements> e, std::int64_t lower = 1) {
     Value r;
     r.kind = Kind::Aggregate;
     r.integer = lower;
-    r.elements = std::make_shared<Elements>(std::move(e));
+    r.heap = std::move(e);
+    return r;
+  }
+  static Value of_elements(Elements e, std::int64_t lower = 1) {
+    return of_shared(std::make_shared<Elements>(std::move(e)), lower);
+  }
+  static Value of_partial(std::shared_ptr<Partial> p) {
+    Value r;
+    r.kind = Kind::Partial;
+    r.heap = std::move(p);
     return r;
   }
 };
@@ -146,7 +167,7 @@ Value from_select(const meta::Select& select) {
   } else if (const auto* d = std::get_if<double>(&storage)) {
     v = Value::of_real(*d);
   } else if (const auto* s = std::get_if<meta::String>(&storage)) {
-    v = Value::of_string(std::string(s->view()));
+    v = Value::of_view(s->view());
     if (resolved.kind == meta::TypeKind::Binary) v.kind = Value::Kind::Binary;
   }
   v.type = member;
@@ -162,14 +183,14 @@ Value from_ref(const meta::ValueRef& ref) {
     case meta::TypeKind::Number: v = Value::of_real(ref.real()); break;
     case meta::TypeKind::Boolean: v = Value::of_bool(ref.boolean()); break;
     case meta::TypeKind::Logical: v = Value::of_truth(static_cast<Truth>(ref.logical())); break;
-    case meta::TypeKind::String: v = Value::of_string(std::string(ref.string())); break;
+    case meta::TypeKind::String: v = Value::of_view(ref.string()); break;
     case meta::TypeKind::Binary:
       v.kind = Value::Kind::Binary;
-      v.text = std::string(ref.binary().hex_digits.view());
+      v.text = ref.binary().hex_digits.view();
       break;
     case meta::TypeKind::Enumeration:
       v.kind = Value::Kind::Enumeration;
-      v.text = std::string(ref.enumeration());
+      v.text = ref.enumeration();
       break;
     case meta::TypeKind::Entity: return Value::of_instance(ref.instance());
     case meta::TypeKind::Select: return from_select(ref.select());
@@ -220,8 +241,8 @@ Truth equal(const Value& a, const Value& b) {
     case K::Binary: return a.text == b.text ? Truth::True : Truth::False;
     case K::Enumeration: return meta::equal_names(a.text, b.text) ? Truth::True : Truth::False;
     case K::Instance: return a.instance == b.instance ? Truth::True : Truth::False;
-    case K::Partial: return a.partial == b.partial ? Truth::True : Truth::False;
-    case K::Aggregate: return equal_elements(*a.elements, *b.elements);
+    case K::Partial: return a.partial() == b.partial() ? Truth::True : Truth::False;
+    case K::Aggregate: return equal_elements(*a.elements(), *b.elements());
     default: return Truth::Unknown;
   }
 }
@@ -243,7 +264,7 @@ std::optional<int> compare(const Value& a, const Value& b) {
   }
   if (a.kind == K::Enumeration && a.type && b.type && &a.type->resolved() == &b.type->resolved()) {
     const auto& items = a.type->resolved().items;
-    auto index = [&](const std::string& item) {
+    auto index = [&](std::string_view item) {
       return std::find_if(items.begin(), items.end(), [&](std::string_view i) { return meta::equal_names(i, item); }) -
              items.begin();
     };
@@ -422,7 +443,7 @@ class Interpreter {
 
   static bool holds_partial(const Value& v) {
     if (v.kind == Value::Kind::Partial) return true;
-    return v.kind == Value::Kind::Aggregate && std::any_of(v.elements->begin(), v.elements->end(), holds_partial);
+    return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
   const query::ReferenceIndex& references() {
@@ -458,7 +479,7 @@ class Interpreter {
 
   Value attribute(const Value& base, std::string_view name) {
     if (base.kind == Value::Kind::Partial) {
-      for (const auto& [n, v] : base.partial->attributes)
+      for (const auto& [n, v] : base.partial()->attributes)
         if (meta::equal_names(n, name)) return *v;
       return {};
     }
@@ -497,11 +518,7 @@ class Interpreter {
       for (meta::Instance* i : model_.instances())
         if (is_a(*i, entity)) it->second->push_back(Value::of_instance(i));
     }
-    Value v;
-    v.kind = Value::Kind::Aggregate;
-    v.integer = 1;
-    v.elements = it->second;
-    return v;
+    return Value::of_shared(it->second);
   }
 
   // ------------------------------------------------------------ expressions
@@ -510,6 +527,7 @@ class Interpreter {
   // for operands that are only read.
   const Value& peek(const Node* nodes, std::uint32_t index, Frame& frame, Value& scratch) {
     if (nodes[index].kind == NodeKind::Variable) return frame.slots.at(nodes[index].slot);
+    if (nodes[index].kind == NodeKind::Self) return frame.self;
     scratch = eval(nodes, index, frame);
     return scratch;
   }
@@ -520,11 +538,9 @@ class Interpreter {
     switch (n.kind) {
       case NodeKind::Integer: return Value::of_integer(n.integer);
       case NodeKind::Real: return Value::of_real(n.real);
-      case NodeKind::String: return Value::of_string(std::string(n.text));
+      case NodeKind::String: return Value::of_view(n.text);
       case NodeKind::Binary: {
-        Value v = Value::of_string(std::string(n.text));
-        v.kind = Value::Kind::Binary;
-        return v;
+        return Value::of_view(n.text, Value::Kind::Binary);
       }
       case NodeKind::Logical: return Value::of_truth(static_cast<Truth>(n.integer));
       case NodeKind::Indeterminate: return {};
@@ -533,12 +549,15 @@ class Interpreter {
       case NodeKind::EnumerationItem: {
         Value v;
         v.kind = Value::Kind::Enumeration;
-        v.text = std::string(n.text);
+        v.text = n.text;
         v.type = n.type;
         return v;
       }
       case NodeKind::Population: return population(*n.entity);
-      case NodeKind::Attribute: return attribute(operand(0), n.text);
+      case NodeKind::Attribute: {
+        Value scratch;
+        return attribute(peek(nodes, n.first, frame, scratch), n.text);
+      }
       case NodeKind::Group: {
         Value base = operand(0);
         if (base.kind == Value::Kind::Instance && !is_a(*base.instance, *n.entity)) return {};
@@ -579,10 +598,7 @@ class Interpreter {
         const std::size_t skip = own.size() > n.count ? own.size() - n.count : 0;
         for (std::uint32_t i = 0; i < n.count && skip + i < own.size(); ++i)
           partial->attributes.emplace_back(own[skip + i], std::make_shared<Value>(operand(i)));
-        Value v;
-        v.kind = Value::Kind::Partial;
-        v.partial = std::move(partial);
-        return v;
+        return Value::of_partial(std::move(partial));
       }
       case NodeKind::Unary: {
         Value v = operand(0);
@@ -620,7 +636,8 @@ class Interpreter {
         Value scratch;
         const Value& source = peek(nodes, n.first, frame, scratch);
         if (source.kind != Value::Kind::Aggregate) return {};
-        const std::shared_ptr<Elements> elements = source.elements;  // alive whatever the predicate assigns
+        const std::shared_ptr<void> alive = source.heap;  // whatever the predicate assigns
+        const Elements* elements = source.elements();
         Elements kept;
         for (const Value& element : *elements) {
           frame.slots.at(n.slot) = element;
@@ -667,7 +684,7 @@ class Interpreter {
   static Truth member(const Value& item, const Value& aggregate) {
     if (item.indeterminate() || aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
     Truth result = Truth::False;
-    for (const Value& e : *aggregate.elements) {
+    for (const Value& e : *aggregate.elements()) {
       const Truth t = equal(item, e);
       if (t == Truth::True) return Truth::True;
       if (t == Truth::Unknown) result = Truth::Unknown;
@@ -694,7 +711,7 @@ class Interpreter {
         if (subject.kind == Value::Kind::Instance)
           return Value::of_bool(has_type_name(subject.instance->entity_info(), name_node.text));
         if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
-        return Value::of_truth(member(Value::of_string(std::string(name_node.text)), type_of(subject)));
+        return Value::of_truth(member(Value::of_view(name_node.text), type_of(subject)));
       }
       Value name = eval(nodes, n.first, frame);
       Value subject = eval(nodes, nodes[n.first + 1].first, frame);
@@ -703,7 +720,9 @@ class Interpreter {
       if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
       return Value::of_truth(member(name, type_of(subject)));
     }
-    Value a = eval(nodes, n.first, frame), b = eval(nodes, n.first + 1, frame);
+    Value scratch_a, scratch_b;
+    const Value& a = peek(nodes, n.first, frame, scratch_a);
+    const Value& b = peek(nodes, n.first + 1, frame, scratch_b);
     using K = Value::Kind;
     switch (n.op) {
       case Operator::Xor: {
@@ -720,13 +739,10 @@ class Interpreter {
         auto merged = std::make_shared<Partial>();
         for (const Value* v : {&a, &b}) {
           if (v->kind != K::Partial) return {};  // instances of a model cannot be combined
-          merged->entities.insert(merged->entities.end(), v->partial->entities.begin(), v->partial->entities.end());
-          merged->attributes.insert(merged->attributes.end(), v->partial->attributes.begin(), v->partial->attributes.end());
+          merged->entities.insert(merged->entities.end(), v->partial()->entities.begin(), v->partial()->entities.end());
+          merged->attributes.insert(merged->attributes.end(), v->partial()->attributes.begin(), v->partial()->attributes.end());
         }
-        Value v;
-        v.kind = K::Partial;
-        v.partial = std::move(merged);
-        return v;
+        return Value::of_partial(std::move(merged));
       }
       case Operator::Less:
       case Operator::Greater:
@@ -741,7 +757,7 @@ class Interpreter {
     if (a.indeterminate() || b.indeterminate()) return {};
     // Aggregates: union, difference, intersection (ISO 10303-11 12.6).
     if (a.kind == K::Aggregate || b.kind == K::Aggregate) return aggregate_operation(n.op, a, b);
-    if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(a.text + b.text);
+    if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(std::string(a.text) + std::string(b.text));
     if (!a.number() || !b.number()) return {};
     const bool integers = a.kind == K::Integer && b.kind == K::Integer;
     switch (n.op) {
@@ -770,12 +786,12 @@ class Interpreter {
 
   static Value aggregate_operation(Operator op, const Value& a, const Value& b) {
     using K = Value::Kind;
-    Elements result = a.kind == K::Aggregate ? *a.elements : Elements{a};
+    Elements result = a.kind == K::Aggregate ? *a.elements() : Elements{a};
     auto contains = [](const Elements& list, const Value& v) {
       return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
     };
     const Elements single = b.kind == K::Aggregate ? Elements{} : Elements{b};
-    const Elements& right = b.kind == K::Aggregate ? *b.elements : single;
+    const Elements& right = b.kind == K::Aggregate ? *b.elements() : single;
     switch (op) {
       case Operator::Add:
         if (a.kind != K::Aggregate) {
@@ -800,10 +816,10 @@ class Interpreter {
     if (base.kind == Value::Kind::String) {
       const std::int64_t from = low.integer, to = range ? high.integer : low.integer;
       if (from < 1 || to > static_cast<std::int64_t>(base.text.size()) || from > to) return {};
-      return Value::of_string(base.text.substr(from - 1, to - from + 1));
+      return Value::of_string(std::string(base.text.substr(from - 1, to - from + 1)));
     }
     if (base.kind != Value::Kind::Aggregate) return {};
-    const auto& elements = *base.elements;
+    const auto& elements = *base.elements();
     const std::int64_t i = low.integer - base.integer;
     if (!range) {
       if (i < 0 || i >= static_cast<std::int64_t>(elements.size())) return {};
@@ -842,7 +858,7 @@ class Interpreter {
       case K::Indeterminate: return {};
       case K::Instance: typeof_names(v.instance->entity_info(), names); break;
       case K::Partial:
-        for (const meta::EntityInfo* e : v.partial->entities)
+        for (const meta::EntityInfo* e : v.partial()->entities)
           if (!e->upcasts.empty()) {
             typeof_names(*e, names);
           } else {
@@ -853,14 +869,14 @@ class Interpreter {
         for (const meta::TypeInfo* t = v.type; t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
           if (!t->name.empty() && t->schema) names.push_back(Value::of_string(upper(t->schema->name) + "." + upper(t->name)));
         static constexpr std::string_view simple[] = {"INTEGER", "REAL", "NUMBER", "LOGICAL", "STRING", "BINARY"};
-        if (v.kind == K::Integer) names.push_back(Value::of_string(std::string(simple[0])));
-        if (v.number()) names.push_back(Value::of_string(std::string(simple[1])));
-        if (v.number()) names.push_back(Value::of_string(std::string(simple[2])));
-        if (v.kind == K::Logical) names.push_back(Value::of_string(std::string(simple[3])));
-        if (v.kind == K::Logical && v.logical != Truth::Unknown) names.push_back(Value::of_string("BOOLEAN"));
-        if (v.kind == K::String) names.push_back(Value::of_string(std::string(simple[4])));
-        if (v.kind == K::Binary) names.push_back(Value::of_string(std::string(simple[5])));
-        if (v.kind == K::Aggregate) names.push_back(Value::of_string("AGGREGATE"));
+        if (v.kind == K::Integer) names.push_back(Value::of_view(simple[0]));
+        if (v.number()) names.push_back(Value::of_view(simple[1]));
+        if (v.number()) names.push_back(Value::of_view(simple[2]));
+        if (v.kind == K::Logical) names.push_back(Value::of_view(simple[3]));
+        if (v.kind == K::Logical && v.logical != Truth::Unknown) names.push_back(Value::of_view("BOOLEAN"));
+        if (v.kind == K::String) names.push_back(Value::of_view(simple[4]));
+        if (v.kind == K::Binary) names.push_back(Value::of_view(simple[5]));
+        if (v.kind == K::Aggregate) names.push_back(Value::of_view("AGGREGATE"));
       }
     }
     return Value::of_elements(std::move(names));
@@ -945,7 +961,7 @@ class Interpreter {
         Value scratch;
         const Value& v = n.count ? peek(nodes, n.first, frame, scratch) : scratch;
         if (v.kind != Value::Kind::Aggregate) return {};
-        const auto size = static_cast<std::int64_t>(v.elements->size());
+        const auto size = static_cast<std::int64_t>(v.elements()->size());
         return Value::of_integer(n.builtin == Builtin::Sizeof ? size : v.integer + size - 1);
       }
       case Builtin::Loindex:
@@ -957,7 +973,7 @@ class Interpreter {
         // Bounds are not carried with values: the elements present bound it.
         Value v = arg(0);
         if (v.kind != Value::Kind::Aggregate) return {};
-        return Value::of_integer(v.integer + static_cast<std::int64_t>(v.elements->size()) - 1);
+        return Value::of_integer(v.integer + static_cast<std::int64_t>(v.elements()->size()) - 1);
       }
       case Builtin::Length: {
         Value v = arg(0);
@@ -978,8 +994,9 @@ class Interpreter {
         Value v = arg(0);
         if (v.kind != Value::Kind::String) return {};
         char* end = nullptr;
-        const double d = std::strtod(v.text.c_str(), &end);
-        if (end == v.text.c_str()) return {};
+        const std::string number(v.text);
+        const double d = std::strtod(number.c_str(), &end);
+        if (end == number.c_str()) return {};
         if (v.text.find_first_of(".eE") == std::string::npos) return Value::of_integer(static_cast<std::int64_t>(d));
         return Value::of_real(d);
       }
@@ -995,7 +1012,7 @@ class Interpreter {
       case Builtin::Value_unique: {
         Value v = arg(0);
         if (v.kind != Value::Kind::Aggregate) return Value::of_truth(Truth::Unknown);
-        const auto& e = *v.elements;
+        const auto& e = *v.elements();
         for (std::size_t i = 0; i < e.size(); ++i)
           for (std::size_t j = i + 1; j < e.size(); ++j)
             if (equal(e[i], e[j]) == Truth::True) return Value::of_bool(false);
@@ -1046,16 +1063,16 @@ class Interpreter {
       Value* base = place(nodes, n.first, frame);
       Value at = eval(nodes, n.first + 1, frame);
       if (!base || base->kind != Value::Kind::Aggregate || at.kind != Value::Kind::Integer) return nullptr;
-      if (base->elements.use_count() > 1) base->elements = std::make_shared<Elements>(*base->elements);
+      if (base->heap.use_count() > 1) base->heap = std::make_shared<Elements>(*base->elements());
       const std::int64_t i = at.integer - base->integer;
-      if (i < 0 || i >= static_cast<std::int64_t>(base->elements->size())) return nullptr;
-      return &(*base->elements)[i];
+      if (i < 0 || i >= static_cast<std::int64_t>(base->elements()->size())) return nullptr;
+      return &(*base->elements())[i];
     }
     if (n.kind == NodeKind::Attribute) {
       Value* base = place(nodes, n.first, frame);
       if (!base || base->kind != Value::Kind::Partial) return nullptr;
-      if (base->partial.use_count() > 1) base->partial = std::make_shared<Partial>(*base->partial);
-      for (auto& [name, value] : base->partial->attributes)
+      if (base->heap.use_count() > 1) base->heap = std::make_shared<Partial>(*base->partial());
+      for (auto& [name, value] : base->partial()->attributes)
         if (meta::equal_names(name, n.text)) {
           value = std::make_shared<Value>(*value);
           return value.get();
@@ -1081,17 +1098,13 @@ class Interpreter {
       slot = Value{};
       return true;
     }
-    std::shared_ptr<Elements> elements = std::move(slot.elements);
+    std::shared_ptr<Elements> elements = std::static_pointer_cast<Elements>(std::move(slot.heap));
     if (elements.use_count() > 1) elements = std::make_shared<Elements>(*elements);
     if (item.kind == Value::Kind::Aggregate)
-      elements->insert(elements->end(), item.elements->begin(), item.elements->end());
+      elements->insert(elements->end(), item.elements()->begin(), item.elements()->end());
     else
       elements->push_back(std::move(item));
-    Value result;
-    result.kind = Value::Kind::Aggregate;
-    result.integer = 1;
-    result.elements = std::move(elements);
-    slot = std::move(result);
+    slot = Value::of_shared(std::move(elements));
     return true;
   }
 
@@ -1154,7 +1167,7 @@ class Interpreter {
 
   static void builtin_procedure(Builtin builtin, std::vector<Value>& arguments) {
     if (arguments.size() < 2 || arguments[0].kind != Value::Kind::Aggregate) return;
-    Elements elements = *arguments[0].elements;
+    Elements elements = *arguments[0].elements();
     const Value position = arguments.size() > 2 ? arguments[2] : Value{};
     if (builtin == Builtin::Insert) {
       // INSERT(L, E, P): E after the P-th element (0: first).
@@ -1434,7 +1447,7 @@ class Checker {
       case K::Partial: key += 'p'; break;
       case K::Aggregate:
         key += '(';
-        for (const Value& e : *v.elements) key_of(e, key), key += ',';
+        for (const Value& e : *v.elements()) key_of(e, key), key += ',';
         key += ')';
         break;
     }
@@ -1509,16 +1522,16 @@ std::string express_text(const Value& v) {
     case K::Integer: return std::to_string(v.integer);
     case K::Real: return fmt::format("{}", v.real);
     case K::Logical: return v.logical == Truth::True ? "TRUE" : v.logical == Truth::False ? "FALSE" : "UNKNOWN";
-    case K::String: return "'" + v.text + "'";
-    case K::Binary: return "%" + v.text;
+    case K::String: return "'" + std::string(v.text) + "'";
+    case K::Binary: return "%" + std::string(v.text);
     case K::Enumeration: return "." + upper(v.text) + ".";
     case K::Instance: return fmt::format("#{}", v.instance->id());
     case K::Partial: {
       std::string out;
-      for (const meta::EntityInfo* e : v.partial->entities) out += (out.empty() ? "" : "||") + upper(e->name);
+      for (const meta::EntityInfo* e : v.partial()->entities) out += (out.empty() ? "" : "||") + upper(e->name);
       out += "(";
       bool first = true;
-      for (const auto& [name, value] : v.partial->attributes) {
+      for (const auto& [name, value] : v.partial()->attributes) {
         out += (first ? "" : ",") + express_text(*value);
         first = false;
       }
@@ -1526,7 +1539,7 @@ std::string express_text(const Value& v) {
     }
     case K::Aggregate: {
       std::string out = "[";
-      for (std::size_t i = 0; i < v.elements->size(); ++i) out += (i ? "," : "") + express_text((*v.elements)[i]);
+      for (std::size_t i = 0; i < v.elements()->size(); ++i) out += (i ? "," : "") + express_text((*v.elements())[i]);
       return out + "]";
     }
   }
