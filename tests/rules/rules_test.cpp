@@ -104,6 +104,29 @@ TEST_CASE("derived and inverse attributes, functions, and the rules a schema lis
                                  "assembly.long_enough", "assembly.named", "every_part_used.wr1"});
 }
 
+// Aggregates know their declared kind and bounds: from the attribute, the
+// variable, the parameter or the FUNCTION's result.
+TEST_CASE("SET union keeps each element once; HIBOUND, LOBOUND, HIINDEX, LOINDEX", "[rules][builtins]") {
+  auto file = read(good_parts + "#10=ASSEMBLY('kit',(#1,#2,#1,#3,#2));\n#20=GRID((5,6,7));\n");
+  namespace f = rules_schema::meta_algorithms;
+  using stepnc::rules::call_text;
+  const stepnc::meta::Model& model = file->model;
+  CHECK(call_text(model, f::parts_as_set, {"#10"}) == "[#1,#2,#3]");
+  CHECK(call_text(model, f::parts_as_bag, {"#10"}) == "[#1,#2,#1,#3,#2]");
+  CHECK(call_text(model, f::parts_twice_as_set, {"#10"}) == "[#1,#2,#3]");
+  CHECK(call_text(model, f::add_to_empty_set, {"#1"}) == "1");  // [] given to a SET parameter: s + p + p
+  CHECK(call_text(model, f::add_to_set, {"?", "#1"}) == "?");    // `?` + p is `?`
+  // LIST [1:?]: HIBOUND `?`, LOBOUND 1, HIINDEX the size, LOINDEX 1.
+  CHECK(call_text(model, f::list_bounds, {"#10"}) == "[?,1,5,1]");
+  // ARRAY [2:4]: the declared indices; cells[2] is the first element.
+  CHECK(call_text(model, f::array_bounds, {"#20"}) == "[4,2,4,2,5,7]");
+  // LIST [2:5] local holding 3 elements: the bounds are declared, the indices are not.
+  CHECK(call_text(model, f::local_bounds, {"#10"}) == "[5,2,3,1]");
+  // USEDIN gives a BAG [0:?]; #1 is used by #10 once (USEDIN lists each user once).
+  CHECK(call_text(model, f::usedin_bounds, {"#1"}) == "[?,0,1,1]");
+  CHECK(call_text(model, f::list_bounds, {"?"}) == "[?,?,?,?]");
+}
+
 // The reference schema's functions, as schemas/ restates them: every one
 // runs to its end on `?` arguments (no construct the evaluator cannot
 // follow), and the geometric ones compute the standard's values.

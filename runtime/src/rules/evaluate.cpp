@@ -29,6 +29,7 @@
 namespace stepnc::rules {
 namespace {
 
+using meta::AggregateShape;
 using meta::Builtin;
 using meta::Node;
 using meta::NodeKind;
@@ -51,7 +52,7 @@ struct Partial {
   std::vector<std::pair<std::string_view, std::shared_ptr<Value>>> attributes;
 };
 
-// 72 bytes, and only one counted pointer to copy: text views the
+// 80 bytes, and only one counted pointer to copy: text views the
 // constant tables or the model (neither changes during a check), or
 // `heap`, which owns it, the elements or the partial value.
 struct Value {
@@ -64,6 +65,7 @@ struct Value {
   const meta::TypeInfo* type = nullptr;  // the named type the value was declared with, if any
   meta::Instance* instance = nullptr;
   std::shared_ptr<void> heap;  // Aggregate: Elements; Partial: Partial; String, Binary: its std::string when owned
+  std::int64_t shape = 0;      // Aggregate: its declared type when known (AggregateShape, packed)
 
   Elements* elements() const { return static_cast<Elements*>(heap.get()); }
   Partial* partial() const { return static_cast<Partial*>(heap.get()); }
@@ -123,6 +125,7 @@ struct Value {
   static Value of_elements(Elements e, std::int64_t lower = 1) {
     return of_shared(std::make_shared<Elements>(std::move(e)), lower);
   }
+  AggregateShape::Kind aggregate_kind() const { return AggregateShape::unpack(shape).kind; }
   static Value of_partial(std::shared_ptr<Partial> p) {
     Value r;
     r.kind = Kind::Partial;
@@ -135,6 +138,33 @@ Truth truth_of(const Value& v) {
   if (v.kind == Value::Kind::Logical) return v.logical;
   return Truth::Unknown;
 }
+// The shape of a stored aggregate type (its bounds from the metaclass).
+std::int64_t shape_of(const meta::TypeInfo& resolved) {
+  AggregateShape s;
+  switch (resolved.kind) {
+    case meta::TypeKind::Array: s.kind = AggregateShape::Kind::Array; break;
+    case meta::TypeKind::List: s.kind = AggregateShape::Kind::List; break;
+    case meta::TypeKind::Bag: s.kind = AggregateShape::Kind::Bag; break;
+    case meta::TypeKind::Set: s.kind = AggregateShape::Kind::Set; break;
+    default: return 0;
+  }
+  s.bounded = resolved.lower >= 0 && resolved.lower < (1 << 23) && resolved.upper < (1 << 30);
+  s.lower = resolved.lower;
+  s.upper = resolved.upper < 0 ? -1 : resolved.upper;
+  return s.pack();
+}
+
+// A BAG or SET with no declared bounds, [0:?]: what USEDIN, TYPEOF,
+// ROLESOF and an entity extent give.
+std::int64_t unbounded(AggregateShape::Kind kind) {
+  AggregateShape s;
+  s.kind = kind;
+  s.bounded = true;
+  s.lower = 0;
+  s.upper = -1;
+  return s.pack();
+}
+
 Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
 
 std::string upper(std::string_view s) {
@@ -203,6 +233,7 @@ Value from_ref(const meta::ValueRef& ref) {
       elements.reserve(n);
       for (std::size_t i = 0; i < n; ++i) elements.push_back(from_ref(ref.element(i)));
       v = Value::of_elements(std::move(elements), resolved.kind == meta::TypeKind::Array ? resolved.lower : 1);
+      v.shape = shape_of(resolved);
       break;
     }
     case meta::TypeKind::Alias: break;  // resolved() never is
@@ -505,7 +536,9 @@ class Interpreter {
               meta::equal_names(use.attribute->name, a->inverse_attribute))
             if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
         if (!a->type->resolved().is_aggregate()) return users.empty() ? Value{} : users.front();
-        return Value::of_elements(std::move(users));
+        Value result = Value::of_elements(std::move(users));
+        result.shape = shape_of(a->type->resolved());
+        return result;
       }
     }
     return {};
@@ -518,10 +551,35 @@ class Interpreter {
       for (meta::Instance* i : model_.instances())
         if (is_a(*i, entity)) it->second->push_back(Value::of_instance(i));
     }
-    return Value::of_shared(it->second);
+    Value extent = Value::of_shared(it->second);
+    extent.shape = unbounded(AggregateShape::Kind::Set);
+    return extent;
   }
 
   // ------------------------------------------------------------ expressions
+
+  // The declared shape of an aggregate value: its own, or the variable's
+  // declaration that holds it (a parameter given an aggregate initializer).
+  static std::int64_t declared(const Node* nodes, std::uint32_t index, const Value& v) {
+    if (v.shape) return v.shape;
+    return nodes[index].kind == NodeKind::Variable ? nodes[index].integer : 0;
+  }
+
+  // `v` as a value of the declared aggregate `shape` (an assignment, a
+  // RETURN): a SET keeps each element once.
+  static Value shaped(Value v, std::int64_t shape) {
+    if (!shape || v.kind != Value::Kind::Aggregate) return v;
+    const AggregateShape s = AggregateShape::unpack(shape);
+    if (s.kind == AggregateShape::Kind::Set && v.aggregate_kind() != AggregateShape::Kind::Set) {
+      Elements once;
+      for (const Value& e : *v.elements())
+        if (member(e, once) != Truth::True) once.push_back(e);
+      if (once.size() != v.elements()->size()) v.heap = std::make_shared<Elements>(std::move(once));
+    }
+    if (s.kind == AggregateShape::Kind::Array && s.bounded) v.integer = s.lower;
+    v.shape = shape;
+    return v;
+  }
 
   // A variable's value where it is, anything else evaluated into `scratch`:
   // for operands that are only read.
@@ -643,7 +701,11 @@ class Interpreter {
           frame.slots.at(n.slot) = element;
           if (truth_of(eval(nodes, n.first + 1, frame)) == Truth::True) kept.push_back(element);
         }
-        return Value::of_elements(std::move(kept));
+        // The source's kind with bounds [0:?] (ISO 10303-11 12.6.7); an ARRAY's is not kept.
+        const AggregateShape::Kind kind = AggregateShape::unpack(declared(nodes, n.first, source)).kind;
+        Value result = Value::of_elements(std::move(kept));
+        if (kind != AggregateShape::Kind::Array && kind != AggregateShape::Kind::None) result.shape = unbounded(kind);
+        return result;
       }
       case NodeKind::Unevaluable: throw Unevaluable(fmt::format("'{}' was not resolved by expressc", n.text));
       default: throw Unevaluable("a statement where an expression belongs");
@@ -682,9 +744,13 @@ class Interpreter {
   }
 
   static Truth member(const Value& item, const Value& aggregate) {
-    if (item.indeterminate() || aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
+    if (aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
+    return member(item, *aggregate.elements());
+  }
+  static Truth member(const Value& item, const Elements& elements) {
+    if (item.indeterminate()) return Truth::Unknown;
     Truth result = Truth::False;
-    for (const Value& e : *aggregate.elements()) {
+    for (const Value& e : elements) {
       const Truth t = equal(item, e);
       if (t == Truth::True) return Truth::True;
       if (t == Truth::Unknown) result = Truth::Unknown;
@@ -756,7 +822,9 @@ class Interpreter {
     }
     if (a.indeterminate() || b.indeterminate()) return {};
     // Aggregates: union, difference, intersection (ISO 10303-11 12.6).
-    if (a.kind == K::Aggregate || b.kind == K::Aggregate) return aggregate_operation(n.op, a, b);
+    if (a.kind == K::Aggregate || b.kind == K::Aggregate)
+      return aggregate_operation(n.op, a, b, a.kind == K::Aggregate ? declared(nodes, n.first, a) : 0,
+                                 b.kind == K::Aggregate ? declared(nodes, n.first + 1, b) : 0);
     if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(std::string(a.text) + std::string(b.text));
     if (!a.number() || !b.number()) return {};
     const bool integers = a.kind == K::Integer && b.kind == K::Integer;
@@ -784,8 +852,18 @@ class Interpreter {
     }
   }
 
-  static Value aggregate_operation(Operator op, const Value& a, const Value& b) {
+  // Union, difference and intersection (ISO 10303-11 12.6.2-12.6.4), of the
+  // kind of the left aggregate (or of the right when the left is an
+  // element; an intersection with a SET is a SET): a SET keeps each
+  // element once. `a_shape`, `b_shape`: the operands' declared shapes.
+  static Value aggregate_operation(Operator op, const Value& a, const Value& b, std::int64_t a_shape,
+                                   std::int64_t b_shape) {
     using K = Value::Kind;
+    using Kind = AggregateShape::Kind;
+    const Kind left = AggregateShape::unpack(a_shape).kind, right_kind = AggregateShape::unpack(b_shape).kind;
+    Kind kind = a.kind == K::Aggregate ? left : right_kind;
+    if (op == Operator::Multiply && (left == Kind::Set || right_kind == Kind::Set)) kind = Kind::Set;
+    const bool set = kind == Kind::Set;
     Elements result = a.kind == K::Aggregate ? *a.elements() : Elements{a};
     auto contains = [](const Elements& list, const Value& v) {
       return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
@@ -796,19 +874,21 @@ class Interpreter {
       case Operator::Add:
         if (a.kind != K::Aggregate) {
           result = right;
-          result.insert(result.begin(), a);
+          if (!set || !contains(result, a)) result.insert(result.begin(), a);
+        } else if (set) {
+          for (const Value& e : right)
+            if (!contains(result, e)) result.push_back(e);
         } else {
           result.insert(result.end(), right.begin(), right.end());
         }
-        return Value::of_elements(std::move(result));
-      case Operator::Subtract:
-        std::erase_if(result, [&](const Value& e) { return contains(right, e); });
-        return Value::of_elements(std::move(result));
-      case Operator::Multiply:
-        std::erase_if(result, [&](const Value& e) { return !contains(right, e); });
-        return Value::of_elements(std::move(result));
+        break;
+      case Operator::Subtract: std::erase_if(result, [&](const Value& e) { return contains(right, e); }); break;
+      case Operator::Multiply: std::erase_if(result, [&](const Value& e) { return !contains(right, e); }); break;
       default: return {};
     }
+    Value value = Value::of_elements(std::move(result));
+    if (kind != Kind::None && kind != Kind::Array) value.shape = unbounded(kind);
+    return value;
   }
 
   static Value index_of(const Value& base, const Value& low, const Value& high, bool range) {
@@ -879,7 +959,9 @@ class Interpreter {
         if (v.kind == K::Aggregate) names.push_back(Value::of_view("AGGREGATE"));
       }
     }
-    return Value::of_elements(std::move(names));
+    Value result = Value::of_elements(std::move(names));
+    result.shape = unbounded(AggregateShape::Kind::Set);
+    return result;
   }
 
   // USEDIN(T, R) and ROLESOF(V) (ISO 10303-11 15.26, 15.20).
@@ -900,7 +982,9 @@ class Interpreter {
         continue;
       if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
     }
-    return Value::of_elements(std::move(users));
+    Value result = Value::of_elements(std::move(users));
+    result.shape = unbounded(AggregateShape::Kind::Bag);
+    return result;
   }
 
   Value roles_of(const Value& target) {
@@ -911,7 +995,35 @@ class Interpreter {
                                     "." + upper(use.attribute->name));
       if (member(role, Value::of_elements(roles)) != Truth::True) roles.push_back(std::move(role));
     }
-    return Value::of_elements(std::move(roles));
+    Value result = Value::of_elements(std::move(roles));
+    result.shape = unbounded(AggregateShape::Kind::Set);
+    return result;
+  }
+
+  // SIZEOF, HIINDEX, LOINDEX, HIBOUND, LOBOUND of an aggregate of the
+  // declared `shape` (ISO 10303-11 15.10, 15.11, 15.14, 15.15, 15.21): an
+  // ARRAY's indices are declared, a BAG's, LIST's or SET's run from 1 to
+  // its size; HIBOUND and LOBOUND give the declared bounds, `?` for an
+  // unbounded upper one or when the declaration is not known (an
+  // aggregate initializer).
+  static Value bound(Builtin which, const Value& v, std::int64_t shape) {
+    const auto size = static_cast<std::int64_t>(v.elements()->size());
+    const AggregateShape s = AggregateShape::unpack(shape);
+    const bool array = s.kind == AggregateShape::Kind::Array || (s.kind == AggregateShape::Kind::None && v.integer != 1);
+    switch (which) {
+      case Builtin::Sizeof: return Value::of_integer(size);
+      case Builtin::Hiindex:
+        if (!array) return Value::of_integer(size);
+        return Value::of_integer(s.bounded && s.upper >= 0 ? s.upper : v.integer + size - 1);
+      case Builtin::Loindex: return Value::of_integer(array ? (s.bounded ? s.lower : v.integer) : 1);
+      case Builtin::Hibound:
+        if (!s.bounded || s.upper < 0) return {};
+        return Value::of_integer(s.upper);
+      case Builtin::Lobound:
+        if (!s.bounded) return {};
+        return Value::of_integer(s.lower);
+      default: return {};
+    }
   }
 
   Value builtin(const Node* nodes, const Node& n, Frame& frame) {
@@ -957,23 +1069,14 @@ class Interpreter {
         return Value::of_bool(v.integer % 2 != 0);
       }
       case Builtin::Sizeof:
-      case Builtin::Hiindex: {
+      case Builtin::Hiindex:
+      case Builtin::Loindex:
+      case Builtin::Hibound:
+      case Builtin::Lobound: {
         Value scratch;
         const Value& v = n.count ? peek(nodes, n.first, frame, scratch) : scratch;
         if (v.kind != Value::Kind::Aggregate) return {};
-        const auto size = static_cast<std::int64_t>(v.elements()->size());
-        return Value::of_integer(n.builtin == Builtin::Sizeof ? size : v.integer + size - 1);
-      }
-      case Builtin::Loindex:
-      case Builtin::Lobound: {
-        Value v = arg(0);
-        return v.kind == Value::Kind::Aggregate ? Value::of_integer(v.integer) : Value{};
-      }
-      case Builtin::Hibound: {
-        // Bounds are not carried with values: the elements present bound it.
-        Value v = arg(0);
-        if (v.kind != Value::Kind::Aggregate) return {};
-        return Value::of_integer(v.integer + static_cast<std::int64_t>(v.elements()->size()) - 1);
+        return bound(n.builtin, v, declared(nodes, n.first, v));
       }
       case Builtin::Length: {
         Value v = arg(0);
@@ -1098,13 +1201,25 @@ class Interpreter {
       slot = Value{};
       return true;
     }
+    const AggregateShape::Kind kind = AggregateShape::unpack(declared(nodes, sum.first, slot)).kind;
     std::shared_ptr<Elements> elements = std::static_pointer_cast<Elements>(std::move(slot.heap));
     if (elements.use_count() > 1) elements = std::make_shared<Elements>(*elements);
-    if (item.kind == Value::Kind::Aggregate)
+    if (kind == AggregateShape::Kind::Set) {  // each element once (ISO 10303-11 12.6.3)
+      auto add = [&](const Value& e) {
+        if (member(e, *elements) != Truth::True) elements->push_back(e);
+      };
+      if (item.kind == Value::Kind::Aggregate)
+        for (const Value& e : *item.elements()) add(e);
+      else
+        add(item);
+    } else if (item.kind == Value::Kind::Aggregate) {
       elements->insert(elements->end(), item.elements()->begin(), item.elements()->end());
-    else
+    } else {
       elements->push_back(std::move(item));
-    slot = Value::of_shared(std::move(elements));
+    }
+    Value sum_value = Value::of_shared(std::move(elements));
+    if (kind != AggregateShape::Kind::None && kind != AggregateShape::Kind::Array) sum_value.shape = unbounded(kind);
+    slot = shaped(std::move(sum_value), target.integer);
     return true;
   }
 
@@ -1116,11 +1231,12 @@ class Interpreter {
       case NodeKind::Skip: return Flow::Skip;
       case NodeKind::Block: return execute_list(nodes, n.first, n.count, frame);
       case NodeKind::Return:
-        frame.result = n.count ? eval(nodes, n.first, frame) : Value{};
+        frame.result = n.count ? shaped(eval(nodes, n.first, frame), n.integer) : Value{};
         return Flow::Return;
       case NodeKind::Assign: {
         if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);
+        if (nodes[n.first].kind == NodeKind::Variable) value = shaped(std::move(value), nodes[n.first].integer);
         Value* target = place(nodes, n.first, frame);
         if (!target) throw Unevaluable("an assignment to something that holds no value");
         *target = std::move(value);
@@ -1181,7 +1297,9 @@ class Interpreter {
         return;
       elements.erase(elements.begin() + (at.integer - 1));
     }
+    const std::int64_t shape = arguments[0].shape;
     arguments[0] = Value::of_elements(std::move(elements), arguments[0].integer);
+    arguments[0].shape = shape;
   }
 
   Flow loop(const Node* nodes, const Node& n, Frame& frame) {
