@@ -104,6 +104,43 @@ TEST_CASE("derived and inverse attributes, functions, and the rules a schema lis
                                  "assembly.long_enough", "assembly.named", "every_part_used.wr1"});
 }
 
+// rules::validate, for models built in code: what `stepnc validate` reports
+// for a file (structure, then rules, the rules only on a sound structure).
+TEST_CASE("rules::validate checks a model built in code as stepnc validate checks a file", "[rules][validate]") {
+  stepnc::meta::Model model;
+  auto& bolt = model.create<rules_schema::part>();
+  bolt.name = "bolt";
+  bolt.code = "B1";
+  bolt.length = 4.0;
+  bolt.tint = rules_schema::colour::red;
+  auto& nut = model.create<rules_schema::part>();
+  nut.name = "nut";
+  nut.code = "N1";
+  nut.length = 12.0;
+  nut.tint = rules_schema::colour::green;
+  auto& kit = model.create<rules_schema::assembly>();
+  kit.name = "kit";
+  kit.parts = {&bolt, &nut};
+  CHECK(stepnc::rules::validate(model).valid());
+  CHECK(stepnc::rules::validate(model).messages().empty());
+
+  nut.length = -1.0;  // positive_length.wr1, and the kit is 3 long: assembly.long_enough
+  nut.code = "B1";    // part.ur1: the same code as #1
+  auto broken = stepnc::rules::validate(model);
+  CHECK_FALSE(broken.valid());
+  CHECK(broken.structure.empty());
+  CHECK(broken.messages() == std::vector<std::string>{"#2: positive_length.wr1 violated (by length)",
+                                                      "#3: assembly.long_enough violated",
+                                                      "#2: part.ur1 violated: the same values as #1"});
+
+  kit.parts.clear();  // LIST [1:?]: a structural problem; the rules are not evaluated
+  auto empty = stepnc::rules::validate(model);
+  CHECK_FALSE(empty.valid());
+  REQUIRE(empty.structure.size() == 1);
+  CHECK(empty.messages().front().rfind("#3 assembly.parts:", 0) == 0);
+  CHECK(empty.rules.empty());
+}
+
 // Aggregates know their declared kind and bounds: from the attribute, the
 // variable, the parameter or the FUNCTION's result.
 TEST_CASE("SET union keeps each element once; HIBOUND, LOBOUND, HIINDEX, LOINDEX", "[rules][builtins]") {

@@ -1699,6 +1699,26 @@ std::string Violation::to_string() const {
 
 std::vector<Violation> check(const meta::Model& model, std::size_t limit) { return Checker(model, limit).run(); }
 
+bool Validation::valid() const {
+  return structure.empty() && std::all_of(rules.begin(), rules.end(), [](const Violation& v) {
+           return v.kind == Violation::Kind::Unevaluated;
+         });
+}
+
+std::vector<std::string> Validation::messages() const {
+  std::vector<std::string> out;
+  for (const meta::ValidationProblem& problem : structure) out.push_back(problem.to_string());
+  for (const Violation& violation : rules) out.push_back(violation.to_string());
+  return out;
+}
+
+Validation validate(const meta::Model& model, std::size_t limit) {
+  Validation result;
+  result.structure = meta::validate(model, limit);
+  if (result.structure.empty()) result.rules = check(model, limit);
+  return result;
+}
+
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, std::size_t limit) {
   const std::vector<Violation> violations = check(model, limit);
