@@ -447,13 +447,16 @@ class Interpreter {
   // Sound because a FUNCTION changes nothing outside its own frame (it has
   // no VAR parameters, ISO 10303-11 9.5.1), the model does not change
   // during a check, and a result depends only on its arguments and the
-  // model. Kept only for calls whose arguments are all instances or `?`
-  // (pointers: an exact key, no hashing of values), and never a result
-  // holding a constructed value, whose identity `:=:` would see. A call that
-  // throws (not evaluable) is not kept.
+  // model. Kept only for calls whose arguments are instances, `?` or small
+  // aggregates of instances (with their declared shape and lower index,
+  // which `+` and HIINDEX see): pointers make an exact key, no hashing of
+  // values (`bag_to_set(USEDIN(x, ''))` is called for one instance by
+  // `using_items` and by a global rule). Never a result holding a
+  // constructed value, whose identity `:=:` would see. A call that throws
+  // (not evaluable) is not kept.
   struct CallKey {
     const meta::AlgorithmInfo* algorithm;
-    std::array<const meta::Instance*, 3> arguments;
+    std::array<std::uintptr_t, 12> words;  // an instance's address or 0 for `?`; an aggregate: a tag, shape, lower index, elements
     bool operator==(const CallKey&) const = default;
   };
   std::vector<std::pair<CallKey, Value>> results_;  // a few per instance: searched in order
@@ -463,11 +466,25 @@ class Interpreter {
     if (algorithm.kind != meta::AlgorithmInfo::Kind::Function || algorithm.var_parameters != 0 || arguments.size() > 3)
       return std::nullopt;
     CallKey key{&algorithm, {}};
-    for (std::size_t i = 0; i < arguments.size(); ++i) {
-      if (arguments[i].kind == Value::Kind::Instance)
-        key.arguments[i] = arguments[i].instance;
-      else if (!arguments[i].indeterminate())
+    std::size_t used = 0;
+    for (const Value& argument : arguments) {
+      if (argument.kind == Value::Kind::Instance) {
+        key.words[used++] = reinterpret_cast<std::uintptr_t>(argument.instance);
+      } else if (argument.kind == Value::Kind::Aggregate) {
+        const Elements& elements = *argument.elements();
+        if (used + 3 + elements.size() > key.words.size()) return std::nullopt;
+        key.words[used++] = 1 | (elements.size() << 1);  // odd: never an instance's address
+        key.words[used++] = static_cast<std::uintptr_t>(argument.shape);
+        key.words[used++] = static_cast<std::uintptr_t>(argument.integer);
+        for (const Value& e : elements) {
+          if (e.kind != Value::Kind::Instance) return std::nullopt;
+          key.words[used++] = reinterpret_cast<std::uintptr_t>(e.instance);
+        }
+      } else if (argument.indeterminate()) {
+        key.words[used++] = 0;
+      } else {
         return std::nullopt;
+      }
     }
     return key;
   }
