@@ -14,6 +14,7 @@
 // (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -62,7 +63,10 @@ struct Shape {
 std::string describe(const Shape& shape) {
   switch (shape.kind) {
     case Shape::Kind::Simple: return family_name(shape.family);
-    case Shape::Kind::Aggregate: return "an aggregate";
+    case Shape::Kind::Aggregate:
+      if (shape.element && shape.element->kind != Shape::Kind::Unknown)
+        return "an aggregate of " + describe(*shape.element);
+      return "an aggregate";
     case Shape::Kind::Entity: return fmt::format("an entity instance ({})", shape.entity->name);
     default: return "a value";
   }
@@ -252,6 +256,7 @@ class Checker {
   std::vector<std::unordered_map<std::string, Entry>> scopes_;
   bool self_allowed_ = false;
   Shape self_shape_;
+  Shape result_shape_;  // the enclosing FUNCTION's result (Unknown in procedures and rules)
 
   struct ScopeGuard {
     Checker& checker;
@@ -613,6 +618,27 @@ class Checker {
     return Shape::aggregate_of(std::move(element));
   }
 
+  // Can a value of shape `given` be one of shape `expected` (a parameter,
+  // a result)? "No" only when sure; aggregates compare their elements
+  // (`LIST OF point` given where `LIST OF line` belongs).
+  static bool compatible(const Shape& expected, const Shape& given, int depth = 0) {
+    if (depth > 64) return true;
+    switch (expected.kind) {
+      case Shape::Kind::Simple:
+        return !((known_simple(given) && given.family != expected.family) || given.kind == Shape::Kind::Aggregate ||
+                 given.kind == Shape::Kind::Entity);
+      case Shape::Kind::Entity:
+        return !(known_simple(given) || given.kind == Shape::Kind::Aggregate ||
+                 (given.kind == Shape::Kind::Entity && !can_be_both(*given.entity, *expected.entity)));
+      case Shape::Kind::Aggregate:
+        if (known_simple(given) || given.kind == Shape::Kind::Entity) return false;
+        if (given.kind == Shape::Kind::Aggregate && expected.element && given.element)
+          return compatible(*expected.element, *given.element, depth + 1);
+        return true;
+      default: return true;
+    }
+  }
+
   // A user FUNCTION's arguments against its parameters' types.
   void check_argument_types(const ast::Expression& e, const std::vector<Shape>& arguments) {
     const Algorithm* algorithm = e.binding.algorithm;
@@ -621,19 +647,7 @@ class Checker {
       const Parameter& parameter = algorithm->parameters[i];
       const Shape expected = shape_of(parameter.type);
       const Shape& given = arguments[i];
-      bool wrong = false;
-      switch (expected.kind) {
-        case Shape::Kind::Simple:
-          wrong = (known_simple(given) && given.family != expected.family) || given.kind == Shape::Kind::Aggregate ||
-                  given.kind == Shape::Kind::Entity;
-          break;
-        case Shape::Kind::Entity:
-          wrong = known_simple(given) || given.kind == Shape::Kind::Aggregate ||
-                  (given.kind == Shape::Kind::Entity && !can_be_both(*given.entity, *expected.entity));
-          break;
-        case Shape::Kind::Aggregate: wrong = known_simple(given) || given.kind == Shape::Kind::Entity; break;
-        default: break;
-      }
+      const bool wrong = !compatible(expected, given);
       if (wrong)
         warning(e.operands[i]->position, fmt::format("argument {} of '{}' is {}, but parameter '{}' is {}", i + 1,
                                                      e.text, describe(given), parameter.name, describe(expected)));
@@ -854,7 +868,9 @@ class Checker {
     SelfScope self(*this, false);
     check_parameters(function.parameters);
     check_type_spec(function.result);
+    const Shape saved = std::exchange(result_shape_, shape_of(function.result));
     check_body(function.body);
+    result_shape_ = saved;
   }
 
   void check_procedure(const ast::ProcedureDecl& procedure) {
@@ -937,7 +953,12 @@ class Checker {
         return;
       }
       case K::Return:
-        if (s.value) check(*s.value);
+        if (s.value) {
+          const Shape value = check(*s.value);
+          if (!compatible(result_shape_, value))
+            warning(s.value->position,
+                    fmt::format("RETURN gives {}, but the function returns {}", describe(value), describe(result_shape_)));
+        }
         return;
       case K::Null:
       case K::Escape:
