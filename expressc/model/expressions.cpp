@@ -500,14 +500,12 @@ class Checker {
   // Selects, GENERIC and values of unknown type are never reported.
 
   static bool known_simple(const Shape& s) { return s.kind == Shape::Kind::Simple; }
-  static bool not_logical(const Shape& s) {
-    return (known_simple(s) && s.family != Family::Logical) || s.kind == Shape::Kind::Aggregate ||
-           s.kind == Shape::Kind::Entity;
+  // Known to be something other than a value of `family`.
+  static bool cannot_be(const Shape& s, Family family) {
+    return (known_simple(s) && s.family != family) || s.kind == Shape::Kind::Aggregate || s.kind == Shape::Kind::Entity;
   }
-  static bool not_number(const Shape& s) {
-    return (known_simple(s) && s.family != Family::Number) || s.kind == Shape::Kind::Aggregate ||
-           s.kind == Shape::Kind::Entity;
-  }
+  static bool not_logical(const Shape& s) { return cannot_be(s, Family::Logical); }
+  static bool not_number(const Shape& s) { return cannot_be(s, Family::Number); }
   static bool not_aggregate(const Shape& s) { return known_simple(s) || s.kind == Shape::Kind::Entity; }
 
   Shape check_unary(const ast::Expression& e, const Shape& operand) {
@@ -560,8 +558,7 @@ class Checker {
         return Shape::of(Family::Logical);
       case O::Like:
         for (const Shape* operand : {&left, &right})
-          if ((known_simple(*operand) && operand->family != Family::String) || operand->kind == Shape::Kind::Aggregate ||
-              operand->kind == Shape::Kind::Entity)
+          if (cannot_be(*operand, Family::String))
             warning(e.position, fmt::format("operand of LIKE is {}, not a STRING", describe(*operand)));
         return Shape::of(Family::Logical);
       case O::Add:
@@ -624,9 +621,7 @@ class Checker {
   static bool compatible(const Shape& expected, const Shape& given, int depth = 0) {
     if (depth > 64) return true;
     switch (expected.kind) {
-      case Shape::Kind::Simple:
-        return !((known_simple(given) && given.family != expected.family) || given.kind == Shape::Kind::Aggregate ||
-                 given.kind == Shape::Kind::Entity);
+      case Shape::Kind::Simple: return !cannot_be(given, expected.family);
       case Shape::Kind::Entity:
         return !(known_simple(given) || given.kind == Shape::Kind::Aggregate ||
                  (given.kind == Shape::Kind::Entity && !can_be_both(*given.entity, *expected.entity)));
@@ -654,62 +649,59 @@ class Checker {
     }
   }
 
-  // A built-in function's arguments (ISO 10303-11 15) and what it returns.
+  // A built-in function's arguments (ISO 10303-11 15) and what it returns:
+  // what every argument (or the first) must be, and the result.
+  struct BuiltinSignature {
+    enum class Argument : uint8_t { Any, Number, Aggregate, String, Binary };
+    Argument argument;   // what the first argument must be
+    bool all = false;    // every argument, not only the first (ATAN's two)
+    Family result;       // what the function returns
+    const char* wanted;  // the argument, for messages
+  };
+
   Shape check_builtin(const ast::Expression& e, const std::vector<Shape>& arguments) {
+    using A = BuiltinSignature::Argument;
+    static const std::unordered_map<std::string, BuiltinSignature> signatures = [] {
+      std::unordered_map<std::string, BuiltinSignature> table;
+      for (const char* f : {"abs", "acos", "asin", "atan", "cos", "exp", "log", "log2", "log10", "sin", "sqrt", "tan"})
+        table[f] = {A::Number, true, Family::Number, "a number"};
+      table["odd"] = {A::Number, false, Family::Logical, "an INTEGER"};
+      for (const char* f : {"sizeof", "hibound", "hiindex", "lobound", "loindex"})
+        table[f] = {A::Aggregate, false, Family::Number, "an aggregate"};
+      for (const char* f : {"value_unique", "value_in"}) table[f] = {A::Aggregate, false, Family::Logical, "an aggregate"};
+      for (const char* f : {"length", "value"}) table[f] = {A::String, false, Family::Number, "a STRING"};
+      table["value_as_boolean"] = {A::String, false, Family::Logical, "a STRING"};
+      table["blength"] = {A::Binary, false, Family::Number, "a BINARY"};
+      table["exists"] = {A::Any, false, Family::Logical, ""};
+      table["format"] = {A::Any, false, Family::String, ""};
+      return table;
+    }();
     const std::string name = lowercase(e.text);
+    auto arg = [&](size_t i) { return i < arguments.size() ? arguments[i] : Shape{}; };
     auto expect = [&](size_t i, bool wrong, const char* what) {
       if (i < arguments.size() && wrong)
         warning(e.operands[i]->position,
                 fmt::format("argument {} of {} is {}, not {}", i + 1, e.text, describe(arguments[i]), what));
     };
-    auto arg = [&](size_t i) { return i < arguments.size() ? arguments[i] : Shape{}; };
-    static const std::unordered_set<std::string> numeric = {"abs", "acos", "asin", "atan", "cos",  "exp",
-                                                            "log", "log2", "log10", "sin",  "sqrt", "tan"};
-    if (numeric.contains(name)) {
-      for (size_t i = 0; i < arguments.size(); ++i) expect(i, not_number(arguments[i]), "a number");
-      return Shape::of(Family::Number);
-    }
-    if (name == "odd") {
-      expect(0, not_number(arg(0)), "an INTEGER");
-      return Shape::of(Family::Logical);
-    }
-    if (name == "sizeof" || name == "hibound" || name == "hiindex" || name == "lobound" || name == "loindex") {
-      expect(0, not_aggregate(arg(0)), "an aggregate");
-      return Shape::of(Family::Number);
-    }
-    if (name == "value_unique") {
-      expect(0, not_aggregate(arg(0)), "an aggregate");
-      return Shape::of(Family::Logical);
-    }
-    if (name == "value_in") {
-      expect(0, not_aggregate(arg(0)), "an aggregate");
-      return Shape::of(Family::Logical);
-    }
-    const auto not_string = [](const Shape& s) {
-      return (known_simple(s) && s.family != Family::String) || s.kind == Shape::Kind::Aggregate ||
-             s.kind == Shape::Kind::Entity;
-    };
-    if (name == "length" || name == "value") {
-      expect(0, not_string(arg(0)), "a STRING");
-      return Shape::of(Family::Number);
-    }
-    if (name == "value_as_boolean") {
-      expect(0, not_string(arg(0)), "a STRING");
-      return Shape::of(Family::Logical);
-    }
-    if (name == "blength") {
-      expect(0, (known_simple(arg(0)) && arg(0).family != Family::Binary) || arg(0).kind == Shape::Kind::Aggregate ||
-                    arg(0).kind == Shape::Kind::Entity,
-             "a BINARY");
-      return Shape::of(Family::Number);
+    if (const auto it = signatures.find(name); it != signatures.end()) {
+      const BuiltinSignature& signature = it->second;
+      for (size_t i = 0; i < (signature.all ? arguments.size() : std::min<size_t>(1, arguments.size())); ++i) {
+        const Shape& given = arguments[i];
+        switch (signature.argument) {
+          case A::Number: expect(i, cannot_be(given, Family::Number), signature.wanted); break;
+          case A::String: expect(i, cannot_be(given, Family::String), signature.wanted); break;
+          case A::Binary: expect(i, cannot_be(given, Family::Binary), signature.wanted); break;
+          case A::Aggregate: expect(i, not_aggregate(given), signature.wanted); break;
+          case A::Any: break;
+        }
+      }
+      return Shape::of(signature.result);
     }
     if (name == "usedin") {
-      expect(1, not_string(arg(1)), "a STRING");
+      expect(1, cannot_be(arg(1), Family::String), "a STRING");
       return Shape::aggregate_of({});
     }
-    if (name == "exists") return Shape::of(Family::Logical);
     if (name == "typeof" || name == "rolesof") return Shape::aggregate_of(Shape::of(Family::String));
-    if (name == "format") return Shape::of(Family::String);
     if (name == "nvl") return arg(0);
     return {};
   }
