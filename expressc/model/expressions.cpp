@@ -14,6 +14,7 @@
 // (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -26,16 +27,63 @@ namespace {
 using Binding = ast::Binding;
 using BindingKind = ast::Binding::Kind;
 
+// The simple values an operator or a parameter can take (ISO 10303-11 8.1,
+// 12): INTEGER, REAL and NUMBER are numbers; BOOLEAN is LOGICAL.
+enum class Family : uint8_t { Number, String, Binary, Logical, Enumeration };
+
+const char* family_name(Family family) {
+  switch (family) {
+    case Family::Number: return "a number";
+    case Family::String: return "a STRING";
+    case Family::Binary: return "a BINARY";
+    case Family::Logical: return "a LOGICAL";
+    case Family::Enumeration: return "an enumeration value";
+  }
+  return "a value";
+}
+
 // What an expression is statically known to be.
 struct Shape {
-  enum class Kind : uint8_t { Unknown, Entity, Select, Aggregate };
+  enum class Kind : uint8_t { Unknown, Entity, Select, Aggregate, Simple };
   Kind kind = Kind::Unknown;
   const Entity* entity = nullptr;       // Entity
   const DefinedType* select = nullptr;  // Select
   std::shared_ptr<const Shape> element;  // Aggregate
+  Family family = Family::Number;        // Simple
 
   static Shape of_entity(const Entity* entity) { return entity ? Shape{Kind::Entity, entity, nullptr, {}} : Shape{}; }
+  static Shape of(Family family) { return Shape{Kind::Simple, nullptr, nullptr, {}, family}; }
+  static Shape aggregate_of(Shape element) {
+    return Shape{Kind::Aggregate, nullptr, nullptr, std::make_shared<Shape>(std::move(element))};
+  }
+  bool is(Family f) const { return kind == Kind::Simple && family == f; }
 };
+
+// What a value of this shape is, for messages: "a STRING", "an aggregate".
+std::string describe(const Shape& shape) {
+  switch (shape.kind) {
+    case Shape::Kind::Simple: return family_name(shape.family);
+    case Shape::Kind::Aggregate:
+      if (shape.element && shape.element->kind != Shape::Kind::Unknown)
+        return "an aggregate of " + describe(*shape.element);
+      return "an aggregate";
+    case Shape::Kind::Entity: return fmt::format("an entity instance ({})", shape.entity->name);
+    default: return "a value";
+  }
+}
+
+Family family_of(SimpleKind kind) {
+  switch (kind) {
+    case SimpleKind::Integer:
+    case SimpleKind::Real:
+    case SimpleKind::Number: return Family::Number;
+    case SimpleKind::Boolean:
+    case SimpleKind::Logical: return Family::Logical;
+    case SimpleKind::String: return Family::String;
+    case SimpleKind::Binary: return Family::Binary;
+  }
+  return Family::Number;
+}
 
 // Can an instance of `entity` have an attribute `name`? True when `entity` or
 // one of its descendants declares or inherits it: a descendant inherits from
@@ -208,6 +256,7 @@ class Checker {
   std::vector<std::unordered_map<std::string, Entry>> scopes_;
   bool self_allowed_ = false;
   Shape self_shape_;
+  Shape result_shape_;  // the enclosing FUNCTION's result (Unknown in procedures and rules)
 
   struct ScopeGuard {
     Checker& checker;
@@ -246,11 +295,13 @@ class Checker {
   static Shape shape_of(const TypeRef& type, int depth = 0) {
     if (depth > 64) return {};  // alias chains are short; cycles are not ours to report here
     switch (type.kind) {
+      case TypeRef::Kind::Simple: return Shape::of(family_of(type.simple));
       case TypeRef::Kind::Entity: return Shape::of_entity(type.entity);
       case TypeRef::Kind::Defined:
         if (!type.defined) return {};
         if (type.defined->kind == DefinedType::Kind::Alias) return shape_of(type.defined->underlying, depth + 1);
         if (type.defined->kind == DefinedType::Kind::Select) return {Shape::Kind::Select, nullptr, type.defined, {}};
+        if (type.defined->kind == DefinedType::Kind::Enumeration) return Shape::of(Family::Enumeration);
         return {};
       case TypeRef::Kind::Aggregate:
         if (!type.element) return {};
@@ -262,6 +313,16 @@ class Checker {
   // The same for a type as written in an algorithm (parameters, locals).
   Shape shape_of(const ast::TypeSpec& type, int depth = 0) const {
     using K = ast::TypeSpec::Kind;
+    switch (type.kind) {
+      case K::Integer:
+      case K::Real:
+      case K::Number: return Shape::of(Family::Number);
+      case K::Boolean:
+      case K::Logical: return Shape::of(Family::Logical);
+      case K::String: return Shape::of(Family::String);
+      case K::Binary: return Shape::of(Family::Binary);
+      default: break;
+    }
     if (type.kind == K::Named) {
       const Symbol* symbol = work_.find(type.name.text);
       if (!symbol) return {};
@@ -340,17 +401,24 @@ class Checker {
             warning(e.position, fmt::format("'{}' is an algorithm, not a value; call it with arguments", e.text));
             break;
           case BindingKind::Attribute: return shape_of(e.binding.attribute->type);
+          case BindingKind::EnumerationItem: return Shape::of(Family::Enumeration);
+          case BindingKind::BuiltinConstant:
+            if (same_name(e.text, "pi") || same_name(e.text, "const_e")) return Shape::of(Family::Number);
+            break;
           default: break;
         }
         return entry.shape;
       }
       case K::Call: {
         e.binding = lookup(e.text).binding;
-        for (const auto& operand : e.operands) check(*operand);
+        std::vector<Shape> arguments;
+        for (const auto& operand : e.operands) arguments.push_back(check(*operand));
         check_arguments(e.position, e.text, e.binding, e.operands.size());
         switch (e.binding.kind) {
-          case BindingKind::Function: return e.binding.algorithm ? shape_of(e.binding.algorithm->result) : Shape{};
-          case BindingKind::BuiltinFunction: return {};
+          case BindingKind::Function:
+            check_argument_types(e, arguments);
+            return e.binding.algorithm ? shape_of(e.binding.algorithm->result) : Shape{};
+          case BindingKind::BuiltinFunction: return check_builtin(e, arguments);
           case BindingKind::Entity: return Shape::of_entity(e.binding.entity);  // an entity constructor
           case BindingKind::Unresolved: warning(e.position, fmt::format("unknown function '{}'", e.text)); return {};
           default: warning(e.position, fmt::format("'{}' is not a function or an entity", e.text)); return {};
@@ -396,10 +464,246 @@ class Checker {
         check(*e.operands[1]);
         return source;
       }
+      case K::Integer:
+      case K::Real: return Shape::of(Family::Number);
+      case K::String: return Shape::of(Family::String);
+      case K::BinaryLiteral: return Shape::of(Family::Binary);
+      case K::Logical: return Shape::of(Family::Logical);
+      case K::Unary: return check_unary(e, check(*e.operands[0]));
+      case K::Binary: {
+        const Shape left = check(*e.operands[0]);
+        const Shape right = check(*e.operands[1]);
+        return check_binary(e, left, right);
+      }
+      case K::Aggregate: return check_initializer(e);
+      case K::Interval: {
+        std::vector<Shape> bounds;
+        for (const auto& operand : e.operands) bounds.push_back(check(*operand));
+        for (size_t i = 1; i < bounds.size(); ++i)
+          if (bounds[0].kind == Shape::Kind::Simple && bounds[i].kind == Shape::Kind::Simple &&
+              bounds[0].family != bounds[i].family)
+            warning(e.position, fmt::format("interval compares {} with {}", describe(bounds[0]), describe(bounds[i])));
+        return Shape::of(Family::Logical);
+      }
       default:
         for (const auto& operand : e.operands) check(*operand);
         return {};
     }
+  }
+
+  // ------------------------------------------------------------ operand types
+  //
+  // Operand, element and argument types (ISO 10303-11 12, 15; 9.5.3 for
+  // parameters): reported only where both sides are statically known to
+  // be of kinds that can never meet (a number and a STRING, a LOGICAL in
+  // arithmetic, a simple value where an aggregate or an entity belongs).
+  // Selects, GENERIC and values of unknown type are never reported.
+
+  static bool known_simple(const Shape& s) { return s.kind == Shape::Kind::Simple; }
+  // Known to be something other than a value of `family`.
+  static bool cannot_be(const Shape& s, Family family) {
+    return (known_simple(s) && s.family != family) || s.kind == Shape::Kind::Aggregate || s.kind == Shape::Kind::Entity;
+  }
+  static bool not_logical(const Shape& s) { return cannot_be(s, Family::Logical); }
+  static bool not_number(const Shape& s) { return cannot_be(s, Family::Number); }
+  static bool not_aggregate(const Shape& s) { return known_simple(s) || s.kind == Shape::Kind::Entity; }
+
+  Shape check_unary(const ast::Expression& e, const Shape& operand) {
+    if (e.op == ast::Operator::Not) {
+      if (not_logical(operand)) warning(e.position, fmt::format("operand of NOT is {}, not a LOGICAL", describe(operand)));
+      return Shape::of(Family::Logical);
+    }
+    if (not_number(operand)) {
+      warning(e.position, fmt::format("operand of unary {} is {}, not a number", ast::spelling(e.op), describe(operand)));
+      return {};  // one warning, not one per enclosing operator
+    }
+    return Shape::of(Family::Number);
+  }
+
+  Shape check_binary(const ast::Expression& e, const Shape& left, const Shape& right) {
+    using O = ast::Operator;
+    const char* op = ast::spelling(e.op);
+    auto mismatch = [&] {
+      warning(e.position, fmt::format("operands of {} are {} and {}", op, describe(left), describe(right)));
+    };
+    switch (e.op) {
+      case O::And:
+      case O::Or:
+      case O::Xor: {
+        // AND binds tighter than a comparison (12.1): `f(a) AND SIZEOF(b) > 0`
+        // is `(f(a) AND SIZEOF(b)) > 0`, a number as an operand of AND.
+        bool reported = false;
+        for (const Shape* operand : {&left, &right})
+          if (not_logical(*operand)) {
+            warning(e.position, fmt::format("operand of {} is {}, not a LOGICAL", op, describe(*operand)));
+            reported = true;
+          }
+        return reported ? Shape{} : Shape::of(Family::Logical);
+      }
+      case O::Less:
+      case O::Greater:
+      case O::LessEqual:
+      case O::GreaterEqual:
+      case O::Equal:
+      case O::NotEqual: {
+        const bool simple_and_entity = (known_simple(left) && right.kind == Shape::Kind::Entity) ||
+                                       (left.kind == Shape::Kind::Entity && known_simple(right));
+        if ((known_simple(left) && known_simple(right) && left.family != right.family) || simple_and_entity)
+          mismatch();
+        return Shape::of(Family::Logical);
+      }
+      case O::In:
+        if (not_aggregate(right))
+          warning(e.position, fmt::format("right operand of IN is {}, not an aggregate", describe(right)));
+        return Shape::of(Family::Logical);
+      case O::Like:
+        for (const Shape* operand : {&left, &right})
+          if (cannot_be(*operand, Family::String))
+            warning(e.position, fmt::format("operand of LIKE is {}, not a STRING", describe(*operand)));
+        return Shape::of(Family::Logical);
+      case O::Add:
+      case O::Subtract:
+      case O::Multiply:
+        // Aggregate union, difference, intersection (12.6).
+        if (left.kind == Shape::Kind::Aggregate) return left;
+        if (right.kind == Shape::Kind::Aggregate) return right;
+        [[fallthrough]];
+      case O::Divide:
+      case O::IntegerDivide:
+      case O::Modulo:
+      case O::Power: {
+        const bool entity = left.kind == Shape::Kind::Entity || right.kind == Shape::Kind::Entity;
+        if (entity && (known_simple(left) || known_simple(right))) {
+          mismatch();
+          return {};
+        }
+        if (!known_simple(left) || !known_simple(right)) return {};
+        // + also joins STRINGs and BINARYs (12.5); everything else takes numbers.
+        const bool joins = e.op == O::Add && left.family == right.family &&
+                           (left.family == Family::String || left.family == Family::Binary);
+        if (joins) return left;
+        if (left.family != Family::Number || right.family != Family::Number) {
+          mismatch();
+          return {};
+        }
+        return Shape::of(Family::Number);
+      }
+      default: return {};
+    }
+  }
+
+  // An aggregate initializer's elements are of one base type (12.6.1 ff.,
+  // 8.2): simple elements of different kinds cannot be.
+  Shape check_initializer(const ast::Expression& e) {
+    Shape element;
+    for (const auto& operand : e.operands) {
+      Shape shape;
+      if (operand->kind == ast::Expression::Kind::Repeat) {
+        shape = check(*operand->operands[0]);
+        const Shape times = check(*operand->operands[1]);
+        if (not_number(times))
+          warning(operand->position, fmt::format("repetition count is {}, not an INTEGER", describe(times)));
+      } else {
+        shape = check(*operand);
+      }
+      if (element.kind == Shape::Kind::Unknown) {
+        element = shape;
+      } else if (known_simple(element) && known_simple(shape) && element.family != shape.family) {
+        warning(operand->position, fmt::format("aggregate initializer mixes {} and {}", describe(element), describe(shape)));
+      }
+    }
+    return Shape::aggregate_of(std::move(element));
+  }
+
+  // Can a value of shape `given` be one of shape `expected` (a parameter,
+  // a result)? "No" only when sure; aggregates compare their elements
+  // (`LIST OF point` given where `LIST OF line` belongs).
+  static bool compatible(const Shape& expected, const Shape& given, int depth = 0) {
+    if (depth > 64) return true;
+    switch (expected.kind) {
+      case Shape::Kind::Simple: return !cannot_be(given, expected.family);
+      case Shape::Kind::Entity:
+        return !(known_simple(given) || given.kind == Shape::Kind::Aggregate ||
+                 (given.kind == Shape::Kind::Entity && !can_be_both(*given.entity, *expected.entity)));
+      case Shape::Kind::Aggregate:
+        if (known_simple(given) || given.kind == Shape::Kind::Entity) return false;
+        if (given.kind == Shape::Kind::Aggregate && expected.element && given.element)
+          return compatible(*expected.element, *given.element, depth + 1);
+        return true;
+      default: return true;
+    }
+  }
+
+  // A user FUNCTION's arguments against its parameters' types.
+  void check_argument_types(const ast::Expression& e, const std::vector<Shape>& arguments) {
+    const Algorithm* algorithm = e.binding.algorithm;
+    if (!algorithm) return;
+    for (size_t i = 0; i < arguments.size() && i < algorithm->parameters.size(); ++i) {
+      const Parameter& parameter = algorithm->parameters[i];
+      const Shape expected = shape_of(parameter.type);
+      const Shape& given = arguments[i];
+      const bool wrong = !compatible(expected, given);
+      if (wrong)
+        warning(e.operands[i]->position, fmt::format("argument {} of '{}' is {}, but parameter '{}' is {}", i + 1,
+                                                     e.text, describe(given), parameter.name, describe(expected)));
+    }
+  }
+
+  // A built-in function's arguments (ISO 10303-11 15) and what it returns:
+  // what every argument (or the first) must be, and the result.
+  struct BuiltinSignature {
+    enum class Argument : uint8_t { Any, Number, Aggregate, String, Binary };
+    Argument argument;   // what the first argument must be
+    bool all = false;    // every argument, not only the first (ATAN's two)
+    Family result;       // what the function returns
+    const char* wanted;  // the argument, for messages
+  };
+
+  Shape check_builtin(const ast::Expression& e, const std::vector<Shape>& arguments) {
+    using A = BuiltinSignature::Argument;
+    static const std::unordered_map<std::string, BuiltinSignature> signatures = [] {
+      std::unordered_map<std::string, BuiltinSignature> table;
+      for (const char* f : {"abs", "acos", "asin", "atan", "cos", "exp", "log", "log2", "log10", "sin", "sqrt", "tan"})
+        table[f] = {A::Number, true, Family::Number, "a number"};
+      table["odd"] = {A::Number, false, Family::Logical, "an INTEGER"};
+      for (const char* f : {"sizeof", "hibound", "hiindex", "lobound", "loindex"})
+        table[f] = {A::Aggregate, false, Family::Number, "an aggregate"};
+      for (const char* f : {"value_unique", "value_in"}) table[f] = {A::Aggregate, false, Family::Logical, "an aggregate"};
+      for (const char* f : {"length", "value"}) table[f] = {A::String, false, Family::Number, "a STRING"};
+      table["value_as_boolean"] = {A::String, false, Family::Logical, "a STRING"};
+      table["blength"] = {A::Binary, false, Family::Number, "a BINARY"};
+      table["exists"] = {A::Any, false, Family::Logical, ""};
+      table["format"] = {A::Any, false, Family::String, ""};
+      return table;
+    }();
+    const std::string name = lowercase(e.text);
+    auto arg = [&](size_t i) { return i < arguments.size() ? arguments[i] : Shape{}; };
+    auto expect = [&](size_t i, bool wrong, const char* what) {
+      if (i < arguments.size() && wrong)
+        warning(e.operands[i]->position,
+                fmt::format("argument {} of {} is {}, not {}", i + 1, e.text, describe(arguments[i]), what));
+    };
+    if (const auto it = signatures.find(name); it != signatures.end()) {
+      const BuiltinSignature& signature = it->second;
+      for (size_t i = 0; i < (signature.all ? arguments.size() : std::min<size_t>(1, arguments.size())); ++i) {
+        const Shape& given = arguments[i];
+        switch (signature.argument) {
+          case A::Number: expect(i, cannot_be(given, Family::Number), signature.wanted); break;
+          case A::String: expect(i, cannot_be(given, Family::String), signature.wanted); break;
+          case A::Binary: expect(i, cannot_be(given, Family::Binary), signature.wanted); break;
+          case A::Aggregate: expect(i, not_aggregate(given), signature.wanted); break;
+          case A::Any: break;
+        }
+      }
+      return Shape::of(signature.result);
+    }
+    if (name == "usedin") {
+      expect(1, cannot_be(arg(1), Family::String), "a STRING");
+      return Shape::aggregate_of({});
+    }
+    if (name == "typeof" || name == "rolesof") return Shape::aggregate_of(Shape::of(Family::String));
+    if (name == "nvl") return arg(0);
+    return {};
   }
 
   // The number of arguments of a call against the signature: a user
@@ -556,7 +860,9 @@ class Checker {
     SelfScope self(*this, false);
     check_parameters(function.parameters);
     check_type_spec(function.result);
+    const Shape saved = std::exchange(result_shape_, shape_of(function.result));
     check_body(function.body);
+    result_shape_ = saved;
   }
 
   void check_procedure(const ast::ProcedureDecl& procedure) {
@@ -596,10 +902,13 @@ class Checker {
         check(s.body);
         return;
       }
-      case K::Assignment:
-        check(*s.target);
-        check(*s.value);
+      case K::Assignment: {
+        const Shape target = check(*s.target);
+        const Shape value = check(*s.value);
+        if (known_simple(target) && known_simple(value) && target.family != value.family)
+          warning(s.value->position, fmt::format("{} assigned where {} belongs", describe(value), describe(target)));
         return;
+      }
       case K::Case:
         check(*s.value);
         for (const ast::CaseAction& action : s.cases) {
@@ -629,14 +938,19 @@ class Checker {
         if (s.to) check(*s.to);
         if (s.by) check(*s.by);
         ScopeGuard scope(*this);
-        if (!s.name.text.empty()) bind_local(s.name);
+        if (!s.name.text.empty()) bind_local(s.name, Shape::of(Family::Number));
         if (s.while_condition) check(*s.while_condition);
         if (s.until_condition) check(*s.until_condition);
         check(s.body);
         return;
       }
       case K::Return:
-        if (s.value) check(*s.value);
+        if (s.value) {
+          const Shape value = check(*s.value);
+          if (!compatible(result_shape_, value))
+            warning(s.value->position,
+                    fmt::format("RETURN gives {}, but the function returns {}", describe(value), describe(result_shape_)));
+        }
         return;
       case K::Null:
       case K::Escape:

@@ -296,3 +296,20 @@ TEST_CASE("FILE_SCHEMA is compared with the schemas the reader knows", "[exchang
     CHECK(result.diagnostics.items().empty());
   }
 }
+
+TEST_CASE("constant references and value instances are read but refused by the typed read, in place", "[exchange]") {
+  std::string text = file_with("#1=CARTESIAN_POINT(#DUMMY_GRI,(0.,0.,0.));\n#2=CARTESIAN_POINT('',(@7,0.,0.));\n");
+  text.insert(text.find("DATA;"), "REFERENCE;\n@7 = <other.stp#x>;\nENDSEC;\n");
+  stepnc::exchange::ModelReadOptions options;
+  options.strict = false;
+  auto result = read_model_text(text, "constants.stp", registry(), options);
+  CHECK_FALSE(result.ok());
+  const std::string diagnostics = result.diagnostics.to_string();
+  INFO(diagnostics);
+  CHECK(diagnostics.find("constants.stp:11:20: error: #1: attribute 'name' of point: #DUMMY_GRI names a constant of "
+                         "the schema (ISO 10303-21:2016 6.4); the typed read does not resolve constants") !=
+        std::string::npos);
+  CHECK(diagnostics.find("constants.stp:12:24: error: #2: attribute 'coordinates' of cartesian_point: @7 is a value "
+                         "instance of another file (ISO 10303-21:2016 10); the typed read does not resolve external "
+                         "references") != std::string::npos);
+}

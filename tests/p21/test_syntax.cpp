@@ -305,3 +305,42 @@ TEST_CASE("SIGNATURE sections: base64 text, after END-ISO-10303-21; or between s
       "error: unexpected end of file: statement not terminated by ';'"));
   CHECK(first_error(end + "DATA;\nENDSEC;\n").ends_with("error: unexpected 'DATA' after END-ISO-10303-21;"));
 }
+
+TEST_CASE("constant references and value instances (ISO 10303-21:2016 6.4, 10.1)", "[p21][syntax]") {
+  // #NAME and @NAME name constants of the schema; @n a value instance,
+  // named in a REFERENCE section. Read as such and written back as written.
+  std::string text = p21_test::wrap("#1=A(#DUMMY_GRI,@TOLERANCE2,(@7,#2));#2=B(@70);");
+  text.insert(text.find("DATA;"), "REFERENCE;\n@7 = <other.stp#seven>;\n@70 = <other.stp#value>;\nENDSEC;\n");
+  ReadResult result = read_text(text, "c.stp");
+  INFO(result.diagnostics.to_string());
+  REQUIRE(result.ok());
+  ParamTree tree;
+  const std::vector<Value> values = attributes(parse_simple(*result.document, 1, tree));
+  REQUIRE(values.size() == 3);
+  CHECK(values[0].kind() == ParamKind::constant);
+  CHECK(values[0].text() == "#DUMMY_GRI");
+  CHECK(values[1].kind() == ParamKind::constant);
+  CHECK(values[1].text() == "@TOLERANCE2");
+  const Value seven = *values[2].children().begin();
+  CHECK(seven.kind() == ParamKind::value_reference);
+  CHECK(seven.reference() == 7);
+  CHECK(to_string(seven.kind()) == "value instance reference");
+  const std::string written = to_text(*result.document);
+  CHECK(written.find("#1=A(#DUMMY_GRI,@TOLERANCE2,(@7,#2));") != std::string::npos);
+  CHECK(written.find("@70 = <other.stp#value>;") != std::string::npos);
+  ReadResult again = read_text(written, "again.stp");
+  REQUIRE(again.ok());
+  CHECK(to_text(*again.document) == written);
+
+  const auto first_error = [](std::string_view data) {
+    ReadResult bad = p21_test::read_data(data);
+    return bad.diagnostics.items().empty() ? std::string() : bad.diagnostics.items()[0].to_string();
+  };
+  // A value instance no REFERENCE section names; a constant in lower case; '@' alone.
+  CHECK(first_error("#1=A(@8);") ==
+        "t.stp:8:6: error: #1: reference to value instance @8, which no REFERENCE section names "
+        "(ISO 10303-21:2016 10.1)");
+  CHECK(first_error("#1=A(#Dummy);") ==
+        "t.stp:8:6: error: #1: a constant name is written in capitals and digits (ISO 10303-21:2016 6.4): '#Dummy'");
+  CHECK(first_error("#1=A(@);") == "t.stp:8:7: error: #1: expected a value instance id or a constant name after '@'");
+}

@@ -104,6 +104,66 @@ TEST_CASE("derived and inverse attributes, functions, and the rules a schema lis
                                  "assembly.long_enough", "assembly.named", "every_part_used.wr1"});
 }
 
+// rules::validate, for models built in code: what `stepnc validate` reports
+// for a file (structure, then rules, the rules only on a sound structure).
+TEST_CASE("rules::validate checks a model built in code as stepnc validate checks a file", "[rules][validate]") {
+  stepnc::meta::Model model;
+  auto& bolt = model.create<rules_schema::part>();
+  bolt.name = "bolt";
+  bolt.code = "B1";
+  bolt.length = 4.0;
+  bolt.tint = rules_schema::colour::red;
+  auto& nut = model.create<rules_schema::part>();
+  nut.name = "nut";
+  nut.code = "N1";
+  nut.length = 12.0;
+  nut.tint = rules_schema::colour::green;
+  auto& kit = model.create<rules_schema::assembly>();
+  kit.name = "kit";
+  kit.parts = {&bolt, &nut};
+  CHECK(stepnc::rules::validate(model).valid());
+  CHECK(stepnc::rules::validate(model).messages().empty());
+
+  nut.length = -1.0;  // positive_length.wr1, and the kit is 3 long: assembly.long_enough
+  nut.code = "B1";    // part.ur1: the same code as #1
+  auto broken = stepnc::rules::validate(model);
+  CHECK_FALSE(broken.valid());
+  CHECK(broken.structure.empty());
+  CHECK(broken.messages() == std::vector<std::string>{"#2: positive_length.wr1 violated (by length)",
+                                                      "#3: assembly.long_enough violated",
+                                                      "#2: part.ur1 violated: the same values as #1"});
+
+  kit.parts.clear();  // LIST [1:?]: a structural problem; the rules are not evaluated
+  auto empty = stepnc::rules::validate(model);
+  CHECK_FALSE(empty.valid());
+  REQUIRE(empty.structure.size() == 1);
+  CHECK(empty.messages().front().rfind("#3 assembly.parts:", 0) == 0);
+  CHECK(empty.rules.empty());
+}
+
+// Aggregates know their declared kind and bounds: from the attribute, the
+// variable, the parameter or the FUNCTION's result.
+TEST_CASE("SET union keeps each element once; HIBOUND, LOBOUND, HIINDEX, LOINDEX", "[rules][builtins]") {
+  auto file = read(good_parts + "#10=ASSEMBLY('kit',(#1,#2,#1,#3,#2));\n#20=GRID((5,6,7));\n");
+  namespace f = rules_schema::meta_algorithms;
+  using stepnc::rules::call_text;
+  const stepnc::meta::Model& model = file->model;
+  CHECK(call_text(model, f::parts_as_set, {"#10"}) == "[#1,#2,#3]");
+  CHECK(call_text(model, f::parts_as_bag, {"#10"}) == "[#1,#2,#1,#3,#2]");
+  CHECK(call_text(model, f::parts_twice_as_set, {"#10"}) == "[#1,#2,#3]");
+  CHECK(call_text(model, f::add_to_empty_set, {"#1"}) == "1");  // [] given to a SET parameter: s + p + p
+  CHECK(call_text(model, f::add_to_set, {"?", "#1"}) == "?");    // `?` + p is `?`
+  // LIST [1:?]: HIBOUND `?`, LOBOUND 1, HIINDEX the size, LOINDEX 1.
+  CHECK(call_text(model, f::list_bounds, {"#10"}) == "[?,1,5,1]");
+  // ARRAY [2:4]: the declared indices; cells[2] is the first element.
+  CHECK(call_text(model, f::array_bounds, {"#20"}) == "[4,2,4,2,5,7]");
+  // LIST [2:5] local holding 3 elements: the bounds are declared, the indices are not.
+  CHECK(call_text(model, f::local_bounds, {"#10"}) == "[5,2,3,1]");
+  // USEDIN gives a BAG [0:?]; #1 is used by #10 once (USEDIN lists each user once).
+  CHECK(call_text(model, f::usedin_bounds, {"#1"}) == "[?,0,1,1]");
+  CHECK(call_text(model, f::list_bounds, {"?"}) == "[?,?,?,?]");
+}
+
 // The reference schema's functions, as schemas/ restates them: every one
 // runs to its end on `?` arguments (no construct the evaluator cannot
 // follow), and the geometric ones compute the standard's values.

@@ -83,6 +83,8 @@ class RuleEmitter {
   std::vector<Emitted> nodes_;
   std::vector<std::unordered_map<std::string, uint32_t>> scopes_;
   uint32_t next_slot_ = 0, max_slot_ = 0;
+  std::vector<int64_t> slot_shapes_;  // the declared aggregate of each slot (meta::aggregate_shape), 0 if none
+  int64_t result_shape_ = 0;          // the FUNCTION's result
   std::vector<const model::Constant*> constants_;  // being expanded (a cycle guard)
   std::unordered_map<std::string, const Entity*> populations_;  // RULE ... FOR entities
 
@@ -91,12 +93,70 @@ class RuleEmitter {
   void begin_frame() {
     scopes_.assign(1, {});
     next_slot_ = max_slot_ = 0;
+    slot_shapes_.clear();
+    result_shape_ = 0;
   }
-  uint32_t bind(const std::string& name) {
+  uint32_t bind(const std::string& name, int64_t shape = 0) {
     const uint32_t slot = next_slot_++;
     max_slot_ = std::max(max_slot_, next_slot_);
     scopes_.back()[model::lowercase(name)] = slot;
+    if (slot_shapes_.size() <= slot) slot_shapes_.resize(slot + 1);
+    slot_shapes_[slot] = shape;
     return slot;
+  }
+
+  // The declared aggregate kind and constant bounds of a variable, as
+  // meta::aggregate_shape packs them (stepnc/meta/expression.h): what the
+  // evaluator needs for SET union (ISO 10303-11 12.6.3) and HIBOUND/LOBOUND.
+  static int64_t pack_shape(model::AggregateKind kind, std::optional<int64_t> lower, std::optional<int64_t> upper,
+                            bool upper_unbounded) {
+    int64_t shape = static_cast<int64_t>(kind) + 1;
+    if (lower && *lower >= 0 && *lower < (1 << 23) && (upper_unbounded || (upper && *upper >= 0 && *upper < (1 << 30)))) {
+      shape |= 8 | (*lower << 8);
+      if (!upper_unbounded) shape |= (*upper + 1) << 32;
+    }
+    return shape;
+  }
+  static int64_t shape_of(const model::TypeRef& type, int depth = 0) {
+    if (type.kind == model::TypeRef::Kind::Aggregate) {
+      const bool declared = type.lower.value || type.lower.expression || !type.upper.unbounded();
+      if (!declared && type.aggregate != model::AggregateKind::Array)  // no bounds: [0:?] (ISO 10303-11 8.2)
+        return pack_shape(type.aggregate, 0, {}, true);
+      return pack_shape(type.aggregate, type.lower.value, type.upper.value, type.upper.unbounded());
+    }
+    if (type.kind == model::TypeRef::Kind::Defined && type.defined && depth < 32 &&
+        type.defined->kind == model::DefinedType::Kind::Alias)
+      return shape_of(type.defined->underlying, depth + 1);
+    return 0;
+  }
+  static std::optional<int64_t> literal(const ast::Expression* e) {
+    if (!e || e->kind != ast::Expression::Kind::Integer) return std::nullopt;
+    try {
+      return std::stoll(e->text);
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+  int64_t shape_of(const ast::TypeSpec& type) const {
+    using K = ast::TypeSpec::Kind;
+    switch (type.kind) {
+      case K::Array:
+      case K::List:
+      case K::Bag:
+      case K::Set: {
+        const auto kind = static_cast<model::AggregateKind>(static_cast<int>(type.kind) - static_cast<int>(K::Array));
+        if (!type.has_bounds)  // no bounds: [0:?] (ISO 10303-11 8.2)
+          return kind == model::AggregateKind::Array ? pack_shape(kind, {}, {}, false) : pack_shape(kind, 0, {}, true);
+        const bool unbounded = type.upper && type.upper->kind == ast::Expression::Kind::Indeterminate;
+        return pack_shape(kind, literal(type.lower.get()), literal(type.upper.get()), unbounded);
+      }
+      case K::Named:
+        if (const model::DefinedType* defined = schema_.find_type(type.name.text);
+            defined && defined->kind == model::DefinedType::Kind::Alias)
+          return shape_of(defined->underlying);
+        return 0;
+      default: return 0;
+    }
   }
   struct Scope {
     RuleEmitter& e;
@@ -262,7 +322,9 @@ class RuleEmitter {
     switch (e.binding.kind) {
       case BindingKind::Local:
         if (auto slot = slot_of(e.text)) {
-          node(at, "Variable").slot = *slot;
+          Emitted& n = node(at, "Variable");
+          n.slot = *slot;
+          if (*slot < slot_shapes_.size() && slot_shapes_[*slot]) n.integer = std::to_string(slot_shapes_[*slot]);
           return;
         }
         break;
@@ -352,6 +414,7 @@ class RuleEmitter {
       case K::Compound: block(s.body, at); return;
       case K::Return:
         node(at, "Return");
+        if (result_shape_) nodes_[at].integer = std::to_string(result_shape_);
         if (s.value) operands(at, {s.value.get()});
         return;
       case K::Assignment: node(at, "Assign"); operands(at, {s.target.get(), s.value.get()}); return;
@@ -485,10 +548,12 @@ class RuleEmitter {
       for (const ast::Parameter& group : syntax)
         for (const ast::Name& parameter : group.names) {
           if (group.var && parameters < 32) var_parameters |= 1u << parameters;
-          bind(parameter.text);
+          bind(parameter.text, parameters < algorithm.parameters.size() ? shape_of(algorithm.parameters[parameters].type)
+                                                                       : shape_of(group.type));
           ++parameters;
         }
       body = algorithm.function ? &algorithm.function->body : &algorithm.procedure->body;
+      if (algorithm.function) result_shape_ = shape_of(algorithm.result);
       if (algorithm.procedure) kind = "Procedure";
     } else {
       kind = "Rule";
@@ -508,7 +573,7 @@ class RuleEmitter {
     }
     for (const ast::LocalVariable& local : body->locals)
       for (const ast::Name& variable : local.names) {
-        const uint32_t slot = bind(variable.text);
+        const uint32_t slot = bind(variable.text, shape_of(local.type));
         if (local.initializer)
           steps.push_back([this, slot, &local](uint32_t at) { initialise(at, slot, *local.initializer); });
       }
@@ -552,6 +617,7 @@ class RuleEmitter {
     nodes_[at].first = first;
     nodes_[at].count = 2;
     node(first, "Variable").slot = slot;
+    if (slot < slot_shapes_.size() && slot_shapes_[slot]) nodes_[first].integer = std::to_string(slot_shapes_[slot]);
     expression(value, first + 1);
   }
 

@@ -283,6 +283,18 @@ class Filler {
   void read(const ValueRef& target, const p21::Value& v) {
     const TypeInfo& type = target.resolved();
     using p21::ParamKind;
+    // Read by the syntax layer and written back by `stepnc format`, but not
+    // resolved here: a constant's value is an EXPRESS expression of the
+    // schema (an entity constant a partial value, not an instance of the
+    // file), a value instance lives in another file.
+    if (v.is(ParamKind::constant))
+      return fail(v, fmt::format("{} names a constant of the schema (ISO 10303-21:2016 6.4); the typed read does "
+                                 "not resolve constants",
+                                 v.source()));
+    if (v.is(ParamKind::value_reference))
+      return fail(v, fmt::format("@{} is a value instance of another file (ISO 10303-21:2016 10); the typed read "
+                                 "does not resolve external references",
+                                 v.reference()));
     switch (type.kind) {
       case TypeKind::Integer:
         if (v.is(ParamKind::integer)) return target.set_integer(v.integer());

@@ -306,6 +306,8 @@ class DocumentBuilder final : public RecordHandler {
       for (const ParamNode& node : tree_.nodes()) {
         if (node.kind == ParamKind::reference && doc_.find(node.value.reference) == nullptr)
           unresolved_.push_back({node.value.reference, record.offset + node.source_offset, record.id});
+        else if (node.kind == ParamKind::value_reference)
+          unresolved_values_.push_back({node.value.reference, record.offset + node.source_offset, record.id});
       }
     }
     return true;
@@ -329,14 +331,18 @@ class DocumentBuilder final : public RecordHandler {
   }
 
   // A REFERENCE section names instances kept in other files
-  // (`#12 = <other.stp#34>;`): references to them are not missing.
+  // (`#12 = <other.stp#34>;`): references to them are not missing; it is
+  // also where value instances are named (`@70 = <other.stp#value>;`,
+  // ISO 10303-21:2016 10.1), the only place they are.
   void note_external_ids(std::string_view text) {
     for (std::size_t at = 0; at < text.size(); ++at) {
-      if (text[at] != '#' || (at > 0 && text[at - 1] != '\n')) continue;
+      if ((text[at] != '#' && text[at] != '@') || (at > 0 && text[at - 1] != '\n')) continue;
       const char* p = text.data() + at + 1;
-      if (const std::uint64_t id = detail::parse_id(p, text.data() + text.size())) external_ids_.push_back(id);
+      if (const std::uint64_t id = detail::parse_id(p, text.data() + text.size()))
+        (text[at] == '#' ? external_ids_ : external_values_).push_back(id);
     }
     std::sort(external_ids_.begin(), external_ids_.end());
+    std::sort(external_values_.begin(), external_values_.end());
   }
 
   void check_forward_references() {
@@ -344,6 +350,15 @@ class DocumentBuilder final : public RecordHandler {
       if (doc_.find(u.target) != nullptr) continue;
       if (std::binary_search(external_ids_.begin(), external_ids_.end(), u.target)) continue;
       if (!report(u.offset, fmt::format("reference to missing instance #{}", u.target), u.from)) return;
+    }
+    for (const Unresolved& u : unresolved_values_) {
+      if (std::binary_search(external_values_.begin(), external_values_.end(), u.target)) continue;
+      if (!report(u.offset,
+                  fmt::format("reference to value instance @{}, which no REFERENCE section names "
+                              "(ISO 10303-21:2016 10.1)",
+                              u.target),
+                  u.from))
+        return;
     }
   }
 
@@ -353,7 +368,9 @@ class DocumentBuilder final : public RecordHandler {
   detail::Scanner* scanner_ = nullptr;
   ParamTree tree_;
   std::vector<Unresolved> unresolved_;
+  std::vector<Unresolved> unresolved_values_;  // `@n` parameters
   std::vector<std::uint64_t> external_ids_;  // sorted
+  std::vector<std::uint64_t> external_values_;  // `@n` named in REFERENCE sections, sorted
 };
 
 // A copy of `text` as the Document's buffer.

@@ -21,6 +21,8 @@ std::string_view to_string(ParamKind kind) {
     case ParamKind::reference: return "reference";
     case ParamKind::list: return "list";
     case ParamKind::typed: return "typed parameter";
+    case ParamKind::constant: return "constant reference";
+    case ParamKind::value_reference: return "value instance reference";
   }
   return "?";
 }
@@ -228,7 +230,12 @@ class RecordParser {
     if (error_) return false;
     const char* start = p_;
     switch (*p_) {
-      case '#': return parse_reference();
+      case '#':
+        if (detail::is_keyword_start(p_[1])) return parse_constant();
+        return parse_reference();
+      case '@':
+        if (detail::is_keyword_start(p_[1])) return parse_constant();
+        return parse_reference(ParamKind::value_reference);
       case '$': ++p_, close_node(add_node(ParamKind::null, start)); return true;
       case '*': ++p_, close_node(add_node(ParamKind::derived, start)); return true;
       case '\'': return parse_string();
@@ -243,13 +250,32 @@ class RecordParser {
     return false;
   }
 
-  bool parse_reference() {
-    const std::uint32_t index = add_node(ParamKind::reference, p_);
+  // `#NAME`, `@NAME` (ISO 10303-21:2016 6.4: CONSTANT_ENTITY_NAME,
+  // CONSTANT_VALUE_NAME, capitals and digits after the sigil).
+  bool parse_constant() {
+    const char* start = p_++;
+    while (detail::is_keyword_char(*p_)) ++p_;
+    for (const char* c = start + 1; c < p_; ++c)
+      if (*c >= 'a' && *c <= 'z') {
+        fail(start, "a constant name is written in capitals and digits (ISO 10303-21:2016 6.4): '" +
+                        std::string(start, p_) + "'");
+        return false;
+      }
+    close_node(add_node(ParamKind::constant, start));
+    return true;
+  }
+
+  // `#n` (an entity instance) or `@n` (a value instance).
+  bool parse_reference(ParamKind kind = ParamKind::reference) {
+    const std::uint32_t index = add_node(kind, p_);
     ++p_;
     const char* digits = p_;
     const std::uint64_t id = detail::parse_id(p_, end_);
     if (id == 0) {
-      fail(digits, detail::bad_id_message(digits, p_));
+      if (kind == ParamKind::value_reference && digits == p_)
+        fail(digits, "expected a value instance id or a constant name after '@'");
+      else
+        fail(digits, detail::bad_id_message(digits, p_));
       return false;
     }
     tree_.nodes_[index].value.reference = id;

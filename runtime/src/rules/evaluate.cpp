@@ -10,11 +10,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -27,6 +29,7 @@
 namespace stepnc::rules {
 namespace {
 
+using meta::AggregateShape;
 using meta::Builtin;
 using meta::Node;
 using meta::NodeKind;
@@ -49,17 +52,23 @@ struct Partial {
   std::vector<std::pair<std::string_view, std::shared_ptr<Value>>> attributes;
 };
 
+// 80 bytes, and only one counted pointer to copy: text views the
+// constant tables or the model (neither changes during a check), or
+// `heap`, which owns it, the elements or the partial value.
 struct Value {
   enum class Kind : std::uint8_t { Indeterminate, Integer, Real, Logical, String, Binary, Enumeration, Instance, Partial, Aggregate };
   Kind kind = Kind::Indeterminate;
   Truth logical = Truth::Unknown;
   std::int64_t integer = 0;  // Integer; Aggregate: the lower index
   double real = 0;
-  std::string text;  // String, Binary (bits), Enumeration (item)
+  std::string_view text;  // String, Binary (bits), Enumeration (item)
   const meta::TypeInfo* type = nullptr;  // the named type the value was declared with, if any
   meta::Instance* instance = nullptr;
-  std::shared_ptr<Partial> partial;
-  std::shared_ptr<Elements> elements;
+  std::shared_ptr<void> heap;  // Aggregate: Elements; Partial: Partial; String, Binary: its std::string when owned
+  std::int64_t shape = 0;      // Aggregate: its declared type when known (AggregateShape, packed)
+
+  Elements* elements() const { return static_cast<Elements*>(heap.get()); }
+  Partial* partial() const { return static_cast<Partial*>(heap.get()); }
 
   bool indeterminate() const { return kind == Kind::Indeterminate; }
   bool number() const { return kind == Kind::Integer || kind == Kind::Real; }
@@ -85,10 +94,17 @@ struct Value {
     return r;
   }
   static Value of_bool(bool b) { return of_truth(b ? Truth::True : Truth::False); }
-  static Value of_string(std::string s) {
+  // A string that lives as long as the check (constant tables, the model).
+  static Value of_view(std::string_view s, Kind kind = Kind::String) {
     Value r;
-    r.kind = Kind::String;
-    r.text = std::move(s);
+    r.kind = kind;
+    r.text = s;
+    return r;
+  }
+  static Value of_string(std::string s) {
+    auto owned = std::make_shared<std::string>(std::move(s));
+    Value r = of_view(*owned);
+    r.heap = std::move(owned);
     return r;
   }
   static Value of_instance(meta::Instance* i) {
@@ -99,11 +115,21 @@ struct Value {
     }
     return r;
   }
-  static Value of_elements(Elements e, std::int64_t lower = 1) {
+  static Value of_shared(std::shared_ptr<Elements> e, std::int64_t lower = 1) {
     Value r;
     r.kind = Kind::Aggregate;
     r.integer = lower;
-    r.elements = std::make_shared<Elements>(std::move(e));
+    r.heap = std::move(e);
+    return r;
+  }
+  static Value of_elements(Elements e, std::int64_t lower = 1) {
+    return of_shared(std::make_shared<Elements>(std::move(e)), lower);
+  }
+  AggregateShape::Kind aggregate_kind() const { return AggregateShape::unpack(shape).kind; }
+  static Value of_partial(std::shared_ptr<Partial> p) {
+    Value r;
+    r.kind = Kind::Partial;
+    r.heap = std::move(p);
     return r;
   }
 };
@@ -112,6 +138,33 @@ Truth truth_of(const Value& v) {
   if (v.kind == Value::Kind::Logical) return v.logical;
   return Truth::Unknown;
 }
+// The shape of a stored aggregate type (its bounds from the metaclass).
+std::int64_t shape_of(const meta::TypeInfo& resolved) {
+  AggregateShape s;
+  switch (resolved.kind) {
+    case meta::TypeKind::Array: s.kind = AggregateShape::Kind::Array; break;
+    case meta::TypeKind::List: s.kind = AggregateShape::Kind::List; break;
+    case meta::TypeKind::Bag: s.kind = AggregateShape::Kind::Bag; break;
+    case meta::TypeKind::Set: s.kind = AggregateShape::Kind::Set; break;
+    default: return 0;
+  }
+  s.bounded = resolved.lower >= 0 && resolved.lower < (1 << 23) && resolved.upper < (1 << 30);
+  s.lower = resolved.lower;
+  s.upper = resolved.upper < 0 ? -1 : resolved.upper;
+  return s.pack();
+}
+
+// A BAG or SET with no declared bounds, [0:?]: what USEDIN, TYPEOF,
+// ROLESOF and an entity extent give.
+std::int64_t unbounded(AggregateShape::Kind kind) {
+  AggregateShape s;
+  s.kind = kind;
+  s.bounded = true;
+  s.lower = 0;
+  s.upper = -1;
+  return s.pack();
+}
+
 Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
 
 std::string upper(std::string_view s) {
@@ -144,7 +197,7 @@ Value from_select(const meta::Select& select) {
   } else if (const auto* d = std::get_if<double>(&storage)) {
     v = Value::of_real(*d);
   } else if (const auto* s = std::get_if<meta::String>(&storage)) {
-    v = Value::of_string(std::string(s->view()));
+    v = Value::of_view(s->view());
     if (resolved.kind == meta::TypeKind::Binary) v.kind = Value::Kind::Binary;
   }
   v.type = member;
@@ -160,14 +213,14 @@ Value from_ref(const meta::ValueRef& ref) {
     case meta::TypeKind::Number: v = Value::of_real(ref.real()); break;
     case meta::TypeKind::Boolean: v = Value::of_bool(ref.boolean()); break;
     case meta::TypeKind::Logical: v = Value::of_truth(static_cast<Truth>(ref.logical())); break;
-    case meta::TypeKind::String: v = Value::of_string(std::string(ref.string())); break;
+    case meta::TypeKind::String: v = Value::of_view(ref.string()); break;
     case meta::TypeKind::Binary:
       v.kind = Value::Kind::Binary;
-      v.text = std::string(ref.binary().hex_digits.view());
+      v.text = ref.binary().hex_digits.view();
       break;
     case meta::TypeKind::Enumeration:
       v.kind = Value::Kind::Enumeration;
-      v.text = std::string(ref.enumeration());
+      v.text = ref.enumeration();
       break;
     case meta::TypeKind::Entity: return Value::of_instance(ref.instance());
     case meta::TypeKind::Select: return from_select(ref.select());
@@ -180,6 +233,7 @@ Value from_ref(const meta::ValueRef& ref) {
       elements.reserve(n);
       for (std::size_t i = 0; i < n; ++i) elements.push_back(from_ref(ref.element(i)));
       v = Value::of_elements(std::move(elements), resolved.kind == meta::TypeKind::Array ? resolved.lower : 1);
+      v.shape = shape_of(resolved);
       break;
     }
     case meta::TypeKind::Alias: break;  // resolved() never is
@@ -218,8 +272,8 @@ Truth equal(const Value& a, const Value& b) {
     case K::Binary: return a.text == b.text ? Truth::True : Truth::False;
     case K::Enumeration: return meta::equal_names(a.text, b.text) ? Truth::True : Truth::False;
     case K::Instance: return a.instance == b.instance ? Truth::True : Truth::False;
-    case K::Partial: return a.partial == b.partial ? Truth::True : Truth::False;
-    case K::Aggregate: return equal_elements(*a.elements, *b.elements);
+    case K::Partial: return a.partial() == b.partial() ? Truth::True : Truth::False;
+    case K::Aggregate: return equal_elements(*a.elements(), *b.elements());
     default: return Truth::Unknown;
   }
 }
@@ -241,7 +295,7 @@ std::optional<int> compare(const Value& a, const Value& b) {
   }
   if (a.kind == K::Enumeration && a.type && b.type && &a.type->resolved() == &b.type->resolved()) {
     const auto& items = a.type->resolved().items;
-    auto index = [&](const std::string& item) {
+    auto index = [&](std::string_view item) {
       return std::find_if(items.begin(), items.end(), [&](std::string_view i) { return meta::equal_names(i, item); }) -
              items.begin();
     };
@@ -332,15 +386,32 @@ class Interpreter {
   }
 
   // A global rule: runs its body, then reports each domain rule's result.
-  std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule) {
+  // `known(i)` gives the result of domain rule i when it was already
+  // evaluated (a fused rule, Checker::FusedRule), or throws what it threw.
+  std::vector<Truth> run_rule(const meta::AlgorithmInfo& rule,
+                              const std::function<std::optional<Truth>(std::size_t)>& known) {
     Frame frame(pool_, rule.frame);
     steps_ = 0;
     forget_results();
     execute(rule.body.nodes, rule.body.root, frame);
     std::vector<Truth> results;
-    for (const meta::DomainRuleInfo& where : rule.where)
-      results.push_back(truth_of(eval(where.expression.nodes, where.expression.root, frame)));
+    for (std::size_t i = 0; i < rule.where.size(); ++i) {
+      const meta::DomainRuleInfo& where = rule.where[i];
+      if (const std::optional<Truth> result = known(i))
+        results.push_back(*result);
+      else
+        results.push_back(truth_of(eval(where.expression.nodes, where.expression.root, frame)));
+    }
     return results;
+  }
+
+  // One element's predicate of a global rule's `SIZEOF(QUERY(v <* E | p)) = 0`
+  // (see Checker::FusedRule): p with v bound to `element`.
+  Truth predicate(const Node* nodes, std::uint32_t query, std::uint32_t frame_size, Value element) {
+    Frame frame(pool_, frame_size);
+    steps_ = 0;
+    frame.slots.at(nodes[query].slot) = std::move(element);
+    return truth_of(eval(nodes, nodes[query].first + 1, frame));
   }
 
   /// Drops the kept FUNCTION results: called before each instance is checked.
@@ -376,13 +447,16 @@ class Interpreter {
   // Sound because a FUNCTION changes nothing outside its own frame (it has
   // no VAR parameters, ISO 10303-11 9.5.1), the model does not change
   // during a check, and a result depends only on its arguments and the
-  // model. Kept only for calls whose arguments are all instances or `?`
-  // (pointers: an exact key, no hashing of values), and never a result
-  // holding a constructed value, whose identity `:=:` would see. A call that
-  // throws (not evaluable) is not kept.
+  // model. Kept only for calls whose arguments are instances, `?` or small
+  // aggregates of instances (with their declared shape and lower index,
+  // which `+` and HIINDEX see): pointers make an exact key, no hashing of
+  // values (`bag_to_set(USEDIN(x, ''))` is called for one instance by
+  // `using_items` and by a global rule). Never a result holding a
+  // constructed value, whose identity `:=:` would see. A call that throws
+  // (not evaluable) is not kept.
   struct CallKey {
     const meta::AlgorithmInfo* algorithm;
-    std::array<const meta::Instance*, 3> arguments;
+    std::array<std::uintptr_t, 12> words;  // an instance's address or 0 for `?`; an aggregate: a tag, shape, lower index, elements
     bool operator==(const CallKey&) const = default;
   };
   std::vector<std::pair<CallKey, Value>> results_;  // a few per instance: searched in order
@@ -392,18 +466,32 @@ class Interpreter {
     if (algorithm.kind != meta::AlgorithmInfo::Kind::Function || algorithm.var_parameters != 0 || arguments.size() > 3)
       return std::nullopt;
     CallKey key{&algorithm, {}};
-    for (std::size_t i = 0; i < arguments.size(); ++i) {
-      if (arguments[i].kind == Value::Kind::Instance)
-        key.arguments[i] = arguments[i].instance;
-      else if (!arguments[i].indeterminate())
+    std::size_t used = 0;
+    for (const Value& argument : arguments) {
+      if (argument.kind == Value::Kind::Instance) {
+        key.words[used++] = reinterpret_cast<std::uintptr_t>(argument.instance);
+      } else if (argument.kind == Value::Kind::Aggregate) {
+        const Elements& elements = *argument.elements();
+        if (used + 3 + elements.size() > key.words.size()) return std::nullopt;
+        key.words[used++] = 1 | (elements.size() << 1);  // odd: never an instance's address
+        key.words[used++] = static_cast<std::uintptr_t>(argument.shape);
+        key.words[used++] = static_cast<std::uintptr_t>(argument.integer);
+        for (const Value& e : elements) {
+          if (e.kind != Value::Kind::Instance) return std::nullopt;
+          key.words[used++] = reinterpret_cast<std::uintptr_t>(e.instance);
+        }
+      } else if (argument.indeterminate()) {
+        key.words[used++] = 0;
+      } else {
         return std::nullopt;
+      }
     }
     return key;
   }
 
   static bool holds_partial(const Value& v) {
     if (v.kind == Value::Kind::Partial) return true;
-    return v.kind == Value::Kind::Aggregate && std::any_of(v.elements->begin(), v.elements->end(), holds_partial);
+    return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
   const query::ReferenceIndex& references() {
@@ -439,7 +527,7 @@ class Interpreter {
 
   Value attribute(const Value& base, std::string_view name) {
     if (base.kind == Value::Kind::Partial) {
-      for (const auto& [n, v] : base.partial->attributes)
+      for (const auto& [n, v] : base.partial()->attributes)
         if (meta::equal_names(n, name)) return *v;
       return {};
     }
@@ -465,7 +553,9 @@ class Interpreter {
               meta::equal_names(use.attribute->name, a->inverse_attribute))
             if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
         if (!a->type->resolved().is_aggregate()) return users.empty() ? Value{} : users.front();
-        return Value::of_elements(std::move(users));
+        Value result = Value::of_elements(std::move(users));
+        result.shape = shape_of(a->type->resolved());
+        return result;
       }
     }
     return {};
@@ -478,19 +568,41 @@ class Interpreter {
       for (meta::Instance* i : model_.instances())
         if (is_a(*i, entity)) it->second->push_back(Value::of_instance(i));
     }
-    Value v;
-    v.kind = Value::Kind::Aggregate;
-    v.integer = 1;
-    v.elements = it->second;
-    return v;
+    Value extent = Value::of_shared(it->second);
+    extent.shape = unbounded(AggregateShape::Kind::Set);
+    return extent;
   }
 
   // ------------------------------------------------------------ expressions
+
+  // The declared shape of an aggregate value: its own, or the variable's
+  // declaration that holds it (a parameter given an aggregate initializer).
+  static std::int64_t declared(const Node* nodes, std::uint32_t index, const Value& v) {
+    if (v.shape) return v.shape;
+    return nodes[index].kind == NodeKind::Variable ? nodes[index].integer : 0;
+  }
+
+  // `v` as a value of the declared aggregate `shape` (an assignment, a
+  // RETURN): a SET keeps each element once.
+  static Value shaped(Value v, std::int64_t shape) {
+    if (!shape || v.kind != Value::Kind::Aggregate) return v;
+    const AggregateShape s = AggregateShape::unpack(shape);
+    if (s.kind == AggregateShape::Kind::Set && v.aggregate_kind() != AggregateShape::Kind::Set) {
+      Elements once;
+      for (const Value& e : *v.elements())
+        if (member(e, once) != Truth::True) once.push_back(e);
+      if (once.size() != v.elements()->size()) v.heap = std::make_shared<Elements>(std::move(once));
+    }
+    if (s.kind == AggregateShape::Kind::Array && s.bounded) v.integer = s.lower;
+    v.shape = shape;
+    return v;
+  }
 
   // A variable's value where it is, anything else evaluated into `scratch`:
   // for operands that are only read.
   const Value& peek(const Node* nodes, std::uint32_t index, Frame& frame, Value& scratch) {
     if (nodes[index].kind == NodeKind::Variable) return frame.slots.at(nodes[index].slot);
+    if (nodes[index].kind == NodeKind::Self) return frame.self;
     scratch = eval(nodes, index, frame);
     return scratch;
   }
@@ -501,11 +613,9 @@ class Interpreter {
     switch (n.kind) {
       case NodeKind::Integer: return Value::of_integer(n.integer);
       case NodeKind::Real: return Value::of_real(n.real);
-      case NodeKind::String: return Value::of_string(std::string(n.text));
+      case NodeKind::String: return Value::of_view(n.text);
       case NodeKind::Binary: {
-        Value v = Value::of_string(std::string(n.text));
-        v.kind = Value::Kind::Binary;
-        return v;
+        return Value::of_view(n.text, Value::Kind::Binary);
       }
       case NodeKind::Logical: return Value::of_truth(static_cast<Truth>(n.integer));
       case NodeKind::Indeterminate: return {};
@@ -514,12 +624,15 @@ class Interpreter {
       case NodeKind::EnumerationItem: {
         Value v;
         v.kind = Value::Kind::Enumeration;
-        v.text = std::string(n.text);
+        v.text = n.text;
         v.type = n.type;
         return v;
       }
       case NodeKind::Population: return population(*n.entity);
-      case NodeKind::Attribute: return attribute(operand(0), n.text);
+      case NodeKind::Attribute: {
+        Value scratch;
+        return attribute(peek(nodes, n.first, frame, scratch), n.text);
+      }
       case NodeKind::Group: {
         Value base = operand(0);
         if (base.kind == Value::Kind::Instance && !is_a(*base.instance, *n.entity)) return {};
@@ -560,10 +673,7 @@ class Interpreter {
         const std::size_t skip = own.size() > n.count ? own.size() - n.count : 0;
         for (std::uint32_t i = 0; i < n.count && skip + i < own.size(); ++i)
           partial->attributes.emplace_back(own[skip + i], std::make_shared<Value>(operand(i)));
-        Value v;
-        v.kind = Value::Kind::Partial;
-        v.partial = std::move(partial);
-        return v;
+        return Value::of_partial(std::move(partial));
       }
       case NodeKind::Unary: {
         Value v = operand(0);
@@ -601,13 +711,18 @@ class Interpreter {
         Value scratch;
         const Value& source = peek(nodes, n.first, frame, scratch);
         if (source.kind != Value::Kind::Aggregate) return {};
-        const std::shared_ptr<Elements> elements = source.elements;  // alive whatever the predicate assigns
+        const std::shared_ptr<void> alive = source.heap;  // whatever the predicate assigns
+        const Elements* elements = source.elements();
         Elements kept;
         for (const Value& element : *elements) {
           frame.slots.at(n.slot) = element;
           if (truth_of(eval(nodes, n.first + 1, frame)) == Truth::True) kept.push_back(element);
         }
-        return Value::of_elements(std::move(kept));
+        // The source's kind with bounds [0:?] (ISO 10303-11 12.6.7); an ARRAY's is not kept.
+        const AggregateShape::Kind kind = AggregateShape::unpack(declared(nodes, n.first, source)).kind;
+        Value result = Value::of_elements(std::move(kept));
+        if (kind != AggregateShape::Kind::Array && kind != AggregateShape::Kind::None) result.shape = unbounded(kind);
+        return result;
       }
       case NodeKind::Unevaluable: throw Unevaluable(fmt::format("'{}' was not resolved by expressc", n.text));
       default: throw Unevaluable("a statement where an expression belongs");
@@ -646,9 +761,13 @@ class Interpreter {
   }
 
   static Truth member(const Value& item, const Value& aggregate) {
-    if (item.indeterminate() || aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
+    if (aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
+    return member(item, *aggregate.elements());
+  }
+  static Truth member(const Value& item, const Elements& elements) {
+    if (item.indeterminate()) return Truth::Unknown;
     Truth result = Truth::False;
-    for (const Value& e : *aggregate.elements) {
+    for (const Value& e : elements) {
       const Truth t = equal(item, e);
       if (t == Truth::True) return Truth::True;
       if (t == Truth::Unknown) result = Truth::Unknown;
@@ -675,7 +794,7 @@ class Interpreter {
         if (subject.kind == Value::Kind::Instance)
           return Value::of_bool(has_type_name(subject.instance->entity_info(), name_node.text));
         if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
-        return Value::of_truth(member(Value::of_string(std::string(name_node.text)), type_of(subject)));
+        return Value::of_truth(member(Value::of_view(name_node.text), type_of(subject)));
       }
       Value name = eval(nodes, n.first, frame);
       Value subject = eval(nodes, nodes[n.first + 1].first, frame);
@@ -684,7 +803,9 @@ class Interpreter {
       if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
       return Value::of_truth(member(name, type_of(subject)));
     }
-    Value a = eval(nodes, n.first, frame), b = eval(nodes, n.first + 1, frame);
+    Value scratch_a, scratch_b;
+    const Value& a = peek(nodes, n.first, frame, scratch_a);
+    const Value& b = peek(nodes, n.first + 1, frame, scratch_b);
     using K = Value::Kind;
     switch (n.op) {
       case Operator::Xor: {
@@ -701,13 +822,10 @@ class Interpreter {
         auto merged = std::make_shared<Partial>();
         for (const Value* v : {&a, &b}) {
           if (v->kind != K::Partial) return {};  // instances of a model cannot be combined
-          merged->entities.insert(merged->entities.end(), v->partial->entities.begin(), v->partial->entities.end());
-          merged->attributes.insert(merged->attributes.end(), v->partial->attributes.begin(), v->partial->attributes.end());
+          merged->entities.insert(merged->entities.end(), v->partial()->entities.begin(), v->partial()->entities.end());
+          merged->attributes.insert(merged->attributes.end(), v->partial()->attributes.begin(), v->partial()->attributes.end());
         }
-        Value v;
-        v.kind = K::Partial;
-        v.partial = std::move(merged);
-        return v;
+        return Value::of_partial(std::move(merged));
       }
       case Operator::Less:
       case Operator::Greater:
@@ -721,8 +839,10 @@ class Interpreter {
     }
     if (a.indeterminate() || b.indeterminate()) return {};
     // Aggregates: union, difference, intersection (ISO 10303-11 12.6).
-    if (a.kind == K::Aggregate || b.kind == K::Aggregate) return aggregate_operation(n.op, a, b);
-    if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(a.text + b.text);
+    if (a.kind == K::Aggregate || b.kind == K::Aggregate)
+      return aggregate_operation(n.op, a, b, a.kind == K::Aggregate ? declared(nodes, n.first, a) : 0,
+                                 b.kind == K::Aggregate ? declared(nodes, n.first + 1, b) : 0);
+    if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(std::string(a.text) + std::string(b.text));
     if (!a.number() || !b.number()) return {};
     const bool integers = a.kind == K::Integer && b.kind == K::Integer;
     switch (n.op) {
@@ -749,31 +869,43 @@ class Interpreter {
     }
   }
 
-  static Value aggregate_operation(Operator op, const Value& a, const Value& b) {
+  // Union, difference and intersection (ISO 10303-11 12.6.2-12.6.4), of the
+  // kind of the left aggregate (or of the right when the left is an
+  // element; an intersection with a SET is a SET): a SET keeps each
+  // element once. `a_shape`, `b_shape`: the operands' declared shapes.
+  static Value aggregate_operation(Operator op, const Value& a, const Value& b, std::int64_t a_shape,
+                                   std::int64_t b_shape) {
     using K = Value::Kind;
-    Elements result = a.kind == K::Aggregate ? *a.elements : Elements{a};
+    using Kind = AggregateShape::Kind;
+    const Kind left = AggregateShape::unpack(a_shape).kind, right_kind = AggregateShape::unpack(b_shape).kind;
+    Kind kind = a.kind == K::Aggregate ? left : right_kind;
+    if (op == Operator::Multiply && (left == Kind::Set || right_kind == Kind::Set)) kind = Kind::Set;
+    const bool set = kind == Kind::Set;
+    Elements result = a.kind == K::Aggregate ? *a.elements() : Elements{a};
     auto contains = [](const Elements& list, const Value& v) {
       return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
     };
     const Elements single = b.kind == K::Aggregate ? Elements{} : Elements{b};
-    const Elements& right = b.kind == K::Aggregate ? *b.elements : single;
+    const Elements& right = b.kind == K::Aggregate ? *b.elements() : single;
     switch (op) {
       case Operator::Add:
         if (a.kind != K::Aggregate) {
           result = right;
-          result.insert(result.begin(), a);
+          if (!set || !contains(result, a)) result.insert(result.begin(), a);
+        } else if (set) {
+          for (const Value& e : right)
+            if (!contains(result, e)) result.push_back(e);
         } else {
           result.insert(result.end(), right.begin(), right.end());
         }
-        return Value::of_elements(std::move(result));
-      case Operator::Subtract:
-        std::erase_if(result, [&](const Value& e) { return contains(right, e); });
-        return Value::of_elements(std::move(result));
-      case Operator::Multiply:
-        std::erase_if(result, [&](const Value& e) { return !contains(right, e); });
-        return Value::of_elements(std::move(result));
+        break;
+      case Operator::Subtract: std::erase_if(result, [&](const Value& e) { return contains(right, e); }); break;
+      case Operator::Multiply: std::erase_if(result, [&](const Value& e) { return !contains(right, e); }); break;
       default: return {};
     }
+    Value value = Value::of_elements(std::move(result));
+    if (kind != Kind::None && kind != Kind::Array) value.shape = unbounded(kind);
+    return value;
   }
 
   static Value index_of(const Value& base, const Value& low, const Value& high, bool range) {
@@ -781,10 +913,10 @@ class Interpreter {
     if (base.kind == Value::Kind::String) {
       const std::int64_t from = low.integer, to = range ? high.integer : low.integer;
       if (from < 1 || to > static_cast<std::int64_t>(base.text.size()) || from > to) return {};
-      return Value::of_string(base.text.substr(from - 1, to - from + 1));
+      return Value::of_string(std::string(base.text.substr(from - 1, to - from + 1)));
     }
     if (base.kind != Value::Kind::Aggregate) return {};
-    const auto& elements = *base.elements;
+    const auto& elements = *base.elements();
     const std::int64_t i = low.integer - base.integer;
     if (!range) {
       if (i < 0 || i >= static_cast<std::int64_t>(elements.size())) return {};
@@ -823,7 +955,7 @@ class Interpreter {
       case K::Indeterminate: return {};
       case K::Instance: typeof_names(v.instance->entity_info(), names); break;
       case K::Partial:
-        for (const meta::EntityInfo* e : v.partial->entities)
+        for (const meta::EntityInfo* e : v.partial()->entities)
           if (!e->upcasts.empty()) {
             typeof_names(*e, names);
           } else {
@@ -834,17 +966,19 @@ class Interpreter {
         for (const meta::TypeInfo* t = v.type; t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
           if (!t->name.empty() && t->schema) names.push_back(Value::of_string(upper(t->schema->name) + "." + upper(t->name)));
         static constexpr std::string_view simple[] = {"INTEGER", "REAL", "NUMBER", "LOGICAL", "STRING", "BINARY"};
-        if (v.kind == K::Integer) names.push_back(Value::of_string(std::string(simple[0])));
-        if (v.number()) names.push_back(Value::of_string(std::string(simple[1])));
-        if (v.number()) names.push_back(Value::of_string(std::string(simple[2])));
-        if (v.kind == K::Logical) names.push_back(Value::of_string(std::string(simple[3])));
-        if (v.kind == K::Logical && v.logical != Truth::Unknown) names.push_back(Value::of_string("BOOLEAN"));
-        if (v.kind == K::String) names.push_back(Value::of_string(std::string(simple[4])));
-        if (v.kind == K::Binary) names.push_back(Value::of_string(std::string(simple[5])));
-        if (v.kind == K::Aggregate) names.push_back(Value::of_string("AGGREGATE"));
+        if (v.kind == K::Integer) names.push_back(Value::of_view(simple[0]));
+        if (v.number()) names.push_back(Value::of_view(simple[1]));
+        if (v.number()) names.push_back(Value::of_view(simple[2]));
+        if (v.kind == K::Logical) names.push_back(Value::of_view(simple[3]));
+        if (v.kind == K::Logical && v.logical != Truth::Unknown) names.push_back(Value::of_view("BOOLEAN"));
+        if (v.kind == K::String) names.push_back(Value::of_view(simple[4]));
+        if (v.kind == K::Binary) names.push_back(Value::of_view(simple[5]));
+        if (v.kind == K::Aggregate) names.push_back(Value::of_view("AGGREGATE"));
       }
     }
-    return Value::of_elements(std::move(names));
+    Value result = Value::of_elements(std::move(names));
+    result.shape = unbounded(AggregateShape::Kind::Set);
+    return result;
   }
 
   // USEDIN(T, R) and ROLESOF(V) (ISO 10303-11 15.26, 15.20).
@@ -865,7 +999,9 @@ class Interpreter {
         continue;
       if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
     }
-    return Value::of_elements(std::move(users));
+    Value result = Value::of_elements(std::move(users));
+    result.shape = unbounded(AggregateShape::Kind::Bag);
+    return result;
   }
 
   Value roles_of(const Value& target) {
@@ -876,7 +1012,35 @@ class Interpreter {
                                     "." + upper(use.attribute->name));
       if (member(role, Value::of_elements(roles)) != Truth::True) roles.push_back(std::move(role));
     }
-    return Value::of_elements(std::move(roles));
+    Value result = Value::of_elements(std::move(roles));
+    result.shape = unbounded(AggregateShape::Kind::Set);
+    return result;
+  }
+
+  // SIZEOF, HIINDEX, LOINDEX, HIBOUND, LOBOUND of an aggregate of the
+  // declared `shape` (ISO 10303-11 15.10, 15.11, 15.14, 15.15, 15.21): an
+  // ARRAY's indices are declared, a BAG's, LIST's or SET's run from 1 to
+  // its size; HIBOUND and LOBOUND give the declared bounds, `?` for an
+  // unbounded upper one or when the declaration is not known (an
+  // aggregate initializer).
+  static Value bound(Builtin which, const Value& v, std::int64_t shape) {
+    const auto size = static_cast<std::int64_t>(v.elements()->size());
+    const AggregateShape s = AggregateShape::unpack(shape);
+    const bool array = s.kind == AggregateShape::Kind::Array || (s.kind == AggregateShape::Kind::None && v.integer != 1);
+    switch (which) {
+      case Builtin::Sizeof: return Value::of_integer(size);
+      case Builtin::Hiindex:
+        if (!array) return Value::of_integer(size);
+        return Value::of_integer(s.bounded && s.upper >= 0 ? s.upper : v.integer + size - 1);
+      case Builtin::Loindex: return Value::of_integer(array ? (s.bounded ? s.lower : v.integer) : 1);
+      case Builtin::Hibound:
+        if (!s.bounded || s.upper < 0) return {};
+        return Value::of_integer(s.upper);
+      case Builtin::Lobound:
+        if (!s.bounded) return {};
+        return Value::of_integer(s.lower);
+      default: return {};
+    }
   }
 
   Value builtin(const Node* nodes, const Node& n, Frame& frame) {
@@ -922,23 +1086,14 @@ class Interpreter {
         return Value::of_bool(v.integer % 2 != 0);
       }
       case Builtin::Sizeof:
-      case Builtin::Hiindex: {
+      case Builtin::Hiindex:
+      case Builtin::Loindex:
+      case Builtin::Hibound:
+      case Builtin::Lobound: {
         Value scratch;
         const Value& v = n.count ? peek(nodes, n.first, frame, scratch) : scratch;
         if (v.kind != Value::Kind::Aggregate) return {};
-        const auto size = static_cast<std::int64_t>(v.elements->size());
-        return Value::of_integer(n.builtin == Builtin::Sizeof ? size : v.integer + size - 1);
-      }
-      case Builtin::Loindex:
-      case Builtin::Lobound: {
-        Value v = arg(0);
-        return v.kind == Value::Kind::Aggregate ? Value::of_integer(v.integer) : Value{};
-      }
-      case Builtin::Hibound: {
-        // Bounds are not carried with values: the elements present bound it.
-        Value v = arg(0);
-        if (v.kind != Value::Kind::Aggregate) return {};
-        return Value::of_integer(v.integer + static_cast<std::int64_t>(v.elements->size()) - 1);
+        return bound(n.builtin, v, declared(nodes, n.first, v));
       }
       case Builtin::Length: {
         Value v = arg(0);
@@ -959,8 +1114,9 @@ class Interpreter {
         Value v = arg(0);
         if (v.kind != Value::Kind::String) return {};
         char* end = nullptr;
-        const double d = std::strtod(v.text.c_str(), &end);
-        if (end == v.text.c_str()) return {};
+        const std::string number(v.text);
+        const double d = std::strtod(number.c_str(), &end);
+        if (end == number.c_str()) return {};
         if (v.text.find_first_of(".eE") == std::string::npos) return Value::of_integer(static_cast<std::int64_t>(d));
         return Value::of_real(d);
       }
@@ -976,7 +1132,7 @@ class Interpreter {
       case Builtin::Value_unique: {
         Value v = arg(0);
         if (v.kind != Value::Kind::Aggregate) return Value::of_truth(Truth::Unknown);
-        const auto& e = *v.elements;
+        const auto& e = *v.elements();
         for (std::size_t i = 0; i < e.size(); ++i)
           for (std::size_t j = i + 1; j < e.size(); ++j)
             if (equal(e[i], e[j]) == Truth::True) return Value::of_bool(false);
@@ -1027,16 +1183,16 @@ class Interpreter {
       Value* base = place(nodes, n.first, frame);
       Value at = eval(nodes, n.first + 1, frame);
       if (!base || base->kind != Value::Kind::Aggregate || at.kind != Value::Kind::Integer) return nullptr;
-      if (base->elements.use_count() > 1) base->elements = std::make_shared<Elements>(*base->elements);
+      if (base->heap.use_count() > 1) base->heap = std::make_shared<Elements>(*base->elements());
       const std::int64_t i = at.integer - base->integer;
-      if (i < 0 || i >= static_cast<std::int64_t>(base->elements->size())) return nullptr;
-      return &(*base->elements)[i];
+      if (i < 0 || i >= static_cast<std::int64_t>(base->elements()->size())) return nullptr;
+      return &(*base->elements())[i];
     }
     if (n.kind == NodeKind::Attribute) {
       Value* base = place(nodes, n.first, frame);
       if (!base || base->kind != Value::Kind::Partial) return nullptr;
-      if (base->partial.use_count() > 1) base->partial = std::make_shared<Partial>(*base->partial);
-      for (auto& [name, value] : base->partial->attributes)
+      if (base->heap.use_count() > 1) base->heap = std::make_shared<Partial>(*base->partial());
+      for (auto& [name, value] : base->partial()->attributes)
         if (meta::equal_names(name, n.text)) {
           value = std::make_shared<Value>(*value);
           return value.get();
@@ -1062,17 +1218,25 @@ class Interpreter {
       slot = Value{};
       return true;
     }
-    std::shared_ptr<Elements> elements = std::move(slot.elements);
+    const AggregateShape::Kind kind = AggregateShape::unpack(declared(nodes, sum.first, slot)).kind;
+    std::shared_ptr<Elements> elements = std::static_pointer_cast<Elements>(std::move(slot.heap));
     if (elements.use_count() > 1) elements = std::make_shared<Elements>(*elements);
-    if (item.kind == Value::Kind::Aggregate)
-      elements->insert(elements->end(), item.elements->begin(), item.elements->end());
-    else
+    if (kind == AggregateShape::Kind::Set) {  // each element once (ISO 10303-11 12.6.3)
+      auto add = [&](const Value& e) {
+        if (member(e, *elements) != Truth::True) elements->push_back(e);
+      };
+      if (item.kind == Value::Kind::Aggregate)
+        for (const Value& e : *item.elements()) add(e);
+      else
+        add(item);
+    } else if (item.kind == Value::Kind::Aggregate) {
+      elements->insert(elements->end(), item.elements()->begin(), item.elements()->end());
+    } else {
       elements->push_back(std::move(item));
-    Value result;
-    result.kind = Value::Kind::Aggregate;
-    result.integer = 1;
-    result.elements = std::move(elements);
-    slot = std::move(result);
+    }
+    Value sum_value = Value::of_shared(std::move(elements));
+    if (kind != AggregateShape::Kind::None && kind != AggregateShape::Kind::Array) sum_value.shape = unbounded(kind);
+    slot = shaped(std::move(sum_value), target.integer);
     return true;
   }
 
@@ -1084,11 +1248,12 @@ class Interpreter {
       case NodeKind::Skip: return Flow::Skip;
       case NodeKind::Block: return execute_list(nodes, n.first, n.count, frame);
       case NodeKind::Return:
-        frame.result = n.count ? eval(nodes, n.first, frame) : Value{};
+        frame.result = n.count ? shaped(eval(nodes, n.first, frame), n.integer) : Value{};
         return Flow::Return;
       case NodeKind::Assign: {
         if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);
+        if (nodes[n.first].kind == NodeKind::Variable) value = shaped(std::move(value), nodes[n.first].integer);
         Value* target = place(nodes, n.first, frame);
         if (!target) throw Unevaluable("an assignment to something that holds no value");
         *target = std::move(value);
@@ -1135,7 +1300,7 @@ class Interpreter {
 
   static void builtin_procedure(Builtin builtin, std::vector<Value>& arguments) {
     if (arguments.size() < 2 || arguments[0].kind != Value::Kind::Aggregate) return;
-    Elements elements = *arguments[0].elements;
+    Elements elements = *arguments[0].elements();
     const Value position = arguments.size() > 2 ? arguments[2] : Value{};
     if (builtin == Builtin::Insert) {
       // INSERT(L, E, P): E after the P-th element (0: first).
@@ -1149,7 +1314,9 @@ class Interpreter {
         return;
       elements.erase(elements.begin() + (at.integer - 1));
     }
+    const std::int64_t shape = arguments[0].shape;
     arguments[0] = Value::of_elements(std::move(elements), arguments[0].integer);
+    arguments[0].shape = shape;
   }
 
   Flow loop(const Node* nodes, const Node& n, Frame& frame) {
@@ -1190,6 +1357,7 @@ class Checker {
   Checker(const meta::Model& model, std::size_t limit) : model_(model), interpreter_(model), limit_(limit) {}
 
   std::vector<Violation> run() {
+    fuse_global_rules();
     std::vector<meta::Instance*> order;
     for (meta::Instance* instance : model_.in_id_order(order)) {
       if (full()) break;
@@ -1207,6 +1375,100 @@ class Checker {
   std::vector<Violation> violations_;
   std::size_t errors_ = 0, warnings_ = 0;
   std::vector<const meta::SchemaInfo*> schemas_;
+
+  // A global rule's domain rule `SIZEOF(QUERY(v <* E | p)) = 0` (the usual
+  // form: "no E is such that p") in a RULE with no statements or locals:
+  // p is evaluated on each E while that instance is checked, so it shares
+  // the FUNCTION results its WHERE rules computed (using_representations in
+  // both representation_item.wr1 and geometric_representation_item_3d), and
+  // the rule is reported in its place with the others. Same result: QUERY
+  // evaluates p on every element whatever the order, the SIZEOF of its
+  // result is never `?`, and the first element whose p cannot be evaluated
+  // makes the rule not evaluated, as it would.
+  struct FusedRule {
+    const meta::AlgorithmInfo* rule;
+    std::size_t where;       // which domain rule
+    std::uint32_t query;     // the QUERY node
+    std::uint32_t frame;     // slots
+    const meta::EntityInfo* entity;
+    bool holds_for_some = false;  // some E has p TRUE: the rule is violated
+    bool unevaluable = false;
+    std::string reason;
+  };
+  std::vector<FusedRule> fused_;
+  // Per concrete entity, the fused rules over one of its supertypes.
+  std::unordered_map<const meta::EntityInfo*, std::vector<std::size_t>> fused_for_;
+
+  static std::optional<std::uint32_t> fusable_query(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo& where) {
+    const Node& body = rule.body.node();
+    if (body.kind != NodeKind::Block || body.count != 0) return std::nullopt;
+    const Node* nodes = where.expression.nodes;
+    const Node& root = where.expression.node();
+    if (root.kind != NodeKind::Operation || root.op != Operator::Equal || root.count != 2) return std::nullopt;
+    const Node& size = nodes[root.first];
+    const Node& zero = nodes[root.first + 1];
+    if (size.kind != NodeKind::Builtin || size.builtin != Builtin::Sizeof || size.count != 1) return std::nullopt;
+    if (zero.kind != NodeKind::Integer || zero.integer != 0) return std::nullopt;
+    const Node& query = nodes[size.first];
+    if (query.kind != NodeKind::Query || query.count != 2 || nodes[query.first].kind != NodeKind::Population)
+      return std::nullopt;
+    return size.first;
+  }
+
+  // The global rules of the schemas the model's entities come from, in the
+  // form above.
+  void fuse_global_rules() {
+    std::unordered_set<const meta::EntityInfo*> entities;
+    const meta::EntityInfo* last = nullptr;
+    for (meta::Instance* instance : model_.instances())
+      if (&instance->entity_info() != last) entities.insert(last = &instance->entity_info());
+    std::vector<const meta::SchemaInfo*> schemas;
+    for (const meta::EntityInfo* entity : entities)
+      for (const meta::Upcast& up : entity->upcasts)
+        if (up.entity->schema && std::find(schemas.begin(), schemas.end(), up.entity->schema) == schemas.end())
+          schemas.push_back(up.entity->schema);
+    for (const meta::SchemaInfo* schema : schemas)
+      for (const meta::AlgorithmInfo* rule : schema->rules)
+        for (std::size_t i = 0; i < rule->where.size(); ++i)
+          if (const auto query = fusable_query(*rule, rule->where[i])) {
+            const meta::DomainRuleInfo& where = rule->where[i];
+            fused_.push_back({rule, i, *query, std::max(rule->frame, where.frame),
+                              where.expression.nodes[where.expression.nodes[*query].first].entity, false, false, {}});
+          }
+    for (const meta::EntityInfo* entity : entities) {
+      std::vector<std::size_t>& applicable = fused_for_[entity];
+      for (std::size_t f = 0; f < fused_.size(); ++f)
+        if (fused_[f].entity && entity->is_a(*fused_[f].entity)) applicable.push_back(f);
+    }
+  }
+
+  void check_fused(meta::Instance& instance) {
+    const auto it = fused_for_.find(&instance.entity_info());
+    if (it == fused_for_.end()) return;
+    for (const std::size_t f : it->second) {
+      FusedRule& fused = fused_[f];
+      if (fused.unevaluable) continue;  // decided (a TRUE is not: a later element may not be evaluable)
+      const meta::DomainRuleInfo& where = fused.rule->where[fused.where];
+      try {
+        if (interpreter_.predicate(where.expression.nodes, fused.query, fused.frame, Value::of_instance(&instance)) ==
+            Truth::True)
+          fused.holds_for_some = true;
+      } catch (const Unevaluable& reason) {
+        fused.unevaluable = true;
+        fused.reason = reason.what();
+      }
+    }
+  }
+
+  // The result of domain rule `where` of `rule` when it was fused.
+  std::optional<Truth> fused_result(const meta::AlgorithmInfo& rule, std::size_t where) const {
+    for (const FusedRule& fused : fused_)
+      if (fused.rule == &rule && fused.where == where) {
+        if (fused.unevaluable) throw Unevaluable(fused.reason);
+        return fused.holds_for_some ? Truth::False : Truth::True;
+      }
+    return std::nullopt;
+  }
 
   // Evaluation stops once `limit` rules are violated; rules that cannot be
   // evaluated (warnings) are kept up to `limit` too, without stopping it.
@@ -1260,6 +1522,7 @@ class Checker {
       if (!attribute.stored()) continue;
       if (auto ref = meta::get(instance, attribute)) check_value(instance, attribute, *ref);
     }
+    check_fused(instance);
   }
 
   static bool has_type_rules(const meta::TypeInfo& type, int depth = 0) {
@@ -1319,7 +1582,7 @@ class Checker {
       case K::Partial: key += 'p'; break;
       case K::Aggregate:
         key += '(';
-        for (const Value& e : *v.elements) key_of(e, key), key += ',';
+        for (const Value& e : *v.elements()) key_of(e, key), key += ',';
         key += ')';
         break;
     }
@@ -1369,7 +1632,8 @@ class Checker {
         if (full()) return;
         Violation base = violation(Violation::Kind::GlobalRule, 0, rule->name);
         try {
-          const std::vector<Truth> results = interpreter_.run_rule(*rule);
+          const std::vector<Truth> results =
+              interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
           for (std::size_t i = 0; i < results.size(); ++i)
             if (results[i] == Truth::False) {
               Violation v = base;
@@ -1393,16 +1657,16 @@ std::string express_text(const Value& v) {
     case K::Integer: return std::to_string(v.integer);
     case K::Real: return fmt::format("{}", v.real);
     case K::Logical: return v.logical == Truth::True ? "TRUE" : v.logical == Truth::False ? "FALSE" : "UNKNOWN";
-    case K::String: return "'" + v.text + "'";
-    case K::Binary: return "%" + v.text;
+    case K::String: return "'" + std::string(v.text) + "'";
+    case K::Binary: return "%" + std::string(v.text);
     case K::Enumeration: return "." + upper(v.text) + ".";
     case K::Instance: return fmt::format("#{}", v.instance->id());
     case K::Partial: {
       std::string out;
-      for (const meta::EntityInfo* e : v.partial->entities) out += (out.empty() ? "" : "||") + upper(e->name);
+      for (const meta::EntityInfo* e : v.partial()->entities) out += (out.empty() ? "" : "||") + upper(e->name);
       out += "(";
       bool first = true;
-      for (const auto& [name, value] : v.partial->attributes) {
+      for (const auto& [name, value] : v.partial()->attributes) {
         out += (first ? "" : ",") + express_text(*value);
         first = false;
       }
@@ -1410,7 +1674,7 @@ std::string express_text(const Value& v) {
     }
     case K::Aggregate: {
       std::string out = "[";
-      for (std::size_t i = 0; i < v.elements->size(); ++i) out += (i ? "," : "") + express_text((*v.elements)[i]);
+      for (std::size_t i = 0; i < v.elements()->size(); ++i) out += (i ? "," : "") + express_text((*v.elements())[i]);
       return out + "]";
     }
   }
@@ -1451,6 +1715,26 @@ std::string Violation::to_string() const {
 }
 
 std::vector<Violation> check(const meta::Model& model, std::size_t limit) { return Checker(model, limit).run(); }
+
+bool Validation::valid() const {
+  return structure.empty() && std::all_of(rules.begin(), rules.end(), [](const Violation& v) {
+           return v.kind == Violation::Kind::Unevaluated;
+         });
+}
+
+std::vector<std::string> Validation::messages() const {
+  std::vector<std::string> out;
+  for (const meta::ValidationProblem& problem : structure) out.push_back(problem.to_string());
+  for (const Violation& violation : rules) out.push_back(violation.to_string());
+  return out;
+}
+
+Validation validate(const meta::Model& model, std::size_t limit) {
+  Validation result;
+  result.structure = meta::validate(model, limit);
+  if (result.structure.empty()) result.rules = check(model, limit);
+  return result;
+}
 
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, std::size_t limit) {

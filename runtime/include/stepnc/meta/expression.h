@@ -130,6 +130,36 @@ enum class Builtin : std::uint8_t {
   Remove,  ///< `REMOVE`
 };
 
+/// The declared aggregate type of a variable or a FUNCTION's result, packed
+/// into a Node's `integer` (Variable, Return): bits 0-2 the kind (0 none,
+/// 1 ARRAY, 2 LIST, 3 BAG, 4 SET), bit 3 set when the bounds are constants,
+/// bits 8-31 the lower bound, bits 32-62 the upper bound plus one (0: `?`).
+/// What SET union (ISO 10303-11 12.6.3) and HIBOUND/LOBOUND need.
+struct AggregateShape {
+  /// The kind of aggregate.
+  enum class Kind : std::uint8_t { None, Array, List, Bag, Set };
+  Kind kind = Kind::None;      ///< none: not declared (an aggregate initializer)
+  bool bounded = false;        ///< the bounds are known constants
+  std::int64_t lower = 0;      ///< bounded: the lower bound (index of an ARRAY)
+  std::int64_t upper = -1;     ///< bounded: the upper bound, -1 for `?`
+
+  /// Unpacks a Node's `integer`.
+  static constexpr AggregateShape unpack(std::int64_t packed) noexcept {
+    AggregateShape s;
+    s.kind = static_cast<Kind>(packed & 7);
+    s.bounded = (packed & 8) != 0;
+    s.lower = (packed >> 8) & 0xFFFFFF;
+    s.upper = ((packed >> 32) & 0x7FFFFFFF) - 1;
+    return s;
+  }
+  /// Packs it (see unpack).
+  constexpr std::int64_t pack() const noexcept {
+    std::int64_t packed = static_cast<std::int64_t>(kind);
+    if (bounded) packed |= 8 | ((lower & 0xFFFFFF) << 8) | ((upper + 1) << 32);
+    return packed;
+  }
+};
+
 /// One node of an expression or statement tree.
 struct Node {
   NodeKind kind = NodeKind::Null;  ///< what the node is
@@ -139,7 +169,7 @@ struct Node {
   std::uint16_t count = 0;   ///< number of operands
   std::uint32_t first = 0;   ///< index of the first operand in the same array
   std::uint32_t slot = 0;    ///< Variable, Query, Alias, Loop: the frame slot; Case, CaseAction: see NodeKind
-  std::int64_t integer = 0;  ///< Integer, Logical
+  std::int64_t integer = 0;  ///< Integer, Logical; Variable, Return: the declared aggregate (AggregateShape), 0 if none
   double real = 0;           ///< Real
   std::string_view text{};   ///< String, Binary, EnumerationItem, Attribute: the name
   const EntityInfo* entity = nullptr;       ///< Group, Construct, Population

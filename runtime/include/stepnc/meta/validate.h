@@ -11,7 +11,8 @@
 ///   * a reference to an instance of another model;
 ///   * two instances with the same id.
 /// WHERE rules, UNIQUE clauses and global RULEs are evaluated by
-/// rules::check (stepnc/rules/evaluate.h), a layer above this one.
+/// rules::check (stepnc/rules/evaluate.h), a layer above this one;
+/// rules::validate does both, what `stepnc validate` does.
 ///
 ///   for (const auto& problem : meta::validate(model)) print(problem.to_string());
 #pragma once

@@ -39,6 +39,8 @@ enum class ParamKind : std::uint8_t {
   reference,    ///< `#12`
   list,         ///< ( ... ) aggregate
   typed,        ///< LENGTH_MEASURE(2.5): text() is the type name, one child
+  constant,     ///< `#NAME` or `@NAME`: an EXPRESS constant of the schema (ISO 10303-21:2016 6.4); text(): as written
+  value_reference,  ///< `@12`: a value instance, named in a REFERENCE section (ISO 10303-21:2016 10); reference(): 12
 };
 
 /// The kind's name, for messages.
@@ -59,7 +61,7 @@ struct ParamNode {
   union {
     std::int64_t integer;  ///< kind integer
     double real;  ///< kind real
-    std::uint64_t reference;  ///< kind reference: the id
+    std::uint64_t reference;  ///< kind reference, value_reference: the id
     Logical logical;  ///< kind logical
     std::uint32_t count;  ///< list: the number of elements
     struct {
@@ -85,7 +87,7 @@ class Value {
   std::int64_t integer() const;       ///< kind integer
   double real() const;                ///< kind real
   double number() const;              ///< integer or real, as a double
-  std::uint64_t reference() const;    ///< kind reference: the n of `#n`
+  std::uint64_t reference() const;    ///< kind reference, value_reference: the n of `#n`, `@n`
   Logical logical() const;            ///< kind logical
   /// string: decoded UTF-8; enumeration: item name without dots; binary:
   /// hex digits; typed: the type name; integer/real: the spelling.

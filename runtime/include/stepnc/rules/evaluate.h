@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "stepnc/meta/model.h"
+#include "stepnc/meta/validate.h"
 #include "stepnc/p21/diagnostic.h"
 
 namespace stepnc::rules {
@@ -57,6 +58,27 @@ struct Violation {
 /// stops at the `limit`-th violated rule; rules that could not be
 /// evaluated are listed up to `limit` too.
 std::vector<Violation> check(const meta::Model& model, std::size_t limit = 1000);
+
+/// What `stepnc validate` checks, for a model built in code (a file read
+/// by exchange::read_model_file has had its structure checked by the read).
+struct Validation {
+  std::vector<meta::ValidationProblem> structure;  ///< meta::validate: missing values, bounds, references
+  std::vector<Violation> rules;                    ///< check: WHERE rules, UNIQUE clauses, global RULEs
+  /// No structural problem and no violated rule (a rule that could not be
+  /// evaluated is a warning, as in `stepnc validate`).
+  bool valid() const;
+  /// Every problem as text: structure first, then the rules.
+  std::vector<std::string> messages() const;
+};
+
+/// The whole validation of a model built in code: meta::validate, then
+/// every rule (check), each up to `limit`; rules are evaluated only on a
+/// model without structural problems, as `stepnc validate` evaluates them
+/// only on a file that reads cleanly (a missing required value would make
+/// rules `?`, which pass, and hide them).
+///
+///   if (auto v = rules::validate(model); !v.valid()) for (auto& m : v.messages()) print(m);
+Validation validate(const meta::Model& model, std::size_t limit = 1000);
 
 /// Evaluates every rule on `model`, read from `path`, and adds each
 /// violation to `diagnostics` as an error at the instance's record
