@@ -8,12 +8,14 @@ namespace stepnc::exchange::detail {
 
 namespace {
 
-void put_varint(std::vector<std::uint8_t>& out, std::uint64_t value) {
+// Up to 10 bytes at `out`; returns the end.
+std::uint8_t* put_varint(std::uint8_t* out, std::uint64_t value) {
   while (value >= 0x80) {
-    out.push_back(static_cast<std::uint8_t>(value | 0x80));
+    *out++ = static_cast<std::uint8_t>(value | 0x80);
     value >>= 7;
   }
-  out.push_back(static_cast<std::uint8_t>(value));
+  *out++ = static_cast<std::uint8_t>(value);
+  return out;
 }
 
 bool get_varint(const std::uint8_t*& pos, const std::uint8_t* end, std::uint64_t& value) {
@@ -42,19 +44,28 @@ std::uint64_t entity_code(std::uint32_t entity) {
 
 // ------------------------------------------------------------------ building
 
+void InstanceIndex::reserve(std::size_t expected_records) {
+  owned_first_id_.reserve(expected_records / kBlock + 1);
+  owned_first_offset_.reserve(expected_records / kBlock + 1);
+  owned_position_.reserve(expected_records / kBlock + 1);
+  owned_bytes_.reserve(expected_records * 5);
+}
+
 void InstanceIndex::append(const IndexedRecord& record) {
+  std::uint8_t encoded[40];
+  std::uint8_t* end = encoded;
   if (count_ % kBlock == 0) {
     owned_first_id_.push_back(record.id);
     owned_first_offset_.push_back(record.offset);
     owned_position_.push_back(owned_bytes_.size());
   } else {
-    if (record.id <= last_.id) increasing_ = false;
-    put_varint(owned_bytes_, zigzag(static_cast<std::int64_t>(record.id - last_.id)));
-    put_varint(owned_bytes_, record.offset - (last_.offset + last_.length));
+    end = put_varint(end, zigzag(static_cast<std::int64_t>(record.id - last_.id)));
+    end = put_varint(end, record.offset - (last_.offset + last_.length));
   }
-  put_varint(owned_bytes_, record.length);
-  put_varint(owned_bytes_, entity_code(record.entity));
-  if (count_ > 0 && count_ % kBlock == 0 && record.id <= last_.id) increasing_ = false;
+  end = put_varint(end, record.length);
+  end = put_varint(end, entity_code(record.entity));
+  owned_bytes_.insert(owned_bytes_.end(), encoded, end);
+  if (count_ > 0 && record.id <= last_.id) increasing_ = false;
   last_ = record;
   ++count_;
 }
@@ -75,7 +86,6 @@ std::optional<std::pair<std::size_t, std::size_t>> InstanceIndex::finish() {
       owned_by_id_.push_back(ids[i].second);
     }
   }
-  owned_bytes_.shrink_to_fit();
   use_owned();
   return duplicate;
 }

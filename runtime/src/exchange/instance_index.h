@@ -73,6 +73,7 @@ class InstanceIndex {
   static constexpr std::size_t kBlock = 32;
 
   // Building, in file order. Entity names are numbered by the caller.
+  void reserve(std::size_t expected_records);  // capacity never touched costs no memory
   void append(const IndexedRecord& record);
   void set_names(std::vector<std::string> names) { names_ = std::move(names); }
   // Ends building. Returns the record numbers (file order) of the first

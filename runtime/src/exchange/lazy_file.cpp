@@ -396,6 +396,8 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     state->cache_mapping.reset();
     p21::ReadOptions strict;  // the scan stops at the first structural error
     strict.error_limit = 1;
+    // Records of generated files run 40-80 bytes.
+    state->index.reserve(state->text.size() / 32);
     IndexBuilder builder(state->index, state->header, standard_input ? nullptr : &state->file_mapping);
     state->file_mapping.advise(MADV_SEQUENTIAL);
     p21::Diagnostics scanned = p21::stream_text(state->text, state->file_name, strict, builder);

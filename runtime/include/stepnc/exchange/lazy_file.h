@@ -8,9 +8,8 @@
 ///   p21::Diagnostics diagnostics;
 ///   auto file = LazyModelFile::open("big.stp", registry, {}, diagnostics);
 ///   if (!file) { print(diagnostics.to_string()); return 1; }
-///   meta::Instance* project = file->find(1);              // read with its attributes
-///   auto& typed = static_cast<machining_schema::project&>(*project);
-///   meta::Instance* plan = file->follow(typed.main_workplan);   // read on demand
+///   auto* project = meta::instance_cast<machining_schema::project>(file->find(1));  // read
+///   meta::Instance* plan = file->follow(project->main_workplan);   // read on demand
 ///
 /// The file is mapped read-only and must not change while it is open.
 /// Instances a loaded instance refers to exist at once (with their entity
