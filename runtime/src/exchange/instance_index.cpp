@@ -52,8 +52,7 @@ void InstanceIndex::reserve(std::size_t expected_records) {
 }
 
 void InstanceIndex::append(const IndexedRecord& record) {
-  std::uint8_t encoded[40];
-  std::uint8_t* end = encoded;
+  std::uint8_t* end = owned_bytes_.room(40);
   if (count_ % kBlock == 0) {
     owned_first_id_.push_back(record.id);
     owned_first_offset_.push_back(record.offset);
@@ -64,7 +63,7 @@ void InstanceIndex::append(const IndexedRecord& record) {
   }
   end = put_varint(end, record.length);
   end = put_varint(end, entity_code(record.entity));
-  owned_bytes_.insert(owned_bytes_.end(), encoded, end);
+  owned_bytes_.commit(end);
   if (count_ > 0 && record.id <= last_.id) increasing_ = false;
   last_ = record;
   ++count_;
@@ -94,7 +93,7 @@ void InstanceIndex::use_owned() {
   block_first_id_ = owned_first_id_;
   block_first_offset_ = owned_first_offset_;
   block_position_ = owned_position_;
-  bytes_ = owned_bytes_;
+  bytes_ = owned_bytes_.bytes();
   by_id_ = owned_by_id_;
 }
 
@@ -163,17 +162,14 @@ std::optional<IndexedRecord> InstanceIndex::find(std::uint64_t id) const {
 //
 // Layout, every number little-endian as in memory (the cache is a local
 // file of this machine; its header records the byte order), arrays 8-byte
-// aligned (put_padded):  u64 count, u64 blocks, u64 bytes, u64 by_id, u64 names,
+// aligned (BlobWriter::padded):  u64 count, u64 blocks, u64 bytes, u64 by_id, u64 names,
 // then per name u64 length + text (padded), then the arrays first_id,
 // first_offset, position, bytes (padded), by_id (padded).
 
-void put_u64(std::string& out, std::uint64_t value) {
-  out.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
-
-void put_padded(std::string& out, const void* data, std::size_t size) {
-  out.append(static_cast<const char*>(data), size);
-  out.append((8 - out.size() % 8) % 8, '\0');
+void BlobWriter::padded(const void* data, std::size_t size) {
+  static constexpr char kZeros[8] = {};
+  put(data, size);
+  put(kZeros, (8 - position_ % 8) % 8);
 }
 
 bool BlobReader::u64(std::uint64_t& value) {
@@ -191,21 +187,18 @@ bool BlobReader::string(std::string& text) {
   return true;
 }
 
-void InstanceIndex::serialise(std::string& out) const {
-  put_u64(out, count_);
-  put_u64(out, block_first_id_.size());
-  put_u64(out, bytes_.size());
-  put_u64(out, by_id_.size());
-  put_u64(out, names_.size());
-  for (const std::string& name : names_) {
-    put_u64(out, name.size());
-    put_padded(out, name.data(), name.size());
-  }
-  put_padded(out, block_first_id_.data(), block_first_id_.size_bytes());
-  put_padded(out, block_first_offset_.data(), block_first_offset_.size_bytes());
-  put_padded(out, block_position_.data(), block_position_.size_bytes());
-  put_padded(out, bytes_.data(), bytes_.size_bytes());
-  put_padded(out, by_id_.data(), by_id_.size_bytes());
+void InstanceIndex::serialise(BlobWriter& out) const {
+  out.u64(count_);
+  out.u64(block_first_id_.size());
+  out.u64(bytes_.size());
+  out.u64(by_id_.size());
+  out.u64(names_.size());
+  for (const std::string& name : names_) out.string(name);
+  out.padded(block_first_id_.data(), block_first_id_.size_bytes());
+  out.padded(block_first_offset_.data(), block_first_offset_.size_bytes());
+  out.padded(block_position_.data(), block_position_.size_bytes());
+  out.padded(bytes_.data(), bytes_.size_bytes());
+  out.padded(by_id_.data(), by_id_.size_bytes());
 }
 
 std::optional<InstanceIndex> InstanceIndex::deserialise(BlobReader& reader) {

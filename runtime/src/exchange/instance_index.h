@@ -20,6 +20,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <utility>
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <string>
@@ -38,8 +42,28 @@ struct IndexedRecord {
 };
 
 // The cache blob: u64 numbers and arrays padded to 8 bytes, read in place.
-void put_u64(std::string& out, std::uint64_t value);
-void put_padded(std::string& out, const void* data, std::size_t size);
+// A writer is told the bytes in order (to hash them, or to write them).
+class BlobWriter {
+ public:
+  virtual ~BlobWriter() = default;
+  void u64(std::uint64_t value) { put(&value, sizeof value); }
+  // `size` bytes, then zeros up to a multiple of 8 bytes from the start.
+  void padded(const void* data, std::size_t size);
+  void string(std::string_view text) {
+    u64(text.size());
+    padded(text.data(), text.size());
+  }
+
+ protected:
+  virtual void bytes(const void* data, std::size_t size) = 0;
+
+ private:
+  void put(const void* data, std::size_t size) {
+    position_ += size;
+    bytes(data, size);
+  }
+  std::uint64_t position_ = 0;
+};
 
 class BlobReader {
  public:
@@ -60,6 +84,46 @@ class BlobReader {
  private:
   std::span<const std::byte> blob_;
   std::size_t pos_ = 0;
+};
+
+// The varint bytes while building: grown with realloc (which moves large
+// blocks by remapping their pages, not copying them) and written through a
+// pointer, with no call per record.
+class GrowingBytes {
+ public:
+  GrowingBytes() = default;
+  GrowingBytes(GrowingBytes&& other) noexcept
+      : data_(std::exchange(other.data_, nullptr)),
+        size_(std::exchange(other.size_, 0)),
+        capacity_(std::exchange(other.capacity_, 0)) {}
+  GrowingBytes& operator=(GrowingBytes&& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
+    std::swap(capacity_, other.capacity_);
+    return *this;
+  }
+  ~GrowingBytes() { std::free(data_); }
+
+  void reserve(std::size_t capacity) {
+    if (capacity <= capacity_) return;
+    void* grown = std::realloc(data_, capacity);
+    if (grown == nullptr) throw std::bad_alloc();
+    data_ = static_cast<std::uint8_t*>(grown);
+    capacity_ = capacity;
+  }
+  // Where the next `extra` bytes go; commit() their end.
+  std::uint8_t* room(std::size_t extra) {
+    if (capacity_ - size_ < extra) reserve(std::max(capacity_ + capacity_ / 2, size_ + extra));
+    return data_ + size_;
+  }
+  void commit(const std::uint8_t* end) { size_ = static_cast<std::size_t>(end - data_); }
+  std::span<const std::uint8_t> bytes() const { return {data_, size_}; }
+  std::size_t size() const { return size_; }
+
+ private:
+  std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
 };
 
 class InstanceIndex {
@@ -100,7 +164,7 @@ class InstanceIndex {
   std::size_t memory_bytes() const;
 
   // The index as a blob for the cache (see the file comment).
-  void serialise(std::string& out) const;
+  void serialise(BlobWriter& out) const;
   // Takes an index over the rest of `blob`, which must stay alive and
   // unchanged (a mapping of the cache file). Null when the blob is
   // malformed; every size, position and count is checked against it.
@@ -130,7 +194,7 @@ class InstanceIndex {
   std::vector<std::string> names_;
   // Owned while building; spans into a cache mapping after deserialise().
   std::vector<std::uint64_t> owned_first_id_, owned_first_offset_, owned_position_;
-  std::vector<std::uint8_t> owned_bytes_;
+  GrowingBytes owned_bytes_;
   std::vector<std::uint32_t> owned_by_id_;
   std::span<const std::uint64_t> block_first_id_, block_first_offset_, block_position_;
   std::span<const std::uint8_t> bytes_;

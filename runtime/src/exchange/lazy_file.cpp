@@ -101,29 +101,92 @@ struct CacheHead {
 };
 static_assert(sizeof(CacheHead) == 64);
 
-// Four independent multiply-xorshift lanes over 8-byte words: some 10 GB/s,
-// so checking a cache of 75 MB costs a few milliseconds. It detects damage
-// (truncation, stray writes), not tampering.
-std::uint64_t checksum(std::span<const std::byte> bytes) {
-  constexpr std::uint64_t kMultiplier = 0x9E3779B97F4A7C15u;
-  std::uint64_t lanes[4] = {0x243F6A8885A308D3u, 0x13198A2E03707344u, 0xA4093822299F31D0u, 0x082EFA98EC4E6C89u};
-  const auto mix = [](std::uint64_t lane, std::uint64_t word) {
-    lane = (lane ^ word) * kMultiplier;
+// Four independent multiply-xorshift lanes over 8-byte words: several GB/s,
+// so checking a cache of 75 MB costs milliseconds. It detects damage
+// (truncation, stray writes), not tampering. Fed in pieces or at once, the
+// same bytes give the same sum.
+class Checksum final : public detail::BlobWriter {
+ public:
+  void bytes(const void* data, std::size_t size) override {
+    const auto* in = static_cast<const std::byte*>(data);
+    total_ += size;
+    if (pending_size_ > 0) {
+      const std::size_t take = std::min(size, sizeof pending_ - pending_size_);
+      std::memcpy(pending_ + pending_size_, in, take);
+      pending_size_ += take;
+      in += take;
+      size -= take;
+      if (pending_size_ < sizeof pending_) return;
+      chunk(pending_);
+      pending_size_ = 0;
+    }
+    for (; size >= sizeof pending_; in += sizeof pending_, size -= sizeof pending_) chunk(in);
+    std::memcpy(pending_, in, size);
+    pending_size_ = size;
+  }
+
+  std::uint64_t size() const { return total_; }  // bytes summed
+  std::uint64_t sum() const {
+    std::uint64_t lanes[4];
+    std::memcpy(lanes, lanes_, sizeof lanes);
+    for (std::size_t i = 0; i < pending_size_; ++i)
+      lanes[0] = mix(lanes[0], static_cast<std::uint64_t>(pending_[i]) + 0x100);
+    std::uint64_t hash = total_;
+    for (const std::uint64_t lane : lanes) hash = mix(hash, lane);
+    return hash;
+  }
+
+ private:
+  static std::uint64_t mix(std::uint64_t lane, std::uint64_t word) {
+    lane = (lane ^ word) * 0x9E3779B97F4A7C15u;
     return lane ^ (lane >> 29);
-  };
-  std::size_t i = 0;
-  for (; i + 32 <= bytes.size(); i += 32) {
+  }
+  void chunk(const std::byte* in) {
     for (std::size_t lane = 0; lane < 4; ++lane) {
       std::uint64_t word = 0;
-      std::memcpy(&word, bytes.data() + i + lane * 8, 8);
-      lanes[lane] = mix(lanes[lane], word);
+      std::memcpy(&word, in + lane * 8, 8);
+      lanes_[lane] = mix(lanes_[lane], word);
     }
   }
-  for (; i < bytes.size(); ++i) lanes[0] = mix(lanes[0], static_cast<std::uint64_t>(bytes[i]) + 0x100);
-  std::uint64_t hash = bytes.size();
-  for (const std::uint64_t lane : lanes) hash = mix(hash, lane);
-  return hash;
-}
+
+  std::uint64_t lanes_[4] = {0x243F6A8885A308D3u, 0x13198A2E03707344u, 0xA4093822299F31D0u, 0x082EFA98EC4E6C89u};
+  std::byte pending_[32] = {};
+  std::size_t pending_size_ = 0;
+  std::uint64_t total_ = 0;
+};
+
+// Writes the blob to a file, small pieces gathered, the index's arrays
+// passed straight through (no copy of the whole index is made).
+class CacheWriter final : public detail::BlobWriter {
+ public:
+  explicit CacheWriter(io::OutputFile& out) : out_(out) {}
+  void bytes(const void* data, std::size_t size) override {
+    constexpr std::size_t kGather = std::size_t{64} << 10;
+    if (size >= kGather) {
+      flush();
+      keep(out_.write({static_cast<const char*>(data), size}));
+      return;
+    }
+    gathered_.append(static_cast<const char*>(data), size);
+    if (gathered_.size() >= kGather) flush();
+  }
+  std::optional<std::string> finish() {
+    flush();
+    return error_;
+  }
+
+ private:
+  void flush() {
+    if (!gathered_.empty()) keep(out_.write(gathered_));
+    gathered_.clear();
+  }
+  void keep(std::optional<std::string> error) {
+    if (error && !error_) error_ = std::move(error);
+  }
+  io::OutputFile& out_;
+  std::string gathered_;
+  std::optional<std::string> error_;
+};
 
 struct FileStamp {
   std::uint64_t size = 0;
@@ -136,17 +199,22 @@ FileStamp stamp_of(const struct stat& status) {
           static_cast<std::int64_t>(status.st_mtim.tv_nsec)};
 }
 
-std::string cache_blob(const p21::Header& header, const InstanceIndex& index, const FileStamp& stamp) {
-  std::string blob(sizeof(CacheHead), '\0');
-  detail::put_u64(blob, header.entities.size());
+// The payload: the header entities, then the index.
+void write_payload(const p21::Header& header, const InstanceIndex& index, detail::BlobWriter& out) {
+  out.u64(header.entities.size());
   for (const p21::HeaderEntity& entity : header.entities) {
-    detail::put_u64(blob, entity.name.size());
-    detail::put_padded(blob, entity.name.data(), entity.name.size());
-    detail::put_u64(blob, entity.text.size());
-    detail::put_padded(blob, entity.text.data(), entity.text.size());
-    detail::put_u64(blob, entity.offset);
+    out.string(entity.name);
+    out.string(entity.text);
+    out.u64(entity.offset);
   }
-  index.serialise(blob);
+  index.serialise(out);
+}
+
+// Writes the cache through io/output.h: atomically, or not at all.
+std::optional<std::string> write_cache(const std::filesystem::path& path, const p21::Header& header,
+                                       const InstanceIndex& index, const FileStamp& stamp) {
+  Checksum checksum;
+  write_payload(header, index, checksum);
   CacheHead head{};
   std::memcpy(head.magic, kCacheMagic, sizeof kCacheMagic);
   head.version = kCacheVersion;
@@ -154,10 +222,15 @@ std::string cache_blob(const p21::Header& header, const InstanceIndex& index, co
   head.file_size = stamp.size;
   head.mtime_seconds = stamp.seconds;
   head.mtime_nanoseconds = stamp.nanoseconds;
-  head.payload_size = blob.size() - sizeof(CacheHead);
-  head.checksum = checksum(std::as_bytes(std::span(blob).subspan(sizeof(CacheHead))));
-  std::memcpy(blob.data(), &head, sizeof head);
-  return blob;
+  head.checksum = checksum.sum();
+  head.payload_size = checksum.size();
+  io::OutputFile out;
+  if (auto error = out.open(path)) return error;
+  CacheWriter writer(out);
+  writer.padded(&head, sizeof head);
+  write_payload(header, index, writer);
+  if (auto error = writer.finish()) return error;
+  return out.commit();
 }
 
 // The header and index of a usable cache, which stays mapped in `mapping`.
@@ -177,7 +250,9 @@ std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::files
       head.mtime_nanoseconds != stamp.nanoseconds || head.payload_size != bytes.size() - sizeof(CacheHead))
     return std::nullopt;
   const std::span<const std::byte> payload = bytes.subspan(sizeof(CacheHead));
-  if (checksum(payload) != head.checksum) return std::nullopt;
+  Checksum checksum;
+  checksum.bytes(payload.data(), payload.size());
+  if (checksum.sum() != head.checksum) return std::nullopt;
   detail::BlobReader reader(payload);
   p21::Header header;
   std::uint64_t entities = 0;
@@ -194,7 +269,7 @@ std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::files
 // ---------------------------------------------------------------- the scan
 
 // Builds the index from the scanner's records, giving the mapped pages
-// back behind it every 64 MiB.
+// back behind it every 16 MiB.
 class IndexBuilder final : public p21::RecordHandler {
  public:
   IndexBuilder(InstanceIndex& index, p21::Header& header, const Mapping* mapping)
@@ -214,7 +289,7 @@ class IndexBuilder final : public p21::RecordHandler {
     if (record.entity != IndexedRecord::complex_entity && record.entity == names_.size())
       names_.emplace_back(record.entity_name);
     index_.append({record.id, record.offset, static_cast<std::uint32_t>(record.text.size()), record.entity});
-    constexpr std::uint64_t kReleaseStep = std::uint64_t{64} << 20;
+    constexpr std::uint64_t kReleaseStep = std::uint64_t{16} << 20;
     if (mapping_ != nullptr && record.offset >= released_ + kReleaseStep) {
       mapping_->release(static_cast<std::size_t>(released_), static_cast<std::size_t>(record.offset));
       released_ = record.offset;
@@ -415,7 +490,7 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     if (scanned.has_errors()) return nullptr;
     // Only a clean scan is cached: a cached open reports nothing.
     if (!standard_input && !options.index_cache.empty() && scanned.items().empty()) {
-      state->cache_error = io::write_file(options.index_cache, cache_blob(state->header, state->index, stamp));
+      state->cache_error = write_cache(options.index_cache, state->header, state->index, stamp);
     }
   }
   for (const std::string& name : state->index.names()) state->names.push_back(name);
