@@ -402,12 +402,10 @@ struct LazyModelFile::State final : public meta::FillContext {
     const std::optional<IndexedRecord> record = index.find(id);
     if (!record) return meta::FillContext::describe_missing(id);
     const meta::EntityInfo* entity = entity_of(*record);
-    if (entity == nullptr && record->entity == IndexedRecord::complex_entity)
-      return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
-                         "attribute can refer to it", id);
-    if (entity == nullptr)
-      return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
-                         "refer to it", id, names[record->entity]);
+    if (entity == nullptr) {
+      return detail::generic_record_reference(
+          id, record->entity == IndexedRecord::complex_entity ? std::string_view() : names[record->entity]);
+    }
     if (entity->abstract) return fmt::format("#{} is of the ABSTRACT entity {}", id, entity->name);
     return fmt::format("#{} could not be read (see its own error)", id);
   }

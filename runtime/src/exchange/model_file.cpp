@@ -54,6 +54,14 @@ std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const me
   return problems;
 }
 
+std::string generic_record_reference(std::uint64_t id, std::string_view entity) {
+  if (entity.empty())
+    return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
+                       "attribute can refer to it", id);
+  return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
+                     "refer to it", id, entity);
+}
+
 }  // namespace detail
 
 namespace {
@@ -251,11 +259,9 @@ class ModelBuilder final : public meta::FillContext {
     if (record->entity == p21::RecordEntry::complex_entity) {
       if (std::any_of(file_.generic_records.begin(), file_.generic_records.end(),
                       [&](const GenericRecord& generic) { return generic.id == id; }))
-        return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
-                           "attribute can refer to it", id);
+        return detail::generic_record_reference(id, {});
     } else if (entities_.simple(record->entity, document_.entity_names()) == nullptr) {
-      return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
-                         "refer to it", id, document_.entity_name(*record));
+      return detail::generic_record_reference(id, document_.entity_name(*record));
     }
     return fmt::format("#{} could not be read (see its own error)", id);
   }

@@ -54,4 +54,8 @@ struct HeaderProblem {
 // an error; an unknown one beside known ones, or none named, a warning.
 std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const meta::Registry& registry);
 
+// Why no typed attribute can refer to `#id`, a record no schema defines:
+// `entity` is its name, empty for a complex instance.
+std::string generic_record_reference(std::uint64_t id, std::string_view entity);
+
 }  // namespace stepnc::exchange::detail
