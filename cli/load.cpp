@@ -69,6 +69,7 @@ bool use_lazy(const LazyOptions& options, const std::filesystem::path& path) {
 
 exchange::LazyModelFile* open_lazy(const std::filesystem::path& path, const LazyOptions& options) {
   exchange::LazyOpenOptions open_options;
+  open_options.jobs = read_jobs();
   if (!options.index_cache_dir.empty()) {
     open_options.index_cache = exchange::index_cache_path(path, options.index_cache_dir);
   } else if (options.index_cache) {

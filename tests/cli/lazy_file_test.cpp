@@ -289,3 +289,54 @@ TEST_CASE("lazy read: the index cache is used only when it belongs to the file",
     CHECK(file->find(1) != nullptr);
   }
 }
+
+namespace {
+
+// The index a scan on `jobs` threads builds, as its cache file's bytes,
+// and the diagnostics of the open.
+std::string index_bytes(const fs::path& path, unsigned jobs, std::string& diagnostics_text) {
+  const fs::path cache = stepnc_test::scratch_directory("lazy-jobs-" + std::to_string(jobs)) / "index";
+  exchange::LazyOpenOptions options;
+  options.index_cache = cache;
+  options.jobs = jobs;
+  options.parallel_from = 0;
+  p21::Diagnostics diagnostics;
+  auto file = LazyModelFile::open(path, stepnc_test::registry(), options, diagnostics);
+  diagnostics_text = diagnostics.to_string();
+  return file != nullptr && fs::exists(cache) ? stepnc_test::read_file(cache) : "no index";
+}
+
+}  // namespace
+
+TEST_CASE("lazy read: the scan in parts builds the index of the scan in one pass", "[exchange][lazy]") {
+  const fs::path dir = stepnc_test::scratch_directory("lazy-parts");
+  std::vector<fs::path> files = sample_files();
+  // Ids going down, and a record whose string, at the middle of the file,
+  // holds lines that look like records: a cut there must not hold.
+  std::string data;
+  for (int i = 300; i >= 1; --i) data += fmt::format("#{}=CARTESIAN_POINT('p',({}.,0.,0.));\n", i + 10, i);
+  std::string tricky = kHead + data + "#5=POLYLINE('";
+  for (int i = 0; i < 400; ++i) tricky += fmt::format("\n#{}=CARTESIAN_POINT(''x'',(1.,2.,3.));", 9000 + i);
+  tricky += "',(#11,#12));\n" + data.substr(0, 0) + "#6=POLYLINE('/* not; a comment */',(#12,#13));\n" + kTail;
+  stepnc_test::write_text(dir / "tricky.stp", tricky);
+  files.push_back(dir / "tricky.stp");
+  stepnc_test::write_text(dir / "bad.stp", kHead + data + "#5=POLYLINE('x',(#11,#12)\n" + data + kTail);
+  files.push_back(dir / "bad.stp");
+  for (const fs::path& path : files) {
+    INFO(path.string());
+    std::string expected_diagnostics;
+    const std::string expected = index_bytes(path, 1, expected_diagnostics);
+    for (const unsigned jobs : {2u, 3u, 7u}) {
+      INFO("jobs " << jobs);
+      std::string diagnostics;
+      CHECK(index_bytes(path, jobs, diagnostics) == expected);
+      CHECK(diagnostics == expected_diagnostics);
+    }
+  }
+  auto tricky_file = open_valid(dir / "tricky.stp");
+  CHECK(tricky_file->record_count() == 302);
+  CHECK(tricky_file->find(9200) == nullptr);
+  std::string diagnostics;
+  CHECK(index_bytes(dir / "bad.stp", 2, diagnostics) == "no index");
+  CHECK(diagnostics.find("error") != std::string::npos);
+}

@@ -69,6 +69,23 @@ void InstanceIndex::append(const IndexedRecord& record) {
   ++count_;
 }
 
+void InstanceIndex::absorb(InstanceIndex&& part) {
+  // Names new to this index are numbered after its own, in the part's
+  // order: the numbering a scan of both parts in one pass gives.
+  std::vector<std::uint32_t> numbers;
+  for (const std::string& name : part.names_) {
+    const auto known = std::find(names_.begin(), names_.end(), name);
+    numbers.push_back(static_cast<std::uint32_t>(known - names_.begin()));
+    if (known == names_.end()) names_.push_back(name);
+  }
+  part.use_owned();
+  part.for_each([&](IndexedRecord record) {
+    if (record.entity != IndexedRecord::complex_entity) record.entity = numbers[record.entity];
+    append(record);
+  });
+  part = InstanceIndex();
+}
+
 std::optional<std::pair<std::size_t, std::size_t>> InstanceIndex::finish() {
   std::optional<std::pair<std::size_t, std::size_t>> duplicate;
   if (!increasing_) {

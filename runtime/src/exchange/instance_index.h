@@ -140,6 +140,9 @@ class InstanceIndex {
   void reserve(std::size_t expected_records);  // capacity never touched costs no memory
   void append(const IndexedRecord& record);
   void set_names(std::vector<std::string> names) { names_ = std::move(names); }
+  // Appends the records of `part` (built the same way, names set, of the
+  // file's next part), renumbering its entity names into this index's.
+  void absorb(InstanceIndex&& part);
   // Ends building. Returns the record numbers (file order) of the first
   // duplicate id, the earlier one first, when ids repeat.
   std::optional<std::pair<std::size_t, std::size_t>> finish();

@@ -2,6 +2,7 @@
 #include "stepnc/exchange/lazy_file.h"
 
 #include <fcntl.h>
+#include <stdio.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <system_error>
+#include <thread>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -268,19 +270,28 @@ std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::files
 
 // ---------------------------------------------------------------- the scan
 
-// Builds the index from the scanner's records, giving the mapped pages
-// back behind it every 16 MiB.
+// Builds the index of one part of the file from the scanner's records
+// (the whole file, or one part of a parallel scan), giving the mapped
+// pages back behind it every 16 MiB. A part that is not the last stops at
+// the next part's start and says whether a record starts exactly there.
 class IndexBuilder final : public p21::RecordHandler {
  public:
-  IndexBuilder(InstanceIndex& index, p21::Header& header, const Mapping* mapping)
-      : index_(index), header_(header), mapping_(mapping) {}
+  // Record offsets of the scanned stream plus `shift` are file offsets.
+  IndexBuilder(InstanceIndex& index, p21::Header* header, const Mapping* mapping, std::int64_t shift = 0,
+               std::uint64_t until = std::numeric_limits<std::uint64_t>::max())
+      : index_(index), header_(header), mapping_(mapping), shift_(shift), until_(until) {}
 
   bool on_header(const p21::Header& header, p21::StreamContext& /*context*/) override {
-    header_ = header;
+    if (header_ != nullptr) *header_ = header;
     return true;
   }
 
   bool on_record(const p21::RecordView& record, p21::StreamContext& context) override {
+    const std::uint64_t offset = record.offset + static_cast<std::uint64_t>(shift_);
+    if (offset >= until_) {
+      reached_until_ = offset == until_;
+      return false;
+    }
     if (record.text.size() > std::numeric_limits<std::uint32_t>::max()) {
       return context.report(p21::Diagnostic{p21::Severity::error, context.file_name(),
                                             context.location(record.offset), record.id,
@@ -288,24 +299,122 @@ class IndexBuilder final : public p21::RecordHandler {
     }
     if (record.entity != IndexedRecord::complex_entity && record.entity == names_.size())
       names_.emplace_back(record.entity_name);
-    index_.append({record.id, record.offset, static_cast<std::uint32_t>(record.text.size()), record.entity});
+    index_.append({record.id, offset, static_cast<std::uint32_t>(record.text.size()), record.entity});
     constexpr std::uint64_t kReleaseStep = std::uint64_t{16} << 20;
-    if (mapping_ != nullptr && record.offset >= released_ + kReleaseStep) {
-      mapping_->release(static_cast<std::size_t>(released_), static_cast<std::size_t>(record.offset));
-      released_ = record.offset;
+    if (mapping_ != nullptr && offset >= released_ + kReleaseStep) {
+      mapping_->release(static_cast<std::size_t>(released_), static_cast<std::size_t>(offset));
+      released_ = offset;
     }
     return true;
   }
 
   std::vector<std::string> take_names() { return std::move(names_); }
+  // A part that is not the last ended exactly at the next part's start.
+  bool reached_until() const { return reached_until_; }
 
  private:
   InstanceIndex& index_;
-  p21::Header& header_;
+  p21::Header* header_;
   const Mapping* mapping_;
+  std::int64_t shift_;
+  std::uint64_t until_;
   std::vector<std::string> names_;
   std::uint64_t released_ = 0;
+  bool reached_until_ = false;
 };
+
+// A part of a parallel scan as a stream the scanner reads from its start:
+// a minimal header and `DATA;`, then the file from the part's first byte
+// (read with pread, so the part's pages do not join this process's memory).
+struct PartStream {
+  static constexpr std::string_view kPrefix =
+      "ISO-10303-21;HEADER;FILE_DESCRIPTION((''),'2;1');FILE_NAME('','',(''),(''),'','','');"
+      "FILE_SCHEMA(('PART'));ENDSEC;DATA;";
+  int fd = -1;
+  std::uint64_t from = 0;      // file offset of the part
+  std::uint64_t position = 0;  // in the stream
+
+  static ssize_t read(void* cookie, char* buffer, std::size_t size) {
+    auto& stream = *static_cast<PartStream*>(cookie);
+    std::size_t done = 0;
+    if (stream.position < kPrefix.size()) {
+      done = std::min(size, kPrefix.size() - static_cast<std::size_t>(stream.position));
+      std::memcpy(buffer, kPrefix.data() + stream.position, done);
+    } else {
+      const ssize_t got = ::pread(stream.fd, buffer, size,
+                                  static_cast<off_t>(stream.from + stream.position - kPrefix.size()));
+      if (got < 0) return -1;
+      done = static_cast<std::size_t>(got);
+    }
+    stream.position += done;
+    return static_cast<ssize_t>(done);
+  }
+};
+
+// The first record start ("\n#" and a digit) at or after `from`, or npos.
+std::size_t record_start_after(std::string_view text, std::size_t from) {
+  for (std::size_t at = text.find("\n#", from); at != std::string_view::npos; at = text.find("\n#", at + 1)) {
+    if (at + 2 < text.size() && text[at + 2] >= '0' && text[at + 2] <= '9') return at + 1;
+  }
+  return std::string_view::npos;
+}
+
+// Scans the file in `jobs` parts at once: the first through the mapping,
+// the others as PartStreams. The split is checked by the scan itself: each
+// part but the last must meet a record starting exactly where the next
+// part starts (so no part began inside a string or a comment). Null when
+// the split does not hold or any part has a problem: the caller then scans
+// the whole file once, which also gives every diagnostic its true place.
+std::optional<std::pair<p21::Header, InstanceIndex>> scan_in_parts(const std::filesystem::path& path,
+                                                                   const Mapping& mapping, unsigned jobs) {
+  const std::string_view text = mapping.text();
+  std::vector<std::uint64_t> starts = {0};
+  for (unsigned part = 1; part < jobs; ++part) {
+    const std::size_t start = record_start_after(text, text.size() / jobs * part);
+    if (start == std::string_view::npos || start <= starts.back()) break;
+    starts.push_back(start);
+  }
+  if (starts.size() < 2) return std::nullopt;
+  Descriptor input{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (input.fd < 0) return std::nullopt;
+  const std::size_t parts = starts.size();
+  std::vector<InstanceIndex> indexes(parts);
+  std::vector<char> ok(parts, 0);
+  p21::Header header;
+  p21::ReadOptions strict;
+  strict.error_limit = 1;
+  const auto scan = [&](std::size_t part) {
+    const std::uint64_t until = part + 1 < parts ? starts[part + 1] : std::numeric_limits<std::uint64_t>::max();
+    indexes[part].reserve((std::min<std::uint64_t>(until, text.size()) - starts[part]) / 32);
+    p21::Diagnostics found;
+    bool reached = true;
+    if (part == 0) {
+      IndexBuilder builder(indexes[0], &header, &mapping, 0, until);
+      found = p21::stream_text(text, path.string(), strict, builder);
+      reached = builder.reached_until();
+      indexes[0].set_names(builder.take_names());
+    } else {
+      PartStream stream{input.fd, starts[part], 0};
+      std::FILE* file = ::fopencookie(&stream, "r", {PartStream::read, nullptr, nullptr, nullptr});
+      if (file == nullptr) return;
+      IndexBuilder builder(indexes[part], nullptr, nullptr,
+                           static_cast<std::int64_t>(starts[part]) - static_cast<std::int64_t>(PartStream::kPrefix.size()),
+                           until);
+      found = p21::stream(file, path.string(), strict, builder, std::size_t{1} << 20);
+      std::fclose(file);
+      reached = part + 1 == parts || builder.reached_until();
+      indexes[part].set_names(builder.take_names());
+    }
+    ok[part] = reached && found.items().empty();
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t part = 1; part < parts; ++part) threads.emplace_back(scan, part);
+  scan(0);
+  for (std::thread& thread : threads) thread.join();
+  if (std::find(ok.begin(), ok.end(), 0) != ok.end()) return std::nullopt;
+  for (std::size_t part = 1; part < parts; ++part) indexes[0].absorb(std::move(indexes[part]));
+  return std::pair{std::move(header), std::move(indexes[0])};
+}
 
 }  // namespace
 
@@ -469,13 +578,24 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     state->cache_mapping.reset();
     p21::ReadOptions strict;  // the scan stops at the first structural error
     strict.error_limit = 1;
-    // Records of generated files run 40-80 bytes.
-    state->index.reserve(state->text.size() / 32);
-    IndexBuilder builder(state->index, state->header, standard_input ? nullptr : &state->file_mapping);
+    p21::Diagnostics scanned;
+    const unsigned jobs = options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
     state->file_mapping.advise(MADV_SEQUENTIAL);
-    p21::Diagnostics scanned = p21::stream_text(state->text, state->file_name, strict, builder);
+    std::optional<std::pair<p21::Header, InstanceIndex>> parts;
+    if (!standard_input && jobs > 1 && state->text.size() >= options.parallel_from)
+      parts = scan_in_parts(path, state->file_mapping, jobs);
+    if (parts) {
+      state->header = std::move(parts->first);
+      state->index = std::move(parts->second);
+    } else {
+      state->index = InstanceIndex();
+      // Records of generated files run 40-80 bytes.
+      state->index.reserve(state->text.size() / 32);
+      IndexBuilder builder(state->index, &state->header, standard_input ? nullptr : &state->file_mapping);
+      scanned = p21::stream_text(state->text, state->file_name, strict, builder);
+      state->index.set_names(builder.take_names());
+    }
     state->file_mapping.advise(MADV_RANDOM);  // from now on: the records a program reaches
-    state->index.set_names(builder.take_names());
     if (const auto duplicate = state->index.finish()) {
       const IndexedRecord first = state->index.at(duplicate->first);
       const IndexedRecord second = state->index.at(duplicate->second);

@@ -20,6 +20,12 @@
 /// looked for. What the scan itself checks for the whole file: the
 /// structure (sections, statements, ids), duplicate ids and FILE_SCHEMA.
 ///
+/// The scan runs on LazyOpenOptions::jobs threads for large files: the file
+/// is cut at record starts, each part scanned by the same scanner, and the
+/// cut is checked by the scan (a part must end exactly where the next one
+/// begins, so none began inside a string or a comment); otherwise, or when
+/// any part has a problem, the file is scanned once through.
+///
 /// Index cache: with LazyOpenOptions::index_cache set, the index is read
 /// from that file when it belongs to the input (same size, modification
 /// time, format version and a checksum of its content) and written there
@@ -47,6 +53,12 @@ namespace stepnc::exchange {
 struct LazyOpenOptions {
   /// The index cache file (see index_cache_path()); empty: no cache.
   std::filesystem::path index_cache;
+  /// Threads of the scan: 0 takes the core count; 1 scans in one pass.
+  /// The index, and any diagnostic, are the same whatever the number.
+  unsigned jobs = 0;
+  /// Files from this size are scanned in parts, one a thread (below it,
+  /// starting threads costs more than it saves).
+  std::size_t parallel_from = std::size_t{16} << 20;
 };
 
 /// Where the index cache of `file` goes: `FILE.stepnc-index` beside it, or,
