@@ -91,6 +91,11 @@ exchange::LazyModelFile* open_lazy(const std::filesystem::path& path, const Lazy
   return kept->emplace_back(std::move(file)).get();
 }
 
+bool lazy_read_failed(const exchange::LazyModelFile& file, const std::filesystem::path& path) {
+  print_diagnostics(file.diagnostics(), path.string());
+  return file.diagnostics().has_errors();
+}
+
 const exchange::ModelFile* load(const std::filesystem::path& path) {
   LoadedFile loaded = read_and_report(path);
   return loaded.ok() ? loaded.file : nullptr;

@@ -53,5 +53,8 @@ bool use_lazy(const LazyOptions& options, const std::filesystem::path& path);
 // Opens `path` lazily, printing warnings and, on failure, why (then null).
 // Kept until the process exits, as LoadedFile.
 exchange::LazyModelFile* open_lazy(const std::filesystem::path& path, const LazyOptions& options);
+// Prints the problems of the records a lazy read reached; true when any is
+// an error (the command then exits with exit_invalid_input).
+bool lazy_read_failed(const exchange::LazyModelFile& file, const std::filesystem::path& path);
 
 }  // namespace stepnc::cli

@@ -31,10 +31,7 @@ int run_query(const QueryOptions& options) {
     exchange::LazyModelFile* file = open_lazy(options.file, options.lazy);
     if (file == nullptr) return exit_invalid_input;
     result = query::evaluate(options.path, *file, iso14649_registry());
-    if (file->diagnostics().has_errors()) {
-      print_diagnostics(file->diagnostics(), options.file);
-      return exit_invalid_input;
-    }
+    if (lazy_read_failed(*file, options.file)) return exit_invalid_input;
   } else {
     const auto file = load(options.file);
     if (!file) return exit_invalid_input;

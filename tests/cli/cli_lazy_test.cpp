@@ -42,10 +42,7 @@ std::string quoted(const fs::path& path) {
 
 TEST_CASE("stepnc query and dump --lazy print what the full read prints, on every sample", "[cli][lazy]") {
   const fs::path scratch = stepnc_test::scratch_directory("cli-lazy");
-  std::vector<fs::path> samples;
-  for (const auto& entry : fs::recursive_directory_iterator(fs::path(STEPNC_SOURCE_DIR) / "samples"))
-    if (entry.path().extension() == ".stp") samples.push_back(entry.path());
-  std::sort(samples.begin(), samples.end());
+  const std::vector<fs::path> samples = stepnc_test::sample_part21_files();
   REQUIRE(samples.size() >= 12);
   const std::vector<std::string> commands = {
       "query {} /project",

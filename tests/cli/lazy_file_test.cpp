@@ -74,14 +74,6 @@ std::vector<std::string> queries_for(const meta::Model& model) {
   return queries;
 }
 
-std::vector<fs::path> sample_files() {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(fs::path(STEPNC_SOURCE_DIR) / "samples")) {
-    if (entry.path().extension() == ".stp") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 const std::string kHead =
     "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
@@ -92,7 +84,7 @@ const std::string kTail = "ENDSEC;\nEND-ISO-10303-21;\n";
 
 TEST_CASE("lazy and full reads answer every query of every sample alike", "[exchange][lazy]") {
   std::size_t files = 0, queries = 0;
-  for (const fs::path& path : sample_files()) {
+  for (const fs::path& path : stepnc_test::sample_part21_files()) {
     INFO(path.string());
     const auto eager = stepnc_test::read_valid(path);
     auto lazy = open_valid(path);
@@ -310,7 +302,7 @@ std::string index_bytes(const fs::path& path, unsigned jobs, std::string& diagno
 
 TEST_CASE("lazy read: the scan in parts builds the index of the scan in one pass", "[exchange][lazy]") {
   const fs::path dir = stepnc_test::scratch_directory("lazy-parts");
-  std::vector<fs::path> files = sample_files();
+  std::vector<fs::path> files = stepnc_test::sample_part21_files();
   // Ids going down, and a record whose string, at the middle of the file,
   // holds lines that look like records: a cut there must not hold.
   std::string data;
