@@ -89,9 +89,9 @@ class LazyModelFile {
   /// go to `diagnostics` as well.
   static std::unique_ptr<LazyModelFile> open(const std::filesystem::path& path, const meta::Registry& registry,
                                              const LazyOpenOptions& options, p21::Diagnostics& diagnostics);
-  ~LazyModelFile();
-  LazyModelFile(const LazyModelFile&) = delete;
-  LazyModelFile& operator=(const LazyModelFile&) = delete;
+  ~LazyModelFile();  ///< unmaps the file; the instances read go with it
+  LazyModelFile(const LazyModelFile&) = delete;  ///< not copyable: instances point into its model
+  LazyModelFile& operator=(const LazyModelFile&) = delete;  ///< not copyable
 
   const p21::Header& header() const;  ///< the HEADER section
   std::size_t record_count() const;  ///< instance records in the file

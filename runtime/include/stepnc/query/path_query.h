@@ -74,7 +74,7 @@ struct QueryResult {
 /// query means the same over either.
 class InstanceSource {
  public:
-  virtual ~InstanceSource() = default;
+  virtual ~InstanceSource() = default;  ///< sources are used through references
   /// Every instance of `entity` (subtypes included), in increasing id order.
   virtual std::vector<meta::Instance*> instances_of(const meta::EntityInfo& entity) = 0;
   /// The instance with this id, or null.
