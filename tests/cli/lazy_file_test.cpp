@@ -332,3 +332,23 @@ TEST_CASE("lazy read: the scan in parts builds the index of the scan in one pass
   CHECK(index_bytes(dir / "bad.stp", 2, diagnostics) == "no index");
   CHECK(diagnostics.find("error") != std::string::npos);
 }
+
+TEST_CASE("lazy read: an ABSTRACT entity or an id too large, reached by id, is the full read's error",
+          "[exchange][lazy]") {
+  const fs::path dir = stepnc_test::scratch_directory("lazy-untypable");
+  const fs::path path = dir / "untypable.stp";
+  stepnc_test::write_text(path, kHead + "#1=CARTESIAN_POINT('',(1.,2.,3.));\n#2=MACHINING_FEATURE('f',$,$,$,());\n"
+                                        "#5000000000=CARTESIAN_POINT('',(1.,2.,3.));\n" + kTail);
+  exchange::ModelReadOptions lenient;
+  lenient.strict = false;
+  const exchange::ModelReadResult eager = exchange::read_model_file(path, stepnc_test::registry(), lenient);
+  REQUIRE(eager.diagnostics.items().size() == 2);
+  auto file = open_valid(path);
+  CHECK(file->find(1) != nullptr);
+  CHECK(file->find(2) == nullptr);
+  REQUIRE(file->diagnostics().items().size() == 1);
+  CHECK(file->diagnostics().items()[0].to_string() == eager.diagnostics.items()[0].to_string());
+  CHECK(file->find(5000000000) == nullptr);
+  REQUIRE(file->diagnostics().items().size() == 2);
+  CHECK(file->diagnostics().items()[1].to_string() == eager.diagnostics.items()[1].to_string());
+}

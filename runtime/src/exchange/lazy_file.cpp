@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "instance_index.h"
 #include "read_support.h"
@@ -498,6 +499,19 @@ struct LazyModelFile::State final : public meta::FillContext {
     return slot.loaded;
   }
 
+  // The full read's error for a record of a known entity that has no
+  // instance (ABSTRACT, or an id too large), when `id` is one.
+  void report_untypable(std::uint64_t id) {
+    const std::optional<IndexedRecord> record = index.find(id);
+    const meta::EntityInfo* entity = record ? entity_of(*record) : nullptr;
+    if (entity == nullptr) return;
+    std::string written = record->entity != IndexedRecord::complex_entity
+                              ? std::string(names[record->entity])
+                              : fmt::format("({})", fmt::join(parts, " "));
+    if (std::string problem = detail::untypable_record(*entity, written, id); !problem.empty())
+      report(p21::Severity::error, record->offset, id, std::move(problem));
+  }
+
   void report(p21::Severity severity, std::uint64_t offset, std::uint64_t id, std::string message) {
     diagnostics.add(p21::Diagnostic{severity, file_name, p21::text_location(text, offset), id, std::move(message)});
   }
@@ -631,7 +645,11 @@ const p21::Header& LazyModelFile::header() const { return state_->header; }
 std::size_t LazyModelFile::record_count() const { return state_->index.size(); }
 const std::string& LazyModelFile::file_name() const { return state_->file_name; }
 
-meta::Instance* LazyModelFile::find(std::uint64_t id) { return follow(state_->instance(id)); }
+meta::Instance* LazyModelFile::find(std::uint64_t id) {
+  meta::Instance* instance = state_->instance(id);
+  if (instance == nullptr) state_->report_untypable(id);
+  return follow(instance);
+}
 
 std::vector<meta::Instance*> LazyModelFile::instances_of(const meta::EntityInfo& entity) {
   State& state = *state_;

@@ -62,6 +62,14 @@ std::string generic_record_reference(std::uint64_t id, std::string_view entity) 
                      "refer to it", id, entity);
 }
 
+std::string untypable_record(const meta::EntityInfo& entity, std::string_view written, std::uint64_t id) {
+  if (entity.abstract) return fmt::format("{} is ABSTRACT and cannot be instantiated", written);
+  if (id > std::numeric_limits<std::uint32_t>::max())
+    return fmt::format("instance id #{} exceeds the typed model's limit of {}", id,
+                       std::numeric_limits<std::uint32_t>::max());
+  return {};
+}
+
 }  // namespace detail
 
 namespace {
@@ -303,16 +311,9 @@ class ModelBuilder final : public meta::FillContext {
         return;
       }
     }
-    if (entity->abstract) {
+    if (entity->abstract || record.id > std::numeric_limits<std::uint32_t>::max()) {
       report(p21::Severity::error, record.offset, record.id,
-             fmt::format("{} is ABSTRACT and cannot be instantiated", display_name()));
-      skip(index);
-      return;
-    }
-    if (record.id > std::numeric_limits<std::uint32_t>::max()) {
-      report(p21::Severity::error, record.offset, record.id,
-             fmt::format("instance id #{} exceeds the typed model's limit of {}", record.id,
-                         std::numeric_limits<std::uint32_t>::max()));
+             detail::untypable_record(*entity, display_name(), record.id));
       skip(index);
       return;
     }
