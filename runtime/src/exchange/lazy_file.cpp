@@ -593,7 +593,7 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     p21::ReadOptions strict;  // the scan stops at the first structural error
     strict.error_limit = 1;
     p21::Diagnostics scanned;
-    const unsigned jobs = options.jobs != 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned jobs = std::max(1u, options.jobs);
     state->file_mapping.advise(MADV_SEQUENTIAL);
     std::optional<std::pair<p21::Header, InstanceIndex>> parts;
     if (!standard_input && jobs > 1 && state->text.size() >= options.parallel_from)
