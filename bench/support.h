@@ -3,6 +3,11 @@
 // file, and the trivial baseline every figure is compared with.
 #pragma once
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -13,8 +18,11 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
+
+extern char** environ;
 
 namespace stepnc_bench {
 
@@ -94,6 +102,41 @@ inline double newline_scan_seconds(const std::string& path, int runs) {
   });
   if (lines == 0) fmt::print(stderr, "warning: {} has no lines\n", path);
   return seconds;
+}
+
+// One run of a whole process.
+struct ProcessRun {
+  double seconds = 0;  // wall
+  double cpu_seconds = 0;  // user + system
+  double peak_rss_mb = 0;
+};
+
+// Runs `argv` with standard output to /dev/null; false when it fails.
+inline bool run_process(const std::vector<std::string>& argv, ProcessRun& result) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  const auto start = std::chrono::steady_clock::now();
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return false;
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) return false;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto seconds = [](timeval t) { return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6; };
+  result.cpu_seconds = seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  result.peak_rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+inline double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
 }
 
 }  // namespace stepnc_bench

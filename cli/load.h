@@ -5,6 +5,11 @@
 
 #include <filesystem>
 
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "stepnc/exchange/lazy_file.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/registry.h"
 
@@ -32,5 +37,24 @@ void report_read(const LoadedFile& loaded, const std::filesystem::path& path);
 
 // The file, strictly read, or null after printing why it could not be read.
 const exchange::ModelFile* load(const std::filesystem::path& path);
+
+// --lazy / --eager / --index-cache / --index-cache-dir of the commands
+// that read a few instances (query, dump).
+struct LazyOptions {
+  bool lazy = false;  // --lazy: always index and read on demand
+  bool eager = false;  // --eager: always read the whole file
+  bool index_cache = false;  // --index-cache: FILE.stepnc-index beside the file
+  std::string index_cache_dir;  // --index-cache-dir DIR
+};
+void add_lazy_options(CLI::App& command, LazyOptions& options);
+// Whether to open `path` lazily: as asked, else for files from
+// exchange::prefer_lazy()'s size (never for standard input unless asked).
+bool use_lazy(const LazyOptions& options, const std::filesystem::path& path);
+// Opens `path` lazily, printing warnings and, on failure, why (then null).
+// Kept until the process exits, as LoadedFile.
+exchange::LazyModelFile* open_lazy(const std::filesystem::path& path, const LazyOptions& options);
+// Prints the problems of the records a lazy read reached; true when any is
+// an error (the command then exits with exit_invalid_input).
+bool lazy_read_failed(const exchange::LazyModelFile& file, const std::filesystem::path& path);
 
 }  // namespace stepnc::cli

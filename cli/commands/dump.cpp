@@ -17,6 +17,7 @@ struct DumpOptions {
   std::string file;
   std::string id;
   bool json = false;
+  LazyOptions lazy;
 };
 
 // describe_json() plus the schema and every attribute in Part 21 spelling.
@@ -44,17 +45,29 @@ int run_dump(const DumpOptions& options) {
     fmt::print(stderr, "'{}' is not an instance id (expected #N or N)\n", options.id);
     return exit_usage;
   }
-  const auto file = load(options.file);
-  if (!file) return exit_invalid_input;
-  for (const meta::Instance* instance : file->model.instances()) {
-    if (instance->id() == *id) {
-      if (options.json) {
-        print_json(dump_json(*instance));
-      } else {
-        fmt::print("{}", meta::dump(*instance));
+  const meta::Instance* found = nullptr;
+  if (use_lazy(options.lazy, options.file)) {
+    exchange::LazyModelFile* file = open_lazy(options.file, options.lazy);
+    if (file == nullptr) return exit_invalid_input;
+    found = file->find(*id);
+    if (lazy_read_failed(*file, options.file)) return exit_invalid_input;
+  } else {
+    const auto file = load(options.file);
+    if (!file) return exit_invalid_input;
+    for (const meta::Instance* instance : file->model.instances()) {
+      if (instance->id() == *id) {
+        found = instance;
+        break;
       }
-      return exit_ok;
     }
+  }
+  if (found != nullptr) {
+    if (options.json) {
+      print_json(dump_json(*found));
+    } else {
+      fmt::print("{}", meta::dump(*found));
+    }
+    return exit_ok;
   }
   fmt::print(stderr, "{}: no typed instance #{}\n", options.file, *id);
   return exit_failure;
@@ -68,6 +81,7 @@ void add_dump_command(CLI::App& app, Action& action) {
   add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_option("ID", options->id, "Instance id, #N or N")->required();
   command->add_flag("--json", options->json, "Print the instance and its attributes as JSON");
+  add_lazy_options(*command, options->lazy);
   command->callback([&action, options] { action = [options] { return run_dump(*options); }; });
 }
 

@@ -15,6 +15,7 @@ struct QueryOptions {
   std::string file;
   std::string path;
   bool json = false;
+  LazyOptions lazy;
 };
 
 // An instance as describe_json(); a value in its Part 21 spelling; a count.
@@ -25,9 +26,17 @@ nlohmann::ordered_json node_json(const query::Node& node) {
 }
 
 int run_query(const QueryOptions& options) {
-  const auto file = load(options.file);
-  if (!file) return exit_invalid_input;
-  const query::QueryResult result = query::evaluate(options.path, file->model, iso14649_registry());
+  query::QueryResult result;
+  if (use_lazy(options.lazy, options.file)) {
+    exchange::LazyModelFile* file = open_lazy(options.file, options.lazy);
+    if (file == nullptr) return exit_invalid_input;
+    result = query::evaluate(options.path, *file, iso14649_registry());
+    if (lazy_read_failed(*file, options.file)) return exit_invalid_input;
+  } else {
+    const auto file = load(options.file);
+    if (!file) return exit_invalid_input;
+    result = query::evaluate(options.path, file->model, iso14649_registry());
+  }
   if (!result.ok()) {
     fmt::print(stderr, "{}\n{:>{}}\nerror: {}\n", options.path, "^", result.error->column,
                result.error->to_string());
@@ -54,6 +63,7 @@ void add_query_command(CLI::App& app, Action& action) {
   add_input_option(*command, options->file, "ISO 14649 Part 21 file");
   command->add_option("PATH", options->path, "The path query")->required();
   command->add_flag("--json", options->json, "Print the selected nodes as JSON");
+  add_lazy_options(*command, options->lazy);
   command->callback([&action, options] { action = [options] { return run_query(*options); }; });
 }
 

@@ -15,6 +15,7 @@
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/validate.h"
+#include "test_files.h"
 
 namespace {
 
@@ -25,14 +26,6 @@ const stepnc::meta::Registry& registry() {
   return schemas;
 }
 
-std::vector<fs::path> sample_files() {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(fs::path(STEPNC_SOURCE_DIR) / "samples")) {
-    if (entry.path().extension() == ".stp") files.push_back(entry.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // Every diagnostic of a lenient read, as "#id: message".
 std::vector<std::string> errors_in(const std::string& data_section) {
@@ -52,7 +45,7 @@ std::vector<std::string> errors_in(const std::string& data_section) {
 }  // namespace
 
 TEST_CASE("every sample conforms to the schemas", "[schemas][samples]") {
-  const std::vector<fs::path> files = sample_files();
+  const std::vector<fs::path> files = stepnc_test::sample_part21_files();
   REQUIRE(files.size() >= 3);
   for (const fs::path& file : files) {
     INFO(file.string());

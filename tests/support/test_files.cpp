@@ -3,12 +3,22 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
 #include <unistd.h>
 
 namespace stepnc_test {
+
+std::vector<std::filesystem::path> sample_part21_files() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(std::filesystem::path(STEPNC_SOURCE_DIR) / "samples")) {
+    if (entry.path().extension() == ".stp") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 std::string read_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace stepnc_test {
 
@@ -21,6 +22,9 @@ std::filesystem::path scratch_directory(const std::string& name);
 
 // Writes `text` to `path`, byte for byte.
 void write_text(const std::filesystem::path& path, std::string_view text);
+
+// Every Part 21 sample (`*.stp` below samples/), sorted.
+std::vector<std::filesystem::path> sample_part21_files();
 
 // Calls `body` with the bytes of every file of at most 1 MB below each of
 // `roots` (which must exist), and returns how many it replayed: the CI

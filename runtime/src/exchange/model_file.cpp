@@ -54,6 +54,22 @@ std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const me
   return problems;
 }
 
+std::string generic_record_reference(std::uint64_t id, std::string_view entity) {
+  if (entity.empty())
+    return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
+                       "attribute can refer to it", id);
+  return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
+                     "refer to it", id, entity);
+}
+
+std::string untypable_record(const meta::EntityInfo& entity, std::string_view written, std::uint64_t id) {
+  if (entity.abstract) return fmt::format("{} is ABSTRACT and cannot be instantiated", written);
+  if (id > std::numeric_limits<std::uint32_t>::max())
+    return fmt::format("instance id #{} exceeds the typed model's limit of {}", id,
+                       std::numeric_limits<std::uint32_t>::max());
+  return {};
+}
+
 }  // namespace detail
 
 namespace {
@@ -251,11 +267,9 @@ class ModelBuilder final : public meta::FillContext {
     if (record->entity == p21::RecordEntry::complex_entity) {
       if (std::any_of(file_.generic_records.begin(), file_.generic_records.end(),
                       [&](const GenericRecord& generic) { return generic.id == id; }))
-        return fmt::format("#{} is a complex instance no schema defines, kept as a generic record: no typed "
-                           "attribute can refer to it", id);
+        return detail::generic_record_reference(id, {});
     } else if (entities_.simple(record->entity, document_.entity_names()) == nullptr) {
-      return fmt::format("#{} is a {}, which no schema defines, kept as a generic record: no typed attribute can "
-                         "refer to it", id, document_.entity_name(*record));
+      return detail::generic_record_reference(id, document_.entity_name(*record));
     }
     return fmt::format("#{} could not be read (see its own error)", id);
   }
@@ -297,16 +311,9 @@ class ModelBuilder final : public meta::FillContext {
         return;
       }
     }
-    if (entity->abstract) {
+    if (entity->abstract || record.id > std::numeric_limits<std::uint32_t>::max()) {
       report(p21::Severity::error, record.offset, record.id,
-             fmt::format("{} is ABSTRACT and cannot be instantiated", display_name()));
-      skip(index);
-      return;
-    }
-    if (record.id > std::numeric_limits<std::uint32_t>::max()) {
-      report(p21::Severity::error, record.offset, record.id,
-             fmt::format("instance id #{} exceeds the typed model's limit of {}", record.id,
-                         std::numeric_limits<std::uint32_t>::max()));
+             detail::untypable_record(*entity, display_name(), record.id));
       skip(index);
       return;
     }

@@ -54,4 +54,14 @@ struct HeaderProblem {
 // an error; an unknown one beside known ones, or none named, a warning.
 std::vector<HeaderProblem> check_file_schema(const p21::Header& header, const meta::Registry& registry);
 
+// Why no typed attribute can refer to `#id`, a record no schema defines:
+// `entity` is its name, empty for a complex instance.
+std::string generic_record_reference(std::uint64_t id, std::string_view entity);
+
+// Why a record of a known entity has no typed instance (reported at the
+// record): its entity is ABSTRACT (`entity` as written, or `(A B)` for a
+// complex record), or its id does not fit the typed model. Empty when it
+// can have one.
+std::string untypable_record(const meta::EntityInfo& entity, std::string_view written, std::uint64_t id);
+
 }  // namespace stepnc::exchange::detail

@@ -479,6 +479,26 @@ Diagnostics stream(std::FILE* file, std::string file_name, const ReadOptions& op
   return diagnostics;
 }
 
+Diagnostics stream_text(std::string_view text, std::string file_name, const ReadOptions& options,
+                        RecordHandler& handler) {
+  Diagnostics diagnostics(options.error_limit);
+  detail::Scanner scanner(text, std::move(file_name), options, diagnostics,
+                          [text](std::uint64_t offset) { return text_location(text, offset); });
+  scanner.run(handler);
+  return diagnostics;
+}
+
+SourceLocation text_location(std::string_view text, std::uint64_t offset) {
+  const char* line_start = text.data();
+  const char* const stop = line_start + std::min<std::uint64_t>(offset, text.size());
+  std::uint32_t line = 1;
+  while (const void* newline = std::memchr(line_start, '\n', static_cast<std::size_t>(stop - line_start))) {
+    line_start = static_cast<const char*>(newline) + 1;
+    ++line;
+  }
+  return {line, static_cast<std::uint32_t>(stop - line_start + 1)};
+}
+
 Diagnostics stream_file(const std::filesystem::path& path, const ReadOptions& options, RecordHandler& handler,
                         std::size_t chunk_size) {
   std::FILE* file = std::fopen(path.c_str(), "rb");

@@ -197,9 +197,58 @@ std::vector<Node> spread(const std::vector<Node>& nodes) {
   return out;
 }
 
+// A model in memory: every instance is loaded.
+class ModelSource final : public InstanceSource {
+ public:
+  explicit ModelSource(const meta::Model& model) : model_(model) {}
+  std::vector<meta::Instance*> instances_of(const meta::EntityInfo& entity) override {
+    std::vector<meta::Instance*> instances;
+    for (meta::Instance* instance : model_.instances()) {
+      if (instance->entity_info().is_a(entity)) instances.push_back(instance);
+    }
+    std::sort(instances.begin(), instances.end(),
+              [](const meta::Instance* a, const meta::Instance* b) { return a->id() < b->id(); });
+    return instances;
+  }
+  meta::Instance* find(std::uint64_t id) override {
+    for (meta::Instance* instance : model_.instances()) {
+      if (instance->id() == id) return instance;
+    }
+    return nullptr;
+  }
+  bool load(meta::Instance& /*instance*/) override { return true; }
+
+ private:
+  const meta::Model& model_;
+};
+
+// A file opened lazily: instances are read as the query reaches them.
+class LazySource final : public InstanceSource {
+ public:
+  explicit LazySource(exchange::LazyModelFile& file) : file_(file) {}
+  std::vector<meta::Instance*> instances_of(const meta::EntityInfo& entity) override {
+    return file_.instances_of(entity);
+  }
+  meta::Instance* find(std::uint64_t id) override {
+    meta::Instance* instance = file_.find(id);
+    if (instance == nullptr && file_.diagnostics().has_errors()) failed_ = true;
+    return instance;
+  }
+  bool load(meta::Instance& instance) override { return file_.load(instance); }
+  bool failed() const { return failed_; }
+
+ private:
+  exchange::LazyModelFile& file_;
+  bool failed_ = false;
+};
+
+QueryError unreadable(std::size_t column) {
+  return QueryError{column, "an instance the path reaches could not be read"};
+}
+
 class Evaluator {
  public:
-  Evaluator(const meta::Model& model, const meta::Registry& registry) : model_(model), registry_(registry) {}
+  Evaluator(InstanceSource& source, const meta::Registry& registry) : source_(source), registry_(registry) {}
 
   std::optional<QueryError> run(const std::vector<Step>& steps, std::vector<Node>& nodes) {
     for (const Step& step : steps) {
@@ -216,6 +265,9 @@ class Evaluator {
       }
       if (error) return error;
     }
+    for (const Node& node : nodes) {
+      if (node.instance != nullptr && !source_.load(*node.instance)) return unreadable(steps.empty() ? 1 : steps.back().column);
+    }
     return std::nullopt;
   }
 
@@ -223,20 +275,15 @@ class Evaluator {
   std::optional<QueryError> root_entity(const Step& step, std::vector<Node>& nodes) {
     const meta::EntityInfo* entity = registry_.find_entity(step.name);
     if (entity == nullptr) return QueryError{step.column, fmt::format("unknown entity '{}'", step.name)};
-    for (meta::Instance* instance : model_.instances()) {
-      if (instance->entity_info().is_a(*entity)) nodes.push_back(Node{instance, std::nullopt, std::nullopt});
-    }
-    std::sort(nodes.begin(), nodes.end(),
-              [](const Node& a, const Node& b) { return a.instance->id() < b.instance->id(); });
+    for (meta::Instance* instance : source_.instances_of(*entity))
+      nodes.push_back(Node{instance, std::nullopt, std::nullopt});
     return std::nullopt;
   }
 
   std::optional<QueryError> root_id(const Step& step, std::vector<Node>& nodes) {
-    for (meta::Instance* instance : model_.instances()) {
-      if (instance->id() == step.id) {
-        nodes.push_back(Node{instance, std::nullopt, std::nullopt});
-        return std::nullopt;
-      }
+    if (meta::Instance* instance = source_.find(step.id)) {
+      nodes.push_back(Node{instance, std::nullopt, std::nullopt});
+      return std::nullopt;
     }
     return QueryError{step.column, fmt::format("no instance #{}", step.id)};
   }
@@ -267,6 +314,7 @@ class Evaluator {
         continue;
       }
       found = true;
+      if (!source_.load(*node.instance)) return unreadable(step.column);
       if (!info->stored()) {
         return QueryError{step.column,
                           fmt::format("'{}' of {} is a {} attribute; queries read stored attributes only",
@@ -333,20 +381,33 @@ class Evaluator {
     return std::nullopt;
   }
 
-  const meta::Model& model_;
+  InstanceSource& source_;
   const meta::Registry& registry_;
 };
 
 }  // namespace
 
 QueryResult evaluate(std::string_view path, const meta::Model& model, const meta::Registry& registry) {
+  ModelSource source(model);
+  return evaluate(path, source, registry);
+}
+
+QueryResult evaluate(std::string_view path, exchange::LazyModelFile& file, const meta::Registry& registry) {
+  LazySource source(file);
+  QueryResult result = evaluate(path, source, registry);
+  // A root id whose record could not be read is not "no instance".
+  if (source.failed() && result.error) result.error = unreadable(result.error->column);
+  return result;
+}
+
+QueryResult evaluate(std::string_view path, InstanceSource& source, const meta::Registry& registry) {
   QueryResult result;
   std::vector<Step> steps;
   if (auto error = PathParser(path).parse(steps)) {
     result.error = std::move(error);
     return result;
   }
-  if (auto error = Evaluator(model, registry).run(steps, result.nodes)) {
+  if (auto error = Evaluator(source, registry).run(steps, result.nodes)) {
     result.nodes.clear();
     result.error = std::move(error);
   }

@@ -86,5 +86,14 @@ Diagnostics stream_file(const std::filesystem::path& path, const ReadOptions& op
 /// Same, from an open file (not closed here); `file_name` is used in diagnostics.
 Diagnostics stream(std::FILE* file, std::string file_name, const ReadOptions& options, RecordHandler& handler,
                    std::size_t chunk_size = std::size_t{4} << 20);
+/// Same, over text already in memory (a mapped file, say), without copying
+/// it: RecordView::text points into `text`, which must outlive the call.
+/// Line and column of a diagnostic are counted from `text` when needed.
+Diagnostics stream_text(std::string_view text, std::string file_name, const ReadOptions& options,
+                        RecordHandler& handler);
+
+/// Line and column of byte `offset` of `text`, counted on demand (no table
+/// is kept: for a reader that needs a position only when it reports one).
+SourceLocation text_location(std::string_view text, std::uint64_t offset);
 
 }  // namespace stepnc::p21

@@ -37,6 +37,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stepnc/exchange/lazy_file.h"
 #include "stepnc/meta/model.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/meta/value.h"
@@ -68,7 +69,29 @@ struct QueryResult {
   bool ok() const { return !error.has_value(); }  ///< no error
 };
 
-/// Evaluates `path` over `model`; `registry` knows the schemas' entity names.
+/// Where a query finds its instances: a whole model in memory, or a file
+/// opened lazily whose instances are read as the query reaches them. The
+/// query means the same over either.
+class InstanceSource {
+ public:
+  virtual ~InstanceSource() = default;  ///< sources are used through references
+  /// Every instance of `entity` (subtypes included), in increasing id order.
+  virtual std::vector<meta::Instance*> instances_of(const meta::EntityInfo& entity) = 0;
+  /// The instance with this id, or null.
+  virtual meta::Instance* find(std::uint64_t id) = 0;
+  /// Makes the attributes of `instance` readable; false when it cannot be
+  /// read, which ends the query (the source knows why).
+  virtual bool load(meta::Instance& instance) = 0;
+};
+
+/// Evaluates `path` over `source`; `registry` knows the schemas' entity
+/// names. Every instance among the result nodes is loaded.
+QueryResult evaluate(std::string_view path, InstanceSource& source, const meta::Registry& registry);
+/// Evaluates `path` over `model` (every instance in memory).
 QueryResult evaluate(std::string_view path, const meta::Model& model, const meta::Registry& registry);
+/// Evaluates `path` over a lazily opened file, reading only the instances
+/// the path reaches. When one of them has a problem, the result has an
+/// error and `file.diagnostics()` the problem with its position.
+QueryResult evaluate(std::string_view path, exchange::LazyModelFile& file, const meta::Registry& registry);
 
 }  // namespace stepnc::query
