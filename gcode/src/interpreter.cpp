@@ -709,7 +709,7 @@ class Interpreter {
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
-    if (w.has('E') && !has_g(w, 760)) stop("E word with no G76 to use it", w.col('E'));
+    if (w.has('E') && !has_g(w, 760) && !has_g(w, 700)) stop("E word with no G76 to use it", w.col('E'));
     named_words(block, w);
 
     // 2 feed mode, 3 F, 4 S, 5 T

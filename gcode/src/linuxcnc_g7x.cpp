@@ -199,7 +199,10 @@ struct Output {
     return {p.imag(), p.real()};
   }
   void line(MoveKind kind, C end) { path.push_back(straight(kind, back(end))); }
+  // An arc ending where the tool is (within rs274's 0.0001 in X and Z) is not cut.
   void arc(bool ccw, C centre, C end) {
+    const Point to = back(end), at = path.empty() ? Point{} : path.back().end;
+    if (!path.empty() && std::abs(to.x - at.x) < 1e-4 && std::abs(to.z - at.z) < 1e-4) return;
     Move m;
     m.kind = MoveKind::arc;
     m.end = back(end);
