@@ -2152,7 +2152,6 @@ class Interpreter {
       for (std::uint32_t i = b.assignments_begin; i < b.assignments_end; ++i) values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
       for (std::uint32_t i = b.assignments_begin; i < b.assignments_end; ++i) assign(p_.assignments[i], values[i - b.assignments_begin]);
       if (bw.has('U') || bw.has('W')) unsupported(fmt::format("{} profile moves in U/W", name));
-      if (bw.has('A') || bw.has('C')) unsupported(fmt::format("{} profile corners (A fillets, C chamfers)", name));
       const std::complex<double> from = start;
       std::complex<double> end = incremental_ ? 0 : start;
       if (bw.has('X')) end.imag(bw.get('X'));
@@ -2181,6 +2180,8 @@ class Interpreter {
         continue;
       }
       profile.moves.push_back(m);
+      if (bw.has('A') && bw.has('C')) stop(fmt::format("{}: both A and C on a profile corner", name));
+      if (bw.has('A') || bw.has('C')) cycle.corners.push_back({profile.moves.size() - 1, bw.get(bw.has('A') ? 'A' : 'C'), bw.has('A')});
       start = end;
       auto p = program_position();
       p[0] = end.imag() * mm;

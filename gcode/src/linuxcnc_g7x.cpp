@@ -25,13 +25,15 @@ double cross(C u, C v) { return u.real() * v.imag() - u.imag() * v.real(); }
 struct Segment {
   bool arc = false;
   bool ccw = false;
-  C a, b, c;  // start, end, centre (arcs)
+  C a, b, c;          // start, end, centre (arcs)
+  double finish = 0;  // a corner still to be cut back: its fillet radius (arc) or chamfer length (straight)
 };
 
 double size_of(const Segment& s) { return s.arc ? std::min(std::abs(s.a - s.b), std::abs(s.a - s.c)) : std::abs(s.a - s.b); }
 
 // Falls towards -Z (arcs: without passing a quadrant point on the way).
 bool falls(const Segment& s) {
+  if (s.arc && s.finish != 0) return true;
   if (!s.arc) return (s.b - s.a).real() <= 1e-3;
   const double entry = (s.a - s.c).imag(), exit = (s.b - s.c).imag(), dz = (s.b - s.a).real();
   return s.ccw ? entry >= -1e-3 && exit >= -1e-3 && dz <= -1e-3 : entry <= 1e-3 && exit <= 1e-3 && dz <= -1e-3;
@@ -369,15 +371,55 @@ struct Levels {
   }
 };
 
-Profile profile_of(const Contour& contour) {
+Profile profile_of(const Contour& contour, const std::vector<LinuxcncCorner>& corners) {
   Profile p;
   C at(contour.start.z, contour.start.x);
-  for (const Move& m : contour.moves) {
+  auto corner = corners.begin();
+  for (std::size_t k = 0; k < contour.moves.size(); ++k) {
+    const Move& m = contour.moves[k];
     const C end(m.end.z, m.end.x);
     p.segments.push_back(Segment{m.kind == MoveKind::arc, m.ccw, at, end, C(m.centre.z, m.centre.x)});
     at = end;
+    for (; corner != corners.end() && corner->after == k; ++corner)
+      p.segments.push_back(Segment{corner->fillet, false, end, end, end, corner->size});
   }
   return p;
+}
+
+// Each corner segment between two others is cut back: both neighbours
+// offset by its size (to the side where they still meet), their meeting
+// point is the fillet's centre, and the points where it touches them are
+// the new ends. A fillet turns away from its centre's side in X.
+std::string finish_corners(Profile& profile) {
+  auto& s = profile.segments;
+  for (std::size_t k = 1; k + 1 < s.size(); ++k) {
+    Segment& g = s[k];
+    if (g.finish == 0) continue;
+    double f = g.finish;
+    Segment before = s[k - 1], after = s[k + 1];
+    offset(before, f);
+    offset(after, f);
+    if ((before.b - after.a).real() > 1e-2) {
+      f = -f;
+      before = s[k - 1];
+      after = s[k + 1];
+      offset(before, f);
+      offset(after, f);
+    }
+    if ((before.b - after.a).real() > 1e-2) return "Corner finish failed";
+    if (auto problem = join(before, after); !problem.empty()) return problem;
+    const C centre = (before.b + after.a) / 2.0;
+    offset(before, -f);
+    offset(after, -f);
+    g.a = s[k - 1].b = before.b;
+    g.b = s[k + 1].a = after.a;
+    if (g.arc) {
+      g.c = centre;
+      g.ccw = (g.a - centre).imag() > 0 || (g.b - centre).imag() > 0;
+      g.finish = 0;
+    }
+  }
+  return {};
 }
 
 
@@ -398,7 +440,7 @@ std::string settle(Profile& profile) {
 }  // namespace
 
 std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path& out, std::size_t max_moves) {
-  Profile profile = profile_of(contour);
+  Profile profile = profile_of(contour, cycle.corners);
   if (profile.segments.size() < 2) return "the profile needs at least one move";
   const std::size_t max_steps = max_moves;
   if (cycle.code == 70) {
@@ -413,6 +455,7 @@ std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path&
     if (auto problem = settle(probe); !problem.empty()) return problem;
     if (probe.frame & 4) profile.turn();
     profile.normalise();
+    if (auto problem = finish_corners(profile); !problem.empty()) return problem;
     drop_short(profile);
     if (auto problem = settle(profile); !problem.empty()) return problem;
     Output o{out, profile.frame, max_moves};
@@ -435,6 +478,7 @@ std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path&
   if (!(cycle.increment > 0)) return "I must be greater than zero";
   if (cycle.code == 72) profile.turn();
   profile.normalise();
+  if (auto problem = finish_corners(profile); !problem.empty()) return problem;
   drop_short(profile);
   if (auto problem = settle(profile); !problem.empty()) return problem;
   if (auto problem = profile.offset_by(cycle.distance, max_steps); !problem.empty()) return problem;
