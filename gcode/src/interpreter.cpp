@@ -2111,7 +2111,7 @@ class Interpreter {
     lathe::LinuxcncG7x cycle;
     cycle.code = meaning / 10;
     cycle.type = meaning % 10;
-    const std::string name = fmt::format("G{}.{}", cycle.code, cycle.type);
+    const std::string name = cycle.type ? fmt::format("G{}.{}", cycle.code, cycle.type) : fmt::format("G{}", cycle.code);
     if (!w.has('Q')) stop(fmt::format("{} needs a Q word (the profile's subroutine)", name));
     if (plane_ != 18) stop(fmt::format("{} can only be used in the XZ plane (G18)", name));
     if (diameter_) unsupported(fmt::format("{} in diameter mode (G7)", name));
@@ -2199,7 +2199,7 @@ class Interpreter {
     lathe::Path path{lathe::straight(lathe::MoveKind::rapid, profile.start)};
     if (profile.moves.size() > 1) {
       const std::string problem = lathe::linuxcnc_g7x(profile, cycle, path, budget());
-      if (!problem.empty()) stop(fmt::format("G7X error: {}", problem));
+      if (!problem.empty()) stop(fmt::format("{}: {}", name, problem));
     }
     for (lathe::Move& m : path) {
       m.end = {m.end.x * mm, m.end.z * mm};

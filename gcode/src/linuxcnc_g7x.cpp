@@ -89,7 +89,7 @@ std::string join(Segment& p, Segment& n) {
   if (!p.arc && !n.arc) {
     const C turn = std::conj(n.a - n.b) / std::abs(n.a - n.b);
     const C ps = (p.a - n.b) * turn, pe = (p.b - n.b) * turn;
-    if ((ps - pe).imag() == 0) return "Cannot intersect parallel lines";
+    if ((ps - pe).imag() == 0) return "two parallel lines of the offset profile do not meet";
     meet = (ps + (ps.imag() / (ps - pe).imag()) * (pe - ps)) / turn + n.b;
   } else if (p.arc && !n.arc) {
     if (std::abs(n.a - p.b) < tolerance) return {};
@@ -168,7 +168,7 @@ std::string Profile::offset_by(double distance, std::size_t max_steps) {
     // Segments that turned round are dropped (the smaller of a pair), the rest meet at new corners.
     for (std::size_t k = 0; k + 1 < s.size(); ++k) {
       if (!falls(s[k])) {
-        if (k == 0) return "Not monotonic";
+        if (k == 0) return "the profile is not monotonic (framed for the cycle, every line and arc must run towards -Z)";
         s.erase(s.begin() + static_cast<std::ptrdiff_t>(size_of(s[k]) < size_of(s[k - 1]) ? k : k - 1));
         k = 0;
         if (s.size() < 2) break;
@@ -230,7 +230,7 @@ struct Levels {
       if (x >= g.b.imag()) {
         const auto z = crossings(g, x);
         if (z.empty()) {
-          problem = "x too large in straight dive";
+          problem = "a level lies above the line it dives along";
           return false;
         }
         end = C(z.front(), x);
@@ -263,7 +263,7 @@ struct Levels {
     if (!g.arc) {
       if (g.b.imag() + tolerance < g.a.imag()) return true;
       if (std::abs(here - g.a) > tolerance) {
-        problem = "How did we get here?";
+        problem = "the climb along the profile lost its place";
         return false;
       }
       out.line(MoveKind::feed, g.b);
@@ -406,7 +406,7 @@ std::string finish_corners(Profile& profile) {
       offset(before, f);
       offset(after, f);
     }
-    if ((before.b - after.a).real() > 1e-2) return "Corner finish failed";
+    if ((before.b - after.a).real() > 1e-2) return "a corner's fillet or chamfer does not fit";
     if (auto problem = join(before, after); !problem.empty()) return problem;
     const C centre = (before.b + after.a) / 2.0;
     offset(before, -f);
@@ -433,7 +433,7 @@ std::string settle(Profile& profile) {
   if (s.empty()) return "the profile needs at least one move";
   if ((s.front().b - s.front().a).real() > 0) s.front().a.real(s.front().b.real());
   for (const Segment& g : s)
-    if (!falls(g)) return "Not monotonic";
+    if (!falls(g)) return "the profile is not monotonic (framed for the cycle, every line and arc must run towards -Z)";
   return {};
 }
 
@@ -475,7 +475,7 @@ std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path&
     }
     return {};
   }
-  if (!(cycle.increment > 0)) return "I must be greater than zero";
+  if (!(cycle.increment > 0)) return "I (the depth of cut) must be greater than zero";
   if (cycle.code == 72) profile.turn();
   profile.normalise();
   if (auto problem = finish_corners(profile); !problem.empty()) return problem;
