@@ -2168,6 +2168,7 @@ class Interpreter {
           if (bw.has('I') || bw.has('K')) stop(fmt::format("{}: both R and I or K in a profile arc", name));
           // The centre on the chord's perpendicular bisector, left of the chord for G3.
           const double r = bw.get('R');
+          if (!(r * r >= std::norm(end - from) / 4)) stop(fmt::format("{}: a profile arc of radius {} cannot span its ends", name, r), bw.col('R'));
           const auto off = std::complex<double>(0, 1) * std::sqrt((r * r - std::norm(end - from) / 4) / std::norm(end - from)) * (end - from);
           centre = (from + end) / 2.0 + (motion == 30 ? off : -off);
         } else {

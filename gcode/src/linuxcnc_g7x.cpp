@@ -317,8 +317,10 @@ struct Levels {
       }
       type = 3;  // pockets only, each from the top of the one it lies in
     }
-    while (k < s.size()) {
-      if (out.full()) return "more passes than the call budget allows";
+    for (std::size_t rounds = 0; k < s.size(); ++rounds) {
+      if (out.full() || rounds > 4 * (out.max_moves + s.size())) return "more passes than the call budget allows";
+      if (!std::isfinite(here.imag()) || (x - here.imag()) / level_step > static_cast<double>(out.max_moves))
+        return "more levels than the call budget allows";
       while (x - tolerance > here.imag()) x -= level_step;
       const bool rises = dive(k, x, problem);
       if (!problem.empty()) return problem;
@@ -442,7 +444,7 @@ std::string settle(Profile& profile) {
 std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path& out, std::size_t max_moves) {
   Profile profile = profile_of(contour, cycle.corners);
   if (profile.segments.size() < 2) return "the profile needs at least one move";
-  const std::size_t max_steps = max_moves;
+  const std::size_t max_steps = std::min<std::size_t>(max_moves, 100000);
   if (cycle.code == 70) {
     // Turned when the profile without its approach does not fall in either mirror image.
     Profile probe = profile;
@@ -459,7 +461,8 @@ std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path&
     drop_short(profile);
     if (auto problem = settle(profile); !problem.empty()) return problem;
     Output o{out, profile.frame, max_moves};
-    const int passes = static_cast<int>(cycle.passes);
+    if (!(cycle.passes < static_cast<double>(max_moves))) return "more passes than the call budget allows";
+    const int passes = static_cast<int>(std::max(cycle.passes, 0.0));
     for (int pass = passes; pass > 0; --pass) {
       const double distance = (pass - 1) * (cycle.distance - cycle.end_distance) / cycle.passes + cycle.end_distance;
       Profile copy = profile;
