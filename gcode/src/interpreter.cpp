@@ -518,6 +518,16 @@ class Interpreter {
 
   double condition(const Block& block) { return eval(block.o.args.at(0), 1); }
 
+  // A call's frame: #1-#30 saved and set to the arguments (0 past them).
+  void enter_subroutine(const std::vector<double>& args, std::uint32_t return_block) {
+    Frame frame;
+    frame.return_block = return_block;
+    for (int k = 1; k <= 30; ++k) frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
+    for (int k = 1; k <= 30; ++k)
+      params_[static_cast<std::size_t>(k)] = static_cast<std::size_t>(k) <= args.size() ? args[static_cast<std::size_t>(k - 1)] : 0;
+    frames_.push_back(std::move(frame));
+  }
+
   std::uint32_t o_statement(const Block& block, std::uint32_t pc) {
     const OStatement& o = block.o;
     switch (o.kind) {
@@ -528,12 +538,7 @@ class Interpreter {
         if (frames_.size() > 100) stop("subroutine calls nested deeper than 100");
         std::vector<double> args;
         for (std::uint32_t a : o.args) args.push_back(eval(a, 1));
-        Frame frame;
-        frame.return_block = pc + 1;
-        for (int k = 1; k <= 30; ++k) frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
-        for (int k = 1; k <= 30; ++k)
-          params_[static_cast<std::size_t>(k)] = static_cast<std::size_t>(k) <= args.size() ? args[static_cast<std::size_t>(k - 1)] : 0;
-        frames_.push_back(std::move(frame));
+        enter_subroutine(args, pc + 1);
         return it->second + 1;
       }
       case OKind::endsub:
@@ -698,14 +703,18 @@ class Interpreter {
     return std::nullopt;
   }
 
-  void execute(const Block& block) {
-    Words w = evaluate(block);
-    // Parameters are set after every value of the block is read (RS274NGC 3.3.2).
+  // Parameters are set after every value of the block is read (RS274NGC 3.3.2).
+  void assign_parameters(const Block& block) {
     std::vector<double> values;
     for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
       values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
     for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
       assign(p_.assignments[i], values[i - block.assignments_begin]);
+  }
+
+  void execute(const Block& block) {
+    Words w = evaluate(block);
+    assign_parameters(block);
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
@@ -2129,12 +2138,7 @@ class Interpreter {
     // The subroutine, entered as by a call without arguments.
     const auto machine = machine_;
     const std::size_t level = frames_.size();
-    Frame frame;
-    for (int k = 1; k <= 30; ++k) {
-      frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
-      params_[static_cast<std::size_t>(k)] = 0;
-    }
-    frames_.push_back(std::move(frame));
+    enter_subroutine({}, 0);
     int motion = motion_;
     std::size_t steps = 0;
     for (std::uint32_t pc = sub->second + 1; frames_.size() > level;) {
@@ -2148,9 +2152,7 @@ class Interpreter {
       }
       ++pc;
       const Words bw = evaluate(b);
-      std::vector<double> values;
-      for (std::uint32_t i = b.assignments_begin; i < b.assignments_end; ++i) values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
-      for (std::uint32_t i = b.assignments_begin; i < b.assignments_end; ++i) assign(p_.assignments[i], values[i - b.assignments_begin]);
+      assign_parameters(b);
       if (bw.has('U') || bw.has('W')) unsupported(fmt::format("{} profile moves in U/W", name));
       const std::complex<double> from = start;
       std::complex<double> end = incremental_ ? 0 : start;
