@@ -158,7 +158,7 @@ TEST_CASE("hand-made cycle programs agree with rs274 -g call for call", "[gcode]
   const std::map<std::string, std::size_t> expected_calls = {
       {"tapping.ngc", 79},  {"boring.ngc", 128},       {"orient.ngc", 15},
       {"threading.ngc", 288}, {"g7x_turning.ngc", 314}, {"g7x_facing.ngc", 290},
-      {"g7x_corners.ngc", 287}};
+      {"g7x_corners.ngc", 287}, {"g7x_inch.ngc", 287}};
   for (const auto& [name, count] : expected_calls) {
     INFO(name);
     const fs::path program = fs::path(STEPNC_TEST_DATA_DIR) / "gcode/data/rs274" / name;
