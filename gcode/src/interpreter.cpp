@@ -2209,6 +2209,9 @@ class Interpreter {
       m.centre = {m.centre.x * mm, m.centre.z * mm};
     }
     emit_path(path);
+    // rs274 cuts through its G0/G1/G2/G3: the last one stays the motion mode.
+    const lathe::Move& last = path.back();
+    motion_ = last.kind == lathe::MoveKind::rapid ? 0 : last.kind == lathe::MoveKind::arc ? (last.ccw ? 30 : 20) : 10;
     end_cycle(std::move(event));
   }
 
