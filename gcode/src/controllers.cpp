@@ -23,7 +23,7 @@ constexpr GCodeEntry rs274ngc_g[] = {
     {432, 8, same},  {490, 8, same},  {520, 0, same},  {530, 0, same},  {540, 12, same}, {550, 12, same},
     {560, 12, same}, {570, 12, same}, {580, 12, same}, {590, 12, same}, {591, 12, same}, {592, 12, same},
     {593, 12, same}, {610, 13, same}, {611, 13, same}, {640, 13, same}, {700, 1, same},  {710, 1, same},
-    {711, 1, same},  {712, 1, same},  {720, 1, same},  {721, 1, same},  {722, 1, same},  {730, 1, same},  {740, 1, same},  {760, 1, same},
+    {711, 1, same},  {720, 1, same},  {721, 1, same},  {730, 1, same},  {740, 1, same},  {760, 1, same},
     {800, 1, same},  {810, 1, same},  {820, 1, same},  {830, 1, same},  {840, 1, same},  {850, 1, same},
     {860, 1, same},  {870, 1, same},  {880, 1, same},  {890, 1, same},  {900, 3, same},  {901, 4, same},
     {910, 3, same},  {911, 4, same},  {920, 0, same},  {921, 0, same},  {922, 0, same},  {923, 0, same},

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <numbers>
 #include <unordered_map>
 #include <utility>
@@ -536,16 +535,6 @@ class Interpreter {
 
   double condition(const Block& block) { return eval(block.o.args.at(0), 1); }
 
-  // A call's frame: #1-#30 saved and set to the arguments (0 past them).
-  void enter_subroutine(const std::vector<double>& args, std::uint32_t return_block) {
-    Frame frame;
-    frame.return_block = return_block;
-    for (int k = 1; k <= 30; ++k) frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
-    for (int k = 1; k <= 30; ++k)
-      params_[static_cast<std::size_t>(k)] = static_cast<std::size_t>(k) <= args.size() ? args[static_cast<std::size_t>(k - 1)] : 0;
-    frames_.push_back(std::move(frame));
-  }
-
   std::uint32_t o_statement(const Block& block, std::uint32_t pc) {
     const OStatement& o = block.o;
     switch (o.kind) {
@@ -556,7 +545,12 @@ class Interpreter {
         if (frames_.size() > 100) stop("subroutine calls nested deeper than 100");
         std::vector<double> args;
         for (std::uint32_t a : o.args) args.push_back(eval(a, 1));
-        enter_subroutine(args, pc + 1);
+        Frame frame;
+        frame.return_block = pc + 1;
+        for (int k = 1; k <= 30; ++k) frame.saved[static_cast<std::size_t>(k)] = params_[static_cast<std::size_t>(k)];
+        for (int k = 1; k <= 30; ++k)
+          params_[static_cast<std::size_t>(k)] = static_cast<std::size_t>(k) <= args.size() ? args[static_cast<std::size_t>(k - 1)] : 0;
+        frames_.push_back(std::move(frame));
         return it->second + 1;
       }
       case OKind::endsub:
@@ -721,22 +715,18 @@ class Interpreter {
     return std::nullopt;
   }
 
-  // Parameters are set after every value of the block is read (RS274NGC 3.3.2).
-  void assign_parameters(const Block& block) {
+  void execute(const Block& block) {
+    Words w = evaluate(block);
+    // Parameters are set after every value of the block is read (RS274NGC 3.3.2).
     std::vector<double> values;
     for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
       values.push_back(eval(p_.assignments[i].value, p_.assignments[i].column));
     for (std::uint32_t i = block.assignments_begin; i < block.assignments_end; ++i)
       assign(p_.assignments[i], values[i - block.assignments_begin]);
-  }
-
-  void execute(const Block& block) {
-    Words w = evaluate(block);
-    assign_parameters(block);
 
     comment(block);
     for (const auto& [code, column] : w.g) refuse_unsupported_g(code, column, w);
-    if (w.has('E') && !has_g(w, 760) && !has_g(w, 700)) stop("E word with no G76 to use it", w.col('E'));
+    if (w.has('E') && !has_g(w, 760)) stop("E word with no G76 to use it", w.col('E'));
     named_words(block, w);
 
     // 2 feed mode, 3 F, 4 S, 5 T
@@ -1605,6 +1595,7 @@ class Interpreter {
       case 382: case 383: case 384: case 385: unsupported("G38.x probing", column);
       case 431: case 432: unsupported(fmt::format("G{:.1f} dynamic tool length offset", code / 10.0), column);
       case 520: unsupported("G52 local offset", column);
+      case 700: case 710: case 711: case 720: case 721: unsupported("G70-G72 lathe cycles", column);
       case 611: unsupported("G61.1 exact stop", column);
       default: break;
     }
@@ -1658,9 +1649,6 @@ class Interpreter {
   }
 
   void motion(const Words& w, const Block& block, bool machine_coordinates) {
-    // rs274 runs its G70-G72 under compensation; how it offsets the cycle's
-    // passes is not reproduced yet, so that is a refusal, not an error.
-    if (comp_.on() && motion_ >= 700 && motion_ < 730) unsupported("G70-G72 lathe cycles under cutter radius compensation");
     if (comp_.on() && motion_ != 0 && motion_ != 10 && motion_ != 20 && motion_ != 30)
       stop(fmt::format("G{:g} with cutter radius compensation on (G40 first)", motion_ > 5000 ? motion_ / 100 : motion_ / 10.0));
     if (comp_.offsetting() && machine_coordinates) stop("G53 with cutter radius compensation on");
@@ -1691,7 +1679,6 @@ class Interpreter {
       case meaning_manual_boring: cycle(w, block); return;
       case meaning_turning_cycle: case meaning_threading_cycle: case meaning_facing_cycle: single_cycle(w, block); return;
       case 760: linuxcnc_threading(w); return;
-      case 700: case 710: case 711: case 712: case 720: case 721: case 722: linuxcnc_g7x(w, motion_); return;
       case 330: {  // spindle-synchronised motion: LinuxCNC G33 K, Fanuc G32 F (the lead)
         const char letter = c_.thread_pitch_letter;
         const int code = letter == 'F' ? 32 : 33;
@@ -2236,109 +2223,6 @@ class Interpreter {
     const std::string problem = lathe::linuxcnc_thread(t, path, budget());
     if (!problem.empty()) stop(fmt::format("G76: {}", problem));
     emit_path(path, pitch);
-    end_cycle(std::move(event));
-  }
-
-  // LinuxCNC G70/G71/G72 Q(subroutine) [X Z] D I R (E P for G70): a
-  // rapid to X Z, then the subroutine run as rs274 runs it for a profile
-  // (its control flow and parameters, no motion; #<_x> and #<_z> follow the
-  // profile), in program units; linuxcnc_g7x.cpp cuts.
-  void linuxcnc_g7x(const Words& w, int meaning) {
-    lathe::LinuxcncG7x cycle;
-    cycle.code = meaning / 10;
-    cycle.type = meaning % 10;
-    const std::string name = cycle.type ? fmt::format("G{}.{}", cycle.code, cycle.type) : fmt::format("G{}", cycle.code);
-    if (!w.has('Q')) stop(fmt::format("{} needs a Q word (the profile's subroutine)", name));
-    if (plane_ != 18) stop(fmt::format("{} can only be used in the XZ plane (G18)", name));
-    if (diameter_) unsupported(fmt::format("{} in diameter mode (G7)", name));
-    if (state_.feed <= 0) stop(fmt::format("{} with zero feed rate", name));
-    const auto sub = subs_.find(fmt::format("{}", w.get('Q')));
-    if (sub == subs_.end()) stop(fmt::format("{} Q{}: no subroutine O{} in this file", name, w.get('Q'), w.get('Q')), w.col('Q'));
-    const auto before = program_position();
-    std::complex<double> start(to_units(before[2]), to_units(before[0]));  // Z + iX, program units
-    if (w.has('X')) start.imag(incremental_ ? start.imag() + w.get('X') : w.get('X'));
-    if (w.has('Z')) start.real(incremental_ ? start.real() + w.get('Z') : w.get('Z'));
-    const double mm = inch_ ? 25.4 : 1;
-    lathe::Contour profile;
-    profile.start = {start.imag(), start.real()};
-
-    // The subroutine, entered as by a call without arguments.
-    const auto machine = machine_;
-    const std::size_t level = frames_.size();
-    enter_subroutine({}, 0);
-    int motion = motion_;
-    std::size_t steps = 0;
-    for (std::uint32_t pc = sub->second + 1; frames_.size() > level;) {
-      if (pc >= p_.blocks.size()) stop(fmt::format("{}: subroutine O{} has no end", name, w.get('Q')));
-      if (++steps > budget()) stop(fmt::format("{}: the profile's subroutine runs longer than the call budget", name));
-      const Block& b = p_.blocks[pc];
-      if (b.error >= 0) stop(fmt::format("{}: the profile holds a bad block", name));
-      if (b.o.kind != OKind::none) {
-        pc = o_statement(b, pc);
-        continue;
-      }
-      ++pc;
-      const Words bw = evaluate(b);
-      assign_parameters(b);
-      if (bw.has('U') || bw.has('W')) unsupported(fmt::format("{} profile moves in U/W", name));
-      const std::complex<double> from = start;
-      std::complex<double> end = incremental_ ? 0 : start;
-      if (bw.has('X')) end.imag(bw.get('X'));
-      if (bw.has('Z')) end.real(bw.get('Z'));
-      if (incremental_) end += start;
-      if (const auto g = g_of(bw, 1)) motion = g->first;
-      if (end == from) continue;
-      lathe::Move m = lathe::straight(lathe::MoveKind::feed, {end.imag(), end.real()});
-      if (motion == 20 || motion == 30) {
-        m.kind = lathe::MoveKind::arc;
-        m.ccw = motion == 30;
-        std::complex<double> centre;
-        if (bw.has('R')) {
-          if (bw.has('I') || bw.has('K')) stop(fmt::format("{}: both R and I or K in a profile arc", name));
-          // The centre on the chord's perpendicular bisector, left of the chord for G3.
-          const double r = bw.get('R');
-          if (!(r * r >= std::norm(end - from) / 4)) stop(fmt::format("{}: a profile arc of radius {} cannot span its ends", name, r), bw.col('R'));
-          const auto off = std::complex<double>(0, 1) * std::sqrt((r * r - std::norm(end - from) / 4) / std::norm(end - from)) * (end - from);
-          centre = (from + end) / 2.0 + (motion == 30 ? off : -off);
-        } else {
-          if (!bw.has('I') && !bw.has('K')) stop(fmt::format("{}: a profile arc needs I or K", name));
-          centre = {bw.has('K') ? bw.get('K') : 0, bw.has('I') ? bw.get('I') : 0};
-          if (!arc_absolute_) centre += from;
-        }
-        m.centre = {centre.imag(), centre.real()};
-      } else if (motion != 0 && motion != 10) {
-        continue;
-      }
-      profile.moves.push_back(m);
-      if (bw.has('A') && bw.has('C')) stop(fmt::format("{}: both A and C on a profile corner", name));
-      if (bw.has('A') || bw.has('C')) cycle.corners.push_back({profile.moves.size() - 1, bw.get(bw.has('A') ? 'A' : 'C'), bw.has('A')});
-      start = end;
-      auto p = program_position();
-      p[0] = end.imag() * mm;
-      p[2] = end.real() * mm;
-      set_program_position(p);
-    }
-    machine_ = machine;
-
-    if (w.has('D')) cycle.distance = w.get('D');
-    if (w.has('E')) cycle.end_distance = w.get('E');
-    if (w.has('I')) cycle.increment = w.get('I');
-    if (w.has('P')) cycle.passes = w.get('P');
-    if (w.has('R')) cycle.retract = w.get('R');
-    CycleEvent event = begin_cycle(name, w, "XZDIRQ");
-    lathe::Path path{lathe::straight(lathe::MoveKind::rapid, profile.start)};
-    if (profile.moves.size() > 1) {
-      const std::string problem = lathe::linuxcnc_g7x(profile, cycle, path, budget());
-      if (!problem.empty()) stop(fmt::format("{}: {}", name, problem));
-    }
-    for (lathe::Move& m : path) {
-      m.end = {m.end.x * mm, m.end.z * mm};
-      m.centre = {m.centre.x * mm, m.centre.z * mm};
-    }
-    emit_path(path);
-    // rs274 cuts through its G0/G1/G2/G3: the last one stays the motion mode.
-    const lathe::Move& last = path.back();
-    motion_ = last.kind == lathe::MoveKind::rapid ? 0 : last.kind == lathe::MoveKind::arc ? (last.ccw ? 30 : 20) : 10;
     end_cycle(std::move(event));
   }
 

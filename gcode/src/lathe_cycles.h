@@ -102,29 +102,4 @@ struct LinuxcncThreading {
 };
 std::string linuxcnc_thread(const LinuxcncThreading& threading, Path& out, std::size_t max_moves);
 
-// LinuxCNC 2.9 G70/G71/G72 (linuxcnc_g7x.cpp): the profile of the Q
-// subroutine, closed by the line from `contour.start` to its first point,
-// in program units with X as programmed. G71/G72: levels `increment`
-// apart, the profile offset by `distance`, lifts of `retract` at 45
-// degrees; `type` 0 (G7x) cuts pockets, 1 (G7x.1) does not, 2 (G7x.2)
-// only the pockets. G70: `passes` passes from `distance` to `end_distance`
-// (the last at end_distance). A corner's fillet or chamfer is cut into the
-// profile before anything else. Moves are rapid, feed or arcs.
-struct LinuxcncCorner {
-  std::size_t after = 0;  // the index of the move ending at the corner
-  double size = 0;        // A: fillet radius, C: chamfer length
-  bool fillet = true;
-};
-struct LinuxcncG7x {
-  int code = 71;  // 70, 71 or 72
-  int type = 0;
-  double distance = 0;      // D
-  double end_distance = 0;  // E (G70)
-  double passes = 1;        // P (G70)
-  double increment = 1;     // I
-  double retract = 0.5;     // R
-  std::vector<LinuxcncCorner> corners;  // A/C words of the profile's blocks
-};
-std::string linuxcnc_g7x(const Contour& contour, const LinuxcncG7x& cycle, Path& out, std::size_t max_moves);
-
 }  // namespace stepnc::gcode::lathe
