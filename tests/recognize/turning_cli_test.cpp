@@ -89,20 +89,20 @@ TEST_CASE("stepnc import refuses G41/G42 on a tool whose nose is unknown", "[rec
     return shell("{} import " + program.string() + " --controller fanuc-lathe --tools " + tools.string() + " -o " +
                  out + " 2>&1");
   };
+  // A clear error at the G41 block, exit 1, no output file.
+  auto refused = [&](const std::string& csv, const std::string& missing) {
+    stepnc_test::write_text(tools, csv);
+    const auto run = import();
+    CHECK(run.exit_code == 1);
+    CHECK_THAT(run.out, Catch::Contains("p.nc:5: error: G41 on T1"));
+    CHECK_THAT(run.out, Catch::Contains("no " + missing));
+    CHECK_FALSE(std::filesystem::exists(out));
+  };
   // No insert and no nose_radius cell: the nose radius is unknown.
-  stepnc_test::write_text(tools, "tool,kind,name,holder,hand,tip_direction\n1,general_turning_tool,OD,PCLNR2525M12,right,3\n");
-  const auto radius = import();
-  CHECK(radius.exit_code == 1);
-  CHECK_THAT(radius.out, Catch::Contains("p.nc:5: error: G41 on T1"));
-  CHECK_THAT(radius.out, Catch::Contains("no nose radius"));
-  CHECK_FALSE(std::filesystem::exists(out));
+  refused("tool,kind,name,holder,hand,tip_direction\n1,general_turning_tool,OD,PCLNR2525M12,right,3\n", "nose radius");
   // A nose radius but no tip direction: where the programmed point lies is unknown.
-  stepnc_test::write_text(tools, "tool,kind,name,holder,insert,hand\n1,general_turning_tool,OD,PCLNR2525M12,CNMG120408,right\n");
-  const auto tip = import();
-  CHECK(tip.exit_code == 1);
-  CHECK_THAT(tip.out, Catch::Contains("p.nc:5: error: G41 on T1"));
-  CHECK_THAT(tip.out, Catch::Contains("no tip direction"));
-  CHECK_FALSE(std::filesystem::exists(out));
+  refused("tool,kind,name,holder,insert,hand\n1,general_turning_tool,OD,PCLNR2525M12,CNMG120408,right\n",
+          "tip direction");
   // With both, the program imports.
   stepnc_test::write_text(tools, "tool,kind,name,holder,insert,hand,tip_direction\n"
                                  "1,general_turning_tool,OD,PCLNR2525M12,CNMG120408,right,3\n");
