@@ -15,6 +15,8 @@ void import_turning(const gcode::Result& result, std::string_view program_text, 
   using namespace turning;
   const auto controller = gcode::controller(options.controller);
   const gcode::Program program = gcode::parse_program(std::string(program_text), *controller);
+  std::vector<std::uint32_t> compensated_lines;
+  if (!read_compensation(result, program, options, out, compensated_lines)) return;
   Motion motion;
   if (!read_motion(result, program, motion, options, out)) return;
   std::vector<Group> groups = divide(motion, result, *options.tools);
@@ -44,6 +46,8 @@ void import_turning(const gcode::Result& result, std::string_view program_text, 
                                        motion.moves[groups[g].first_move()].line, groups[g].tool));
       return;
     }
+    if (auto decision = compensation_decision(groups[g], motion, *tool, compensated_lines))
+      groups[g].decisions.push_back(std::move(*decision));
     recognise_operation(groups[g], groups, g, std::span<const Recognised>(ops.data(), g), motion, result, *tool, ops[g], groups[g].decisions);
   }
   Workpiece workpiece = estimate_stock(motion, groups, ops, options, groups.front().decisions);

@@ -323,9 +323,14 @@ void recognise_feature(const Group& group, const Motion& motion, const tooling::
     out.feature = "general_revolution";
     row += "; project rule: the machined boundary is kept as a general_revolution";
   }
+  // The Xegments themselves (X as a radius), so the feature's geometry is visible.
+  std::string listed;
+  for (const Segment& seg : segments)
+    listed += fmt::format("{}Z{:.3f} X{:.3f} to Z{:.3f} X{:.3f}{}", listed.empty() ? ": " : "; ", seg.from.z, seg.from.x,
+                          seg.to.z, seg.to.x, seg.arc ? " (arc)" : "");
   decisions.push_back({"seed 002 §4.3 (3) Boolean subtraction and Xegments",
-                       fmt::format("{} machining area(s), {} remaining profile segment(s)", swept.rings.size(),
-                                   segments.size()),
+                       fmt::format("{} machining area(s), {} remaining profile segment(s){}", swept.rings.size(),
+                                   segments.size(), listed),
                        {}});
   decisions.push_back({"seed 002 Table 4 (mapping matrix)", fmt::format("feature {} ({})", out.feature, row), {}});
 }

@@ -173,7 +173,7 @@ MachinedProfile machine_profile(std::string_view program_text, std::string_view 
     return profile;
   }
   gcode::Options options;
-  for (const tooling::Tool& tool : tools.tools) options.tools[tool.number] = {tool.number, 0, 0};
+  options.tools = gcode::tools_from(tools);  // G41/G42 offsets by the nose radius and tip direction, as the import reads
   const gcode::Result run = gcode::interpret_text(std::string(program_text), *controller, options);
   for (const gcode::Diagnostic& error : run.errors) profile.errors.push_back(error.to_string("program"));
   if (!run.ok()) return profile;

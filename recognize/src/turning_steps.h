@@ -115,6 +115,15 @@ bool read_motion(const gcode::Result& result, const gcode::Program& program, Mot
                  const ImportOptions& options, ImportResult& out);
 std::vector<Group> divide(const Motion& motion, const gcode::Result& result, const tooling::ToolList& tools);
 
+// turning_compensation.cpp: G41/G42. Refuses a G41/G42 on a tool whose
+// nose radius or tip direction the list lacks (naming the block); else the
+// lines of the motion made under compensation, sorted.
+bool read_compensation(const gcode::Result& result, const gcode::Program& program, const ImportOptions& options,
+                       ImportResult& out, std::vector<std::uint32_t>& compensated_lines);
+// Project decision TN1 for a group with compensated motion, else nullopt.
+std::optional<Decision> compensation_decision(const Group& group, const Motion& motion, const tooling::Tool& tool,
+                                              const std::vector<std::uint32_t>& compensated_lines);
+
 // turning_operations.cpp: the cycle method and Table 3.
 void recognise_operation(const Group& group, const std::vector<Group>& groups, std::size_t index,
                          std::span<const Recognised> earlier, const Motion& motion, const gcode::Result& result,

@@ -77,3 +77,35 @@ TEST_CASE("stepnc import refuses bad lathe input without writing", "[recognize][
   CHECK_THAT(insert.out, Catch::Contains("QQQQ99"));
   CHECK_FALSE(std::filesystem::exists(out));
 }
+
+TEST_CASE("stepnc import refuses G41/G42 on a tool whose nose is unknown", "[recognize][turning][cli][compensation]") {
+  const auto dir = stepnc_test::scratch_directory("import-turning-nose");
+  const auto tools = dir / "tools.csv", program = dir / "p.nc";
+  const auto out = (dir / "out.stp").string();
+  const std::string text = "O1\nT0101\nG96 S200 M03\nG00 X70. Z5.\nG41 G00 X40. Z2.\nG01 Z-20. F0.2\n"
+                           "G40 G00 X70. Z5.\nM30\n";
+  stepnc_test::write_text(program, text);
+  auto import = [&] {
+    return shell("{} import " + program.string() + " --controller fanuc-lathe --tools " + tools.string() + " -o " +
+                 out + " 2>&1");
+  };
+  // A clear error at the G41 block, exit 1, no output file.
+  auto refused = [&](const std::string& csv, const std::string& missing) {
+    stepnc_test::write_text(tools, csv);
+    const auto run = import();
+    CHECK(run.exit_code == 1);
+    CHECK_THAT(run.out, Catch::Contains("p.nc:5: error: G41 on T1"));
+    CHECK_THAT(run.out, Catch::Contains("no " + missing));
+    CHECK_FALSE(std::filesystem::exists(out));
+  };
+  // No insert and no nose_radius cell: the nose radius is unknown.
+  refused("tool,kind,name,holder,hand,tip_direction\n1,general_turning_tool,OD,PCLNR2525M12,right,3\n", "nose radius");
+  // A nose radius but no tip direction: where the programmed point lies is unknown.
+  refused("tool,kind,name,holder,insert,hand\n1,general_turning_tool,OD,PCLNR2525M12,CNMG120408,right\n",
+          "tip direction");
+  // With both, the program imports.
+  stepnc_test::write_text(tools, "tool,kind,name,holder,insert,hand,tip_direction\n"
+                                 "1,general_turning_tool,OD,PCLNR2525M12,CNMG120408,right,3\n");
+  CHECK(import().exit_code == 0);
+  CHECK(std::filesystem::exists(out));
+}

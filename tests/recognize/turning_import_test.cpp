@@ -5,6 +5,7 @@
 // the final profiles within 0.01 mm) on the seed's program, our own
 // programs of the ISO 14649-12 complex part and the shaft sample's post.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <catch2/catch.hpp>
@@ -279,6 +280,69 @@ TEST_CASE("round trip (§5.2): the Fanuc program our poster writes for the shaft
                                           "general_revolution", "general_revolution", "groove"};
   CHECK(column(trip.first, &ImportedStep::operation) == operations);
   CHECK(column(trip.first, &ImportedStep::feature) == features);
+  CHECK(column(trip.second, &ImportedStep::operation) == operations);
+  CHECK(column(trip.second, &ImportedStep::feature) == features);
+}
+
+namespace {
+
+// The Xegments a workingstep's decision lists: Z and X (radius) of each end.
+std::vector<double> xegment_values(const ImportedStep& step) {
+  std::vector<double> values;
+  for (const Decision& d : step.decisions) {
+    if (d.rule.find("Boolean subtraction and Xegments") == std::string::npos) continue;
+    const std::string& text = d.outcome;
+    for (std::size_t i = text.find(": "); i != std::string::npos && i < text.size(); ++i)
+      if ((text[i] == 'Z' || text[i] == 'X') && i + 1 < text.size() &&
+          (text[i + 1] == '-' || std::isdigit(static_cast<unsigned char>(text[i + 1]))))
+        values.push_back(std::stod(text.substr(i + 1)));
+  }
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("G42 on the part contour and the hand-offset tip path import alike (nose r 0.8, tip 3)",
+          "[recognize][turning][compensation]") {
+  const tooling::ToolList tools = tools_of("gcode/nose_compensation_tools.csv");
+  const std::string g42_text = sample("gcode/nose_compensation_g42.nc");
+  const std::string tip_text = sample("gcode/nose_compensation_tip_path.nc");
+  const ImportResult g42 = import_text(g42_text, tools, "nose_compensation_g42.nc");
+  const ImportResult tip = import_text(tip_text, tools, "nose_compensation_tip_path.nc");
+  const std::vector<std::string> operations{"facing_rough", "contouring_rough", "contouring_finish"};
+  const std::vector<std::string> features{"revolved_flat", "general_revolution", "general_revolution"};
+  CHECK(column(g42, &ImportedStep::operation) == operations);
+  CHECK(column(g42, &ImportedStep::feature) == features);
+  CHECK(column(tip, &ImportedStep::operation) == operations);
+  CHECK(column(tip, &ImportedStep::feature) == features);
+  REQUIRE(g42.steps.size() == tip.steps.size());
+  for (std::size_t i = 0; i < g42.steps.size(); ++i) {
+    INFO("workingstep " << g42.steps[i].workingstep);
+    const auto a = xegment_values(g42.steps[i]), b = xegment_values(tip.steps[i]);
+    CHECK_FALSE(a.empty());
+    REQUIRE(a.size() == b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) CHECK(a[k] == Approx(b[k]).margin(0.01));
+  }
+  // The finish's taper is the tip path's, Z-20.67 to Z-35.67 (the nose centre r off the contour, the
+  // tip r toward -Z and -X from it), not the programmed contour's Z-20 to Z-35: decision TN1.
+  const auto finish = xegment_values(g42.steps[2]);
+  CHECK(std::find_if(finish.begin(), finish.end(), [](double v) { return std::abs(v + 35.67) < 0.01; }) != finish.end());
+  // TN1 is recorded on the G42 finish workingstep only, with the blocks it covers (lines 30-36).
+  CHECK(fired(g42.steps[2], "G41/G42 tool nose radius compensation", "nose radius 0.8 mm, tip direction 3"));
+  const auto tn1 = std::find_if(g42.steps[2].decisions.begin(), g42.steps[2].decisions.end(),
+                                [](const Decision& d) { return d.rule.find("G41/G42") != std::string::npos; });
+  REQUIRE(tn1 != g42.steps[2].decisions.end());
+  CHECK(tn1->lines == std::vector<std::uint32_t>{30, 31, 32, 33, 34, 35, 36});
+  for (const ImportedStep& step : tip.steps) CHECK_FALSE(fired(step, "G41/G42", ""));
+  CHECK_FALSE(fired(g42.steps[0], "G41/G42", ""));
+  // Both machine the same part (§5.2) on the D60 bar, and the G42 program round-trips.
+  const auto a = turning::machine_profile(g42_text, "fanuc-lathe", tools, 30, -50, 2);
+  const auto b = turning::machine_profile(tip_text, "fanuc-lathe", tools, 30, -50, 2);
+  REQUIRE(a.errors.empty());
+  REQUIRE(b.errors.empty());
+  CHECK(turning::profile_difference(a, b) <= 0.01);
+  const RoundTrip trip = round_trip(g42_text, tools, 30, -50, 2);
+  CHECK(trip.difference <= 0.01);
   CHECK(column(trip.second, &ImportedStep::operation) == operations);
   CHECK(column(trip.second, &ImportedStep::feature) == features);
 }
