@@ -37,11 +37,11 @@ class Writer {
     d.direction_ratios = {x, y, z};
     return &d;
   }
-  ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, bool along_y = false) {
+  ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, Vec2 ref_direction = {1, 0}) {
     // Parts before the whole, as the authoring samples write them.
     auto* location = point(name + ": LOCATION", at.x, at.y, at.z);
     auto* axis = direction("AXIS", 0, 0, 1);
-    auto* ref = along_y ? direction("REF_DIRECTION", 0, 1, 0) : direction("REF_DIRECTION", 1, 0, 0);
+    auto* ref = direction("REF_DIRECTION", ref_direction.x, ref_direction.y, 0);
     auto& a = m_.create<ms::axis2_placement_3d>();
     a.name = name;
     a.location = location;
@@ -307,7 +307,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       out = &face;
     } else if (f.entity == "closed_pocket") {
       auto& pocket = m.create<ms::closed_pocket>();
-      pocket.feature_placement = w.placement(f.id, f.origin, f.along_y);
+      pocket.feature_placement = w.placement(f.id, f.origin, f.ref_direction);
       pocket.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
       pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
       if (f.outline.empty()) {
@@ -328,6 +328,32 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
         pocket.feature_boundary = &outline;
       }
       out = &pocket;
+    } else if (f.entity == "open_pocket") {
+      // A U open towards the placement's local +Y (ISO 14649-10 square_u_profile).
+      auto& pocket = m.create<ms::open_pocket>();
+      pocket.feature_placement = w.placement(f.id, f.origin, f.ref_direction);
+      pocket.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+      pocket.orthogonal_radius = w.length(f.corner_radius);
+      auto& u = m.create<ms::square_u_profile>();
+      u.width = w.length(f.width);
+      u.first_radius = w.length(f.corner_radius);
+      u.first_angle = 90;
+      u.second_radius = w.length(f.corner_radius);
+      u.second_angle = 90;
+      pocket.open_boundary = &u;
+      out = &pocket;
+    } else if (f.entity == "step") {
+      // The wall's foot along the placement's local X; the removed material
+      // on its left, out to the stock's edge (ISO 14649-10 step).
+      auto& step = m.create<ms::step>();
+      step.feature_placement = w.placement(f.id, f.origin, f.ref_direction);
+      step.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      auto& path = m.create<ms::linear_path>();
+      path.distance = w.length(f.length);
+      path.its_direction = w.direction("WALL", 1, 0, 0);
+      step.open_boundary = &path;
+      out = &step;
     } else {
       auto& region = m.create<ms::region_projection>();
       region.feature_placement = w.placement(f.id, f.origin);
