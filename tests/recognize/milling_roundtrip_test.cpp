@@ -177,6 +177,31 @@ TEST_CASE("an open pocket and a step come back from their posts through the stoc
   }
 }
 
+// Rules O1 and O2 on a program of our own, open on other sides: strokes
+// of a 10 mm end mill past the right, front and back faces of a
+// 100 x 50 x 20 block leave a step whose wall runs along -Y at X80 (the
+// material on its left, +X); a U from X30 to X50 with r5 corners at Y30
+// opens to the back face (+Y). Without the stock both are closed pockets.
+TEST_CASE("a step and an open pocket opening to other sides of the stock", "[recognize][milling]") {
+  const std::string program =
+      "G21 G90 G17\nT1 M6\nS3000 M3\nG0 Z50\nG0 X85 Y-10\nG0 Z25\nG1 Z15 F300\nG1 Y60 F600\nG1 X95\n"
+      "G1 Y-10\nG1 X105\nG1 Y60\nG0 Z50\n"
+      "S3200 M3\nG0 X35 Y60\nG0 Z25\nG1 Z12 F300\nG1 Y35 F600\nG1 X45\nG1 Y60\nG0 Z50\nM30\n";
+  const std::string tools = "tool,kind,diameter,length\n1,endmill,10,0\n";
+  const auto open = import(program, tools, "rs274ngc", "block:100:50:20@0,0,0");
+  REQUIRE(open.result.ok());
+  CHECK(summary(*open.result.model) ==
+        "bottom_and_side_finish_milling on step wall from (80.00, 50.00) along (0, -1) length 50.00 floor Z15.00\n"
+        "bottom_and_side_finish_milling on open_pocket U at (40.00, 30.00) open towards (0, 1) width 20.00 r5.00 "
+        "floor Z12.00\n");
+  const auto closed = import(program, tools, "rs274ngc");
+  REQUIRE(closed.result.ok());
+  for (const auto* pocket : all_of<ms::closed_pocket>(*closed.result.model)) CHECK(pocket->its_id.view().starts_with("POCKET"));
+  CHECK(all_of<ms::closed_pocket>(*closed.result.model).size() == 2);
+  CHECK(all_of<ms::step>(*closed.result.model).empty());
+  CHECK(all_of<ms::open_pocket>(*closed.result.model).empty());
+}
+
 // Every other milling sample: which round-trip today (asserted, so a
 // regression shows) and which not (recognize/README.md says why).
 TEST_CASE("round trips of every milling sample through both dialects", "[recognize][milling][posters]") {
