@@ -96,16 +96,17 @@ struct Operation {
 };
 
 struct Feature {
-  std::string entity;  // round_hole, closed_pocket, planar_face, region_projection
+  std::string entity;  // round_hole, closed_pocket, open_pocket, step, planar_face, region_projection
   std::string id;
   Vec3 origin;         // placement at the top face
-  bool along_y = false;
+  Vec2 ref_direction{1, 0};  // the placement's local X in the setup's XY
   double depth = 0;
   double diameter = 0;                // round_hole
   bool through = false;
   double tip = 0;                     // round_hole: the lowest tool tip
   bool conical = false;               // round_hole: that tip is a drill's point (118 deg)
-  double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket
+  double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket; open pocket (U) width and
+                                                    // radius; step wall length
   machining::polygons::Ring outline;                // general profile, relative to origin
   std::vector<std::size_t> operations;
   std::vector<Decision> decisions;

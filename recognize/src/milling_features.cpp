@@ -83,10 +83,105 @@ void planar_face(Feature& f, Recognised& out, int number) {
   }
 }
 
+// The sides of the stock's top: 0 least X, 1 least Y, 2 greatest X, 3 greatest Y.
+constexpr Vec2 outward[4] = {{-1, 0}, {0, -1}, {1, 0}, {0, 1}};
+
+// Rules O1 and O2 (ours; SEEDS-SPEC gives no rule for open features): the
+// cutting area is clipped to the stock's top, and each side of the clipped
+// area's box that lies on the stock's edge (within `fit`) is open. Three
+// open sides around a rectangle: a step, its wall the fourth side. One
+// open side on a rectangle whose two far corners share a radius: an open
+// pocket with a square_u_profile. Returns false (and leaves `f` alone)
+// when the area is neither; `walls` gets the outline points that are not
+// on an open side (what the allowances are measured at).
+bool open_feature(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, int& opens, int& steps,
+                  std::vector<Vec2>& walls) {
+  if (!out.stock_top) return false;
+  const polygons::Area inside = polygons::intersect(f.area, *out.stock_top);
+  if (inside.rings.size() != 1) return false;
+  const polygons::Ring& ring = inside.rings.front();
+  const Box stock = bounds(out.stock_top->rings), cut = bounds(inside.rings);
+  const double side_at[4] = {cut.x0, cut.y0, cut.x1, cut.y1}, edge_at[4] = {stock.x0, stock.y0, stock.x1, stock.y1};
+  bool open[4];
+  int count = 0;
+  for (int k = 0; k < 4; ++k) count += (open[k] = std::abs(side_at[k] - edge_at[k]) < fit);
+  if (count != 1 && count != 3) return false;
+  auto on_open_side = [&](Vec2 p) {
+    for (int k = 0; k < 4; ++k)
+      if (open[k] && std::abs((k % 2 ? p.y : p.x) - edge_at[k]) < fit) return true;
+    return false;
+  };
+  // The outline's vertices and edge middles (a step's wall is one edge
+  // between two corners on open sides).
+  std::vector<Vec2> kept;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 p = ring[i], q = ring[(i + 1) % ring.size()];
+    for (const Vec2 point : {p, Vec2{(p.x + q.x) / 2, (p.y + q.y) / 2}})
+      if (!on_open_side(point)) kept.push_back(point);
+  }
+  if (kept.empty()) return false;
+  const double w = cut.x1 - cut.x0, h = cut.y1 - cut.y0;
+  const Vec2 centre{(cut.x0 + cut.x1) / 2, (cut.y0 + cut.y1) / 2};
+  if (count == 3) {
+    double worst = 0;
+    for (const Vec2 p : kept)
+      worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, w / 2, h / 2, 0)));
+    if (worst >= fit) return false;
+    // The wall: the closed side, walked with the box's inside on its left
+    // (counter-clockwise), as ISO 14649-10 puts the step's material.
+    const int wall = static_cast<int>(std::find(open, open + 4, false) - open);
+    const Vec2 start[4] = {{cut.x0, cut.y1}, {cut.x0, cut.y0}, {cut.x1, cut.y0}, {cut.x1, cut.y1}};
+    f.entity = "step";
+    f.id = fmt::format("STEP{}", ++steps);
+    f.origin = {dimension(start[wall].x), dimension(start[wall].y), f.origin.z};
+    f.ref_direction = {-outward[wall].y, outward[wall].x};
+    f.length = dimension(wall % 2 ? w : h);
+    f.decisions.push_back({"rule O1 (ours): the cutting area runs off the stock on three sides of a rectangle -> step",
+                           fmt::format("step: wall from ({:g}, {:g}) along ({:g}, {:g}), {:g} long, depth {:g} "
+                                       "(outline within {:.3f})",
+                                       f.origin.x, f.origin.y, f.ref_direction.x, f.ref_direction.y, f.length, f.depth,
+                                       worst),
+                           lines});
+  } else {
+    const int side = static_cast<int>(std::find(open, open + 4, true) - open);
+    const Vec2 d = outward[side];
+    // The U mirrored about its open side is a rounded rectangle about the
+    // open side's middle; two corners cut off: area = w h - (4 - pi) r^2 / 2.
+    const double across = side % 2 ? w : h, along = side % 2 ? h : w;
+    const Vec2 mouth{side % 2 ? centre.x : edge_at[side], side % 2 ? edge_at[side] : centre.y};
+    const double estimate = std::sqrt(std::max(0.0, 2 * (w * h - polygons::area(inside)) / (4 - M_PI)));
+    auto misfit = [&](double r) {
+      double worst = 0;
+      for (const Vec2 p : kept)
+        worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - mouth.x, p.y - mouth.y}, side % 2 ? w / 2 : w,
+                                                                    side % 2 ? h : h / 2, r)));
+      return worst;
+    };
+    double corner = std::min(estimate, across / 2), worst = misfit(corner);
+    for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, across / 2); r += 0.001)
+      if (const double m = misfit(r); m < worst) worst = m, corner = r;
+    if (worst >= fit) return false;
+    f.entity = "open_pocket";
+    f.id = fmt::format("OPEN_POCKET{}", ++opens);
+    // Placed at the middle of the U's base, its local +Y towards the open side.
+    f.origin = {dimension(mouth.x - d.x * along), dimension(mouth.y - d.y * along), f.origin.z};
+    f.ref_direction = {d.y, -d.x};
+    f.width = dimension(across);
+    f.corner_radius = dimension(corner);
+    f.decisions.push_back({"rule O2 (ours): the cutting area runs off the stock on one side of a rounded U -> open_pocket",
+                           fmt::format("open_pocket, square_u_profile width {:g}, corner radius {:g}, depth {:g}, base "
+                                       "middle ({:g}, {:g}), open towards ({:g}, {:g}) (outline within {:.3f})",
+                                       f.width, f.corner_radius, f.depth, f.origin.x, f.origin.y, d.x, d.y, worst),
+                           lines});
+  }
+  walls = std::move(kept);
+  return true;
+}
+
 }  // namespace
 
 void finish_features(const Tools& tools, const ImportOptions& options, Recognised& out) {
-  int holes = 0, pockets = 0, regions = 0, faces = 0;
+  int holes = 0, pockets = 0, regions = 0, faces = 0, opens = 0, steps = 0;
   // Faces first: what they leave is the top of the features below them.
   double face_floor = out.top_z;
   for (Feature& f : out.features)
@@ -137,57 +232,61 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
       continue;
     }
     const polygons::Ring& ring = *outers.front();
-    const auto [x0, y0, x1, y1] = bounds({ring});
-    const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
-    const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
-    f.origin = {dimension(centre.x), dimension(centre.y), top};
-    // The corner radius: first from the area (w h - (4 - pi) r^2), then the
-    // radius within 0.1 mm of it that fits the outline best.
-    const double estimate = std::sqrt(std::max(0.0, (w * h - a) / (4 - M_PI)));
-    auto misfit = [&](double r) {
-      double worst = 0;
-      for (const Vec2 p : ring)
-        worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, w / 2, h / 2, r)));
-      return worst;
-    };
-    double corner = std::min(estimate, std::min(w, h) / 2), worst = misfit(corner);
-    for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, std::min(w, h) / 2); r += 0.001)
-      if (const double m = misfit(r); m < worst) worst = m, corner = r;
-    corner = dimension(corner);
-    if (std::abs(w - h) < fit && std::abs(corner - w / 2) < fit && worst < fit) {
-      f.entity = "round_hole";
-      f.diameter = dimension(w);
-      f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
-      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a disc -> hole (hole milling)",
-                             fmt::format("round_hole diameter {:g} at ({:g}, {:g}), depth {:g}", f.diameter, f.origin.x,
-                                         f.origin.y, f.depth),
-                             lines});
-    } else if (worst < fit) {
-      f.entity = "closed_pocket";
-      f.id = fmt::format("POCKET{}", ++pockets);
-      f.along_y = h > w + fit;  // the profile's length along the placement's ref_direction
-      f.length = dimension(std::max(w, h));
-      f.width = dimension(std::min(w, h));
-      f.corner_radius = corner;
-      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a rounded rectangle -> closed_pocket",
-                             fmt::format("closed_pocket {:g} x {:g}, corner radius {:g}, depth {:g}, centre ({:g}, {:g}), "
-                                         "long side along {} (outline within {:.3f})",
-                                         f.length, f.width, f.corner_radius, f.depth, f.origin.x, f.origin.y,
-                                         f.along_y ? "Y" : "X", worst),
-                             lines});
-    } else {
-      f.entity = "closed_pocket";
-      f.id = fmt::format("POCKET{}", ++pockets);
-      for (const Vec2 p : ring) f.outline.push_back({p.x - f.origin.x, p.y - f.origin.y});
-      f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: any other single outline -> closed_pocket, general profile",
-                             fmt::format("closed_pocket with a general profile of {} points, depth {:g}", ring.size(), f.depth),
-                             lines});
-    }
-    // Rough or finish: what each operation left of the final outline and floor.
+    std::vector<Vec2> walls(ring.begin(), ring.end());  // where the final walls are
+    f.origin.z = top;
+    if (!open_feature(f, out, lines, opens, steps, walls)) {
+      const auto [x0, y0, x1, y1] = bounds({ring});
+      const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
+      const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
+      f.origin = {dimension(centre.x), dimension(centre.y), top};
+      // The corner radius: first from the area (w h - (4 - pi) r^2), then the
+      // radius within 0.1 mm of it that fits the outline best.
+      const double estimate = std::sqrt(std::max(0.0, (w * h - a) / (4 - M_PI)));
+      auto misfit = [&](double r) {
+        double worst = 0;
+        for (const Vec2 p : ring)
+          worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, w / 2, h / 2, r)));
+        return worst;
+      };
+      double corner = std::min(estimate, std::min(w, h) / 2), worst = misfit(corner);
+      for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, std::min(w, h) / 2); r += 0.001)
+        if (const double m = misfit(r); m < worst) worst = m, corner = r;
+      corner = dimension(corner);
+      if (std::abs(w - h) < fit && std::abs(corner - w / 2) < fit && worst < fit) {
+        f.entity = "round_hole";
+        f.diameter = dimension(w);
+        f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
+        f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a disc -> hole (hole milling)",
+                               fmt::format("round_hole diameter {:g} at ({:g}, {:g}), depth {:g}", f.diameter, f.origin.x,
+                                           f.origin.y, f.depth),
+                               lines});
+      } else if (worst < fit) {
+        f.entity = "closed_pocket";
+        f.id = fmt::format("POCKET{}", ++pockets);
+        if (h > w + fit) f.ref_direction = {0, 1};  // the profile's length along the placement's ref_direction
+        f.length = dimension(std::max(w, h));
+        f.width = dimension(std::min(w, h));
+        f.corner_radius = corner;
+        f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: the cutting area is a rounded rectangle -> closed_pocket",
+                               fmt::format("closed_pocket {:g} x {:g}, corner radius {:g}, depth {:g}, centre ({:g}, {:g}), "
+                                           "long side along {} (outline within {:.3f})",
+                                           f.length, f.width, f.corner_radius, f.depth, f.origin.x, f.origin.y,
+                                           h > w + fit ? "Y" : "X", worst),
+                               lines});
+      } else {
+        f.entity = "closed_pocket";
+        f.id = fmt::format("POCKET{}", ++pockets);
+        for (const Vec2 p : ring) f.outline.push_back({p.x - f.origin.x, p.y - f.origin.y});
+        f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: any other single outline -> closed_pocket, general profile",
+                               fmt::format("closed_pocket with a general profile of {} points, depth {:g}", ring.size(), f.depth),
+                               lines});
+      }
+    }  // closed features
+    // Rough or finish: what each operation left of the final walls and floor.
     for (std::size_t k = 0; k < f.operations.size(); ++k) {
       Operation& op = out.operations[f.operations[k]];
       double side = 1e300;
-      for (const Vec2 p : ring) side = std::min(side, polygons::signed_distance(op.area, p));
+      for (const Vec2 p : walls) side = std::min(side, polygons::signed_distance(op.area, p));
       side = std::max(0.0, dimension(side));
       const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
       const bool rough = side > 0.005 || bottom > 0.005;

@@ -5,6 +5,7 @@
 // and samples/milling/seed004_fig10.stp.
 #include <cmath>
 #include <map>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -37,11 +38,11 @@ class Writer {
     d.direction_ratios = {x, y, z};
     return &d;
   }
-  ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, bool along_y = false) {
+  ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, Vec2 ref_direction = {1, 0}) {
     // Parts before the whole, as the authoring samples write them.
     auto* location = point(name + ": LOCATION", at.x, at.y, at.z);
     auto* axis = direction("AXIS", 0, 0, 1);
-    auto* ref = along_y ? direction("REF_DIRECTION", 0, 1, 0) : direction("REF_DIRECTION", 1, 0, 0);
+    auto* ref = direction("REF_DIRECTION", ref_direction.x, ref_direction.y, 0);
     auto& a = m_.create<ms::axis2_placement_3d>();
     a.name = name;
     a.location = location;
@@ -273,10 +274,16 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
   std::vector<ms::manufacturing_feature*> features;
   for (const Feature& f : r.features) {
     ms::manufacturing_feature* out = nullptr;
+    // Every machining feature: placed at its top, its depth a plane below.
+    auto place = [&]<class Entity>(Entity& feature) {
+      feature.feature_placement = w.placement(f.id, f.origin, f.ref_direction);
+      feature.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      if constexpr (std::is_base_of_v<ms::pocket, Entity>)
+        feature.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+    };
     if (f.entity == "round_hole") {
       auto& hole = m.create<ms::round_hole>();
-      hole.feature_placement = w.placement(f.id, f.origin);
-      hole.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      place(hole);
       hole.diameter = w.length(f.diameter);
       if (f.through) hole.bottom_condition = &m.create<ms::through_bottom_condition>();
       else if (f.conical) {
@@ -289,8 +296,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       out = &hole;
     } else if (f.entity == "planar_face") {
       auto& face = m.create<ms::planar_face>();
-      face.feature_placement = w.placement(f.id, f.origin);
-      face.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
+      place(face);
       auto* along = w.direction("COURSE OF TRAVEL", 1, 0, 0);
       auto* distance = w.length(f.length);
       auto& path = m.create<ms::linear_path>();
@@ -307,9 +313,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       out = &face;
     } else if (f.entity == "closed_pocket") {
       auto& pocket = m.create<ms::closed_pocket>();
-      pocket.feature_placement = w.placement(f.id, f.origin, f.along_y);
-      pocket.depth = w.plane(f.id + ": DEPTH", {0, 0, -f.depth});
-      pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
+      place(pocket);
       if (f.outline.empty()) {
         auto& outline = m.create<ms::rectangular_closed_profile>();
         outline.placement = w.placement(f.id + ": OUTLINE", {0, 0, 0});
@@ -328,6 +332,29 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
         pocket.feature_boundary = &outline;
       }
       out = &pocket;
+    } else if (f.entity == "open_pocket") {
+      // A U open towards the placement's local +Y (ISO 14649-10 square_u_profile).
+      auto& pocket = m.create<ms::open_pocket>();
+      place(pocket);
+      pocket.orthogonal_radius = w.length(f.corner_radius);
+      auto& u = m.create<ms::square_u_profile>();
+      u.width = w.length(f.width);
+      u.first_radius = w.length(f.corner_radius);
+      u.first_angle = 90;
+      u.second_radius = w.length(f.corner_radius);
+      u.second_angle = 90;
+      pocket.open_boundary = &u;
+      out = &pocket;
+    } else if (f.entity == "step") {
+      // The wall's foot along the placement's local X; the removed material
+      // on its left, out to the stock's edge (ISO 14649-10 step).
+      auto& step = m.create<ms::step>();
+      place(step);
+      auto& path = m.create<ms::linear_path>();
+      path.distance = w.length(f.length);
+      path.its_direction = w.direction("WALL", 1, 0, 0);
+      step.open_boundary = &path;
+      out = &step;
     } else {
       auto& region = m.create<ms::region_projection>();
       region.feature_placement = w.placement(f.id, f.origin);
