@@ -3,7 +3,9 @@
 // and `format` on the 64 MB file as processes (start-up, reading, output,
 // exit), against `wc -l` on the same file, run round robin.
 //
-//   cli_process_bench [FILE.stp] [ROUNDS]
+//   cli_process_bench [FILE.stp] [ROUNDS] [ONLY]
+//
+// ONLY keeps the commands whose label contains it (and the baseline).
 //
 // Wall time is what a user waits for; on a shared machine it also counts
 // the time other processes hold the cores, so the figures are medians of
@@ -37,8 +39,16 @@ int main(int argc, char** argv) {
       {"stepnc validate", {stepnc, "validate", path}, {}},
       {"stepnc info", {stepnc, "info", path}, {}},
       {"stepnc query '/project'", {stepnc, "query", path, "/project"}, {}},
+      {"stepnc format -j1 -o", {stepnc, "--jobs", "1", "format", path, "-o", formatted}, {}},
+      {"stepnc format -j2 -o", {stepnc, "--jobs", "2", "format", path, "-o", formatted}, {}},
       {"stepnc format -o", {stepnc, "format", path, "-o", formatted}, {}},
   };
+  if (argc > 3) {
+    const std::string only = argv[3];
+    std::erase_if(commands, [&](const Command& c) {
+      return !c.label.starts_with("wc -l") && c.label.find(only) == std::string::npos;
+    });
+  }
   for (int round = 0; round < rounds; ++round) {
     for (Command& command : commands) {
       ProcessRun result;

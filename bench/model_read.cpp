@@ -56,12 +56,19 @@ int main(int argc, char** argv) {
   const double parallel_wall = best_wall_time(runs, [&] {
     if (!exchange::read_model_file(path, registry, parallel).ok()) std::abort();
   });
-  // Writing to a file is what `stepnc format` does: the writer streams
-  // through a fixed buffer. Writing to memory also pays for growing one
+  // Writing to a file: the writer streams through a fixed buffer. Writing to memory also pays for growing one
   // string of the whole output (and the page faults of fresh memory).
   const std::filesystem::path written = std::filesystem::temp_directory_path() / "stepnc_model_read_bench.stp";
   const double write_file = best_time(runs, [&] {
     if (exchange::write_model_file(*result.file, written)) std::abort();
+  });
+  // The parallel write (ranges of instances formatted on `threads` threads)
+  // against the sequential one, both in wall time.
+  const double sequential_write_wall = best_wall_time(runs, [&] {
+    if (exchange::write_model_file(*result.file, written, 1)) std::abort();
+  });
+  const double parallel_write_wall = best_wall_time(runs, [&] {
+    if (exchange::write_model_file(*result.file, written, threads)) std::abort();
   });
   const double written_megabytes = static_cast<double>(std::filesystem::file_size(written)) / 1e6;
   std::filesystem::remove(written);
@@ -90,6 +97,9 @@ int main(int argc, char** argv) {
              static_cast<double>(model.size() * sizeof(stepnc::meta::Instance*)) / 1e6);
   fmt::print("typed write (file)    : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write_file,
              write_file / baseline);
+  fmt::print("parallel write, {} thr: {:8.1f} MB/s wall  {:5.2f}x the sequential write's wall time ({:.1f} MB/s)\n",
+             threads, written_megabytes / parallel_write_wall, parallel_write_wall / sequential_write_wall,
+             written_megabytes / sequential_write_wall);
   fmt::print("typed write (memory)  : {:8.1f} MB/s  {:5.2f}x baseline time\n", written_megabytes / write_memory,
              write_memory / baseline);
   return 0;

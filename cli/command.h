@@ -27,7 +27,8 @@ enum class Verbosity { quiet, normal, verbose };
 Verbosity verbosity();
 void set_verbosity(Verbosity level);
 
-// --jobs: threads that read a file (exchange::ModelReadOptions::jobs).
+// --jobs: threads that read a file (exchange::ModelReadOptions::jobs) and
+// that `format` writes with (p21::write_in_parts).
 unsigned read_jobs();
 void set_read_jobs(unsigned jobs);
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // stepnc format FILE [-o OUT]: read and write back, losslessly (the Part 21
 // layer's round trip: values keep their spelling, unknown entities and all
-// sections are kept; layout becomes canonical, comments are dropped).
+// sections are kept; layout becomes canonical, comments are dropped). The
+// records are formatted on --jobs threads (the same bytes for any number).
 #include <fmt/format.h>
 
 #include "command.h"
@@ -20,7 +21,7 @@ int run_format(const FormatOptions& options) {
   const p21::ReadResult read = p21::read_file(options.file);
   print_diagnostics(read.diagnostics, options.file);
   if (!read.ok()) return exit_invalid_input;
-  if (auto error = p21::write_file(*read.document, options.output)) {
+  if (auto error = p21::write_file(*read.document, options.output, read_jobs())) {
     fmt::print(stderr, "stepnc: {}\n", *error);
     return exit_failure;
   }

@@ -430,7 +430,7 @@ ModelReadResult read_model_text(std::string text, std::string file_name, const m
 
 namespace {
 
-void write(const ModelFile& file, p21::Writer& writer) {
+void write(const ModelFile& file, p21::Writer& writer, unsigned jobs) {
   writer.begin_file();
   for (const p21::HeaderEntity& entity : file.header.entities) writer.raw_record(entity.text);
   writer.end_header();
@@ -446,21 +446,27 @@ void write(const ModelFile& file, p21::Writer& writer) {
     std::sort(generic.begin(), generic.end(), by_record_id);
   }
 
-  // Merge the two id-ordered sequences.
-  std::string normalised;
-  auto next_generic = generic.begin();
-  auto write_generic_before = [&](std::uint64_t id) {
-    for (; next_generic != generic.end() && (*next_generic)->id < id; ++next_generic) {
+  // Merge the two id-ordered sequences: a range of typed instances writes
+  // each one after the generic records between it and the previous one.
+  const auto write_generic = [&](std::uint64_t from, std::uint64_t to, p21::Writer& out) {
+    std::string normalised;
+    auto next = std::lower_bound(generic.begin(), generic.end(), from,
+                                 [](const GenericRecord* r, std::uint64_t id) { return r->id < id; });
+    for (; next != generic.end() && (*next)->id < to; ++next) {
       normalised.clear();
-      p21::append_normalised((*next_generic)->text, normalised);
-      writer.raw_record(normalised);
+      p21::append_normalised((*next)->text, normalised);
+      out.raw_record(normalised);
     }
   };
-  for (const meta::Instance* instance : typed) {
-    write_generic_before(instance->id());
-    meta::write_instance(*instance, writer);
-  }
-  write_generic_before(std::numeric_limits<std::uint64_t>::max());
+  p21::write_in_parts(writer, typed.size(), jobs, [&](std::size_t first, std::size_t last, p21::Writer& part) {
+    std::uint64_t previous = first == 0 ? 0 : typed[first - 1]->id();
+    for (const meta::Instance* instance : typed.subspan(first, last - first)) {
+      write_generic(previous, instance->id(), part);
+      meta::write_instance(*instance, part);
+      previous = instance->id();
+    }
+  });
+  write_generic(typed.empty() ? 0 : typed.back()->id(), std::numeric_limits<std::uint64_t>::max(), writer);
 
   writer.end_data();
   writer.end_file();
@@ -468,17 +474,18 @@ void write(const ModelFile& file, p21::Writer& writer) {
 
 }  // namespace
 
-std::string to_text(const ModelFile& file) {
+std::string to_text(const ModelFile& file, unsigned jobs) {
   p21::Writer writer;
-  write(file, writer);
+  write(file, writer, jobs);
   return writer.take();
 }
 
-std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path) {
+std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path,
+                                            unsigned jobs) {
   io::OutputFile out;
   if (auto error = out.open(path)) return error;
   p21::Writer writer(out);
-  write(file, writer);
+  write(file, writer, jobs);
   if (auto error = writer.finish()) return error;
   return out.commit();
 }

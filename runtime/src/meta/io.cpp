@@ -160,7 +160,7 @@ void write_instance(const Instance& const_instance, p21::Writer& writer) {
   writer.end_complex_instance();
 }
 
-void write_model(const Model& model, const FileHeader& header, p21::Writer& writer) {
+void write_model(const Model& model, const FileHeader& header, p21::Writer& writer, unsigned jobs) {
   // Header lists are LIST [1:?] OF STRING: an empty one is written as ('').
   auto strings = [&](const std::vector<std::string>& list) {
     writer.begin_list();
@@ -191,23 +191,26 @@ void write_model(const Model& model, const FileHeader& header, p21::Writer& writ
 
   writer.begin_data();
   std::vector<Instance*> sorted;
-  for (const Instance* instance : model.in_id_order(sorted)) write_instance(*instance, writer);
+  const std::span<Instance* const> instances = model.in_id_order(sorted);
+  p21::write_in_parts(writer, instances.size(), jobs, [&](std::size_t first, std::size_t last, p21::Writer& part) {
+    for (const Instance* instance : instances.subspan(first, last - first)) write_instance(*instance, part);
+  });
   writer.end_data();
   writer.end_file();
 }
 
-std::string to_text(const Model& model, const FileHeader& header) {
+std::string to_text(const Model& model, const FileHeader& header, unsigned jobs) {
   p21::Writer writer;
-  write_model(model, header, writer);
+  write_model(model, header, writer, jobs);
   return writer.take();
 }
 
 std::optional<std::string> write_file(const Model& model, const FileHeader& header,
-                                      const std::filesystem::path& path) {
+                                      const std::filesystem::path& path, unsigned jobs) {
   io::OutputFile file;
   if (auto error = file.open(path)) return error;
   p21::Writer writer(file);
-  write_model(model, header, writer);
+  write_model(model, header, writer, jobs);
   if (auto error = writer.finish()) return error;
   return file.commit();
 }

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cstring>
+#include <exception>
+#include <thread>
+#include <vector>
 
 #include "lexical.h"
 #include "stepnc/p21/text_codec.h"
@@ -298,6 +301,67 @@ std::optional<std::string> Writer::finish() {
   return error_;
 }
 
+void Writer::append(Writer& part) {
+  if (depth_ != 0) fail("records appended inside an instance or list");
+  if (part.depth_ != 0) fail("appended part ended inside an instance or list");
+  if (part.error_) fail(*part.error_);
+  if (file_ != nullptr) {
+    if (size_ != 0) {
+      if (auto error = file_->write(text())) fail(*error);
+      size_ = 0;
+    }
+    if (part.size_ != 0)
+      if (auto error = file_->write(part.text())) fail(*error);
+  } else {
+    put(part.text());
+  }
+  part.size_ = 0;
+  part.error_.reset();
+  part.need_comma_ = false;
+  part.depth_ = 0;
+}
+
+namespace {
+constexpr std::size_t kParallelWriteMinimum = 16384;
+// Small enough that the ranges' buffers stay a few MB (they are reused
+// from round to round), large enough that a round costs far more than
+// starting its threads.
+constexpr std::size_t kMaxItemsPerPart = 32768;
+}  // namespace
+
+void write_in_parts(Writer& writer, std::size_t count, unsigned jobs, const PartFormatter& format) {
+  if (jobs == 0) jobs = count >= kParallelWriteMinimum ? std::max(1u, std::thread::hardware_concurrency()) : 1;
+  if (jobs <= 1 || count < 2) {
+    format(0, count, writer);
+    return;
+  }
+  const std::size_t per_part = std::clamp<std::size_t>((count + jobs - 1) / jobs, 1, kMaxItemsPerPart);
+  std::vector<Writer> parts(jobs);
+  std::vector<std::exception_ptr> failures(jobs);
+  std::vector<std::thread> threads;
+  for (std::size_t first = 0; first < count;) {
+    // One round: up to `jobs` ranges at once, the first on this thread.
+    std::size_t n = 0;
+    const auto run = [&](std::size_t k, std::size_t begin) {
+      try {
+        format(begin, std::min(count, begin + per_part), parts[k]);
+      } catch (...) {
+        failures[k] = std::current_exception();
+      }
+    };
+    for (std::size_t begin = first; n < jobs && begin < count; ++n, begin += per_part)
+      if (n > 0) threads.emplace_back(run, n, begin);
+    run(0, first);
+    for (std::thread& thread : threads) thread.join();
+    threads.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (failures[k]) std::rethrow_exception(failures[k]);
+      writer.append(parts[k]);
+    }
+    first = std::min(count, first + n * per_part);
+  }
+}
+
 // ------------------------------------------------------------ round trip
 
 void append_normalised(std::string_view text, std::string& out) {
@@ -343,11 +407,10 @@ void append_normalised(std::string_view text, std::string& out) {
   }
 }
 
-void write_document(const Document& document, Writer& writer) {
+void write_document(const Document& document, Writer& writer, unsigned jobs) {
   writer.begin_file();
   for (const HeaderEntity& entity : document.header().entities) writer.raw_record(entity.text);
   writer.end_header();
-  std::string line;
   const std::span<const RecordEntry> records = document.records();
   bool ended = false;
   for (const Section& section : document.sections()) {
@@ -360,27 +423,32 @@ void write_document(const Document& document, Writer& writer) {
       continue;
     }
     writer.begin_data(section.text);
-    for (const RecordEntry& record : records.subspan(section.first_record, section.record_count)) {
-      line.clear();
-      append_normalised(document.text(record), line);
-      writer.raw_record(line);
-    }
+    const std::span<const RecordEntry> data = records.subspan(section.first_record, section.record_count);
+    write_in_parts(writer, data.size(), jobs, [&](std::size_t first, std::size_t last, Writer& part) {
+      std::string line;
+      for (const RecordEntry& record : data.subspan(first, last - first)) {
+        line.clear();
+        append_normalised(document.text(record), line);
+        part.raw_record(line);
+      }
+    });
     writer.end_data();
   }
   if (!ended) writer.end_file();
 }
 
-std::string to_text(const Document& document) {
+std::string to_text(const Document& document, unsigned jobs) {
   Writer writer;
-  write_document(document, writer);
+  write_document(document, writer, jobs);
   return writer.take();
 }
 
-std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path) {
+std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path,
+                                      unsigned jobs) {
   io::OutputFile file;
   if (auto error = file.open(path)) return error;
   Writer writer(file);
-  write_document(document, writer);
+  write_document(document, writer, jobs);
   if (auto error = writer.finish()) return error;  // the destructor removes the temporary file
   return file.commit();
 }

@@ -97,10 +97,12 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
 ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
                                 const ModelReadOptions& options = {});
 
-/// The file as Part 21 text (see the policy above): header, typed instances, then the kept records.
-std::string to_text(const ModelFile& file);
+/// The file as Part 21 text (see the policy above): header, typed instances, then the kept records;
+/// formatted on `jobs` threads (p21::write_in_parts: the same bytes for any number, 0 the core count for large files).
+std::string to_text(const ModelFile& file, unsigned jobs = 1);
 /// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
 /// returns an error message on failure.
-std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path);
+std::optional<std::string> write_model_file(const ModelFile& file, const std::filesystem::path& path,
+                                            unsigned jobs = 1);
 
 }  // namespace stepnc::exchange

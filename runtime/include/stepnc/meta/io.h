@@ -56,14 +56,16 @@ struct FileHeader {
   std::vector<std::string> schemas;  ///< FILE_SCHEMA
 };
 
-/// The whole file: header, then every instance in increasing id order.
-void write_model(const Model& model, const FileHeader& header, p21::Writer& writer);
+/// The whole file: header, then every instance in increasing id order,
+/// formatted on `jobs` threads (p21::write_in_parts: the same bytes for any
+/// number; 0 is the core count for large models).
+void write_model(const Model& model, const FileHeader& header, p21::Writer& writer, unsigned jobs = 1);
 /// The whole file as text (see write_model()).
-std::string to_text(const Model& model, const FileHeader& header);
+std::string to_text(const Model& model, const FileHeader& header, unsigned jobs = 1);
 /// Writes safely (stepnc/io/output.h: atomic for files, `-` is stdout);
 /// returns an error message on failure.
 std::optional<std::string> write_file(const Model& model, const FileHeader& header,
-                                      const std::filesystem::path& path);
+                                      const std::filesystem::path& path, unsigned jobs = 1);
 
 // ---------------------------------------------------------------- reading
 

@@ -42,6 +42,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -113,6 +114,10 @@ class Writer {
   std::string take();
   /// Flushes to the file (file mode) and returns the first problem, if any.
   std::optional<std::string> finish();
+  /// Appends the whole records another (in-memory) Writer made, and its
+  /// first problem; leaves `part` empty for reuse. In file mode the text
+  /// goes to the file directly, not through this writer's buffer.
+  void append(Writer& part);
 
  private:
   /// The output buffer: write at room(n) (at least n bytes), then
@@ -155,11 +160,26 @@ class Writer {
 /// and whitespace outside strings and binaries removed.
 void append_normalised(std::string_view record_text, std::string& out);
 
-/// The schema-independent round trip (policy above).
-void write_document(const Document& document, Writer& writer);
+/// Formats items [first, last) as whole records into `part`.
+using PartFormatter = std::function<void(std::size_t first, std::size_t last, Writer& part)>;
+
+/// Writes `count` items, in order, on up to `jobs` threads: the items are cut
+/// into contiguous ranges, each formatted by `format` into its own in-memory
+/// Writer on a thread, and the texts appended to `writer` in order, so the
+/// output is byte for byte what `format(0, count, writer)` writes (one
+/// thread, which `jobs` 1 runs). `jobs` 0 is the core count for 16,384
+/// items or more, one thread below. Ranges hold at most 32,768 items and
+/// are formatted `jobs` at a time, so the memory held is a few ranges'
+/// text, not the whole output.
+void write_in_parts(Writer& writer, std::size_t count, unsigned jobs, const PartFormatter& format);
+
+/// The schema-independent round trip (policy above); the records of each
+/// DATA section are formatted on `jobs` threads (write_in_parts).
+void write_document(const Document& document, Writer& writer, unsigned jobs = 1);
 /// The round trip as text.
-std::string to_text(const Document& document);
+std::string to_text(const Document& document, unsigned jobs = 1);
 /// Writes safely (stepnc/io/output.h); returns an error message on failure.
-std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path);
+std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path,
+                                      unsigned jobs = 1);
 
 }  // namespace stepnc::p21
