@@ -13,6 +13,8 @@
 #include "milling.h"
 #include "milling_machine_tool_schema.h"
 #include "milling_schema.h"
+#include "stepnc/tooling/typed_tool.h"
+#include "typed_geometry.h"
 
 namespace stepnc::recognize::milling {
 
@@ -26,18 +28,8 @@ class Writer {
  public:
   explicit Writer(meta::Model& model) : m_(model) {}
 
-  ms::cartesian_point* point(const std::string& name, double x, double y, double z) {
-    auto& p = m_.create<ms::cartesian_point>();
-    p.name = name;
-    p.coordinates = {x, y, z};
-    return &p;
-  }
-  ms::direction* direction(const char* name, double x, double y, double z) {
-    auto& d = m_.create<ms::direction>();
-    d.name = name;
-    d.direction_ratios = {x, y, z};
-    return &d;
-  }
+  ms::cartesian_point* point(const std::string& name, double x, double y, double z) { return make_point(m_, name, x, y, z); }
+  ms::direction* direction(const char* name, double x, double y, double z) { return make_direction(m_, name, x, y, z); }
   ms::axis2_placement_3d* placement(const std::string& name, Vec3 at, Vec2 ref_direction = {1, 0}) {
     // Parts before the whole, as the authoring samples write them.
     auto* location = point(name + ": LOCATION", at.x, at.y, at.z);
@@ -89,40 +81,15 @@ class Writer {
     }
     return f;
   }
+  // A tool the list does not describe is an end mill named by its number.
   mt::milling_cutting_tool* tool(const Tools& tools, int number) {
     auto*& out = tools_[number];
     if (out) return out;
-    const tooling::Tool* listed = tools.find(number);
-    const std::string kind = listed ? listed->kind : "";
-    mt::milling_machine_tool_body* body = nullptr;
-    if (kind == "twist_drill" || kind == "drill") body = &m_.create<mt::twist_drill>();
-    else if (kind == "center_drill" || kind == "centerdrill") body = &m_.create<mt::center_drill>();
-    else if (kind == "reamer") body = &m_.create<mt::reamer>();
-    else if (kind == "tapered_reamer") body = &m_.create<mt::tapered_reamer>();
-    else if (kind == "tap") body = &m_.create<mt::tap>();
-    else if (kind == "countersink") body = &m_.create<mt::countersink>();
-    else if (kind == "boring_tool") body = &m_.create<mt::boring_tool>();
-    else if (kind == "facemill") body = &m_.create<mt::facemill>();
-    else if (kind == "ballnose_endmill" || kind == "ball_endmill") body = &m_.create<mt::ball_endmill>();
-    else if (kind == "bullnose_endmill") body = &m_.create<mt::bullnose_endmill>();
-    else body = &m_.create<mt::endmill>();
-    auto& size = m_.create<mt::milling_tool_dimension>();
-    size.diameter = listed && listed->diameter ? *listed->diameter : 0;
-    if (kind == "twist_drill" || kind == "drill") size.tool_tip_half_angle = 59;  // 118 deg point
-    if (listed && listed->corner_radius) size.edge_radius = *listed->corner_radius;
-    body->dimension = &size;
-    if (listed && listed->flutes) body->number_of_teeth = *listed->flutes;
-    if (listed && !listed->hand.empty())
-      body->hand_of_cut = listed->hand == "left" ? mt::hand::left : listed->hand == "neutral" ? mt::hand::neutral : mt::hand::right;
-    auto& edge = m_.create<ms::cutting_component>();
-    const double assembly = listed && listed->length ? *listed->length : 0;
-    edge.tool_offset_length = assembly;
-    auto& t = m_.create<mt::milling_cutting_tool>();
-    t.its_id = listed && !listed->name.empty() ? listed->name : fmt::format("T{}", number);
-    t.its_tool_body = body;
-    t.its_cutting_edge = {&edge};
-    if (assembly > 0) t.overall_assembly_length = assembly;
-    out = &t;
+    tooling::Tool row;
+    if (const tooling::Tool* listed = tools.find(number)) row = *listed;
+    row.number = number;
+    if (!tooling::is_milling_kind(row.kind) && row.kind != "boring_tool") row.kind = "endmill";
+    out = static_cast<mt::milling_cutting_tool*>(&tooling::write_typed_tool(m_, row, true));
     return out;
   }
 

@@ -16,6 +16,7 @@
 #include "turning_schema.h"
 #include "stepnc/tooling/typed_tool.h"
 #include "turning_steps.h"
+#include "typed_geometry.h"
 
 namespace stepnc::recognize::turning {
 namespace {
@@ -40,18 +41,8 @@ class Writer {
     tolerance_->significant_digits = 3;
   }
 
-  ms::cartesian_point* point(const char* name, double x, double y, double z) {
-    auto& p = m_.create<ms::cartesian_point>();
-    p.name = name;
-    p.coordinates = {x, y, z};
-    return &p;
-  }
-  ms::direction* direction(const char* name, double x, double y, double z) {
-    auto& d = m_.create<ms::direction>();
-    d.name = name;
-    d.direction_ratios = {x, y, z};
-    return &d;
-  }
+  ms::cartesian_point* point(const char* name, double x, double y, double z) { return make_point(m_, name, x, y, z); }
+  ms::direction* direction(const char* name, double x, double y, double z) { return make_direction(m_, name, x, y, z); }
   ms::axis2_placement_3d* placement(const char* name, double x, double y, double z) {
     auto& a = m_.create<ms::axis2_placement_3d>();
     a.name = name;

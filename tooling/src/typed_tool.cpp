@@ -12,20 +12,42 @@ namespace ms = machining_schema;
 namespace mt = milling_machine_tool_schema;
 namespace tt = turning_machine_tool_schema;
 
-machining_schema::cutting_tool& write_typed_tool(meta::Model& model, const Tool& tool) {
+bool is_milling_kind(std::string_view kind) {
+  for (const std::string_view milling : {"endmill", "bullnose_endmill", "ballnose_endmill", "ball_endmill", "facemill",
+                                         "twist_drill", "drill", "center_drill", "centerdrill", "reamer",
+                                         "tapered_reamer", "tap", "countersink"})
+    if (kind == milling) return true;
+  return false;
+}
+
+machining_schema::cutting_tool& write_typed_tool(meta::Model& model, const Tool& tool, bool milling) {
   auto& edge = model.create<ms::cutting_component>();
   edge.tool_offset_length = tool.length.value_or(0);
   ms::cutting_tool* made = nullptr;
-  if (tool.kind == "center_drill" || tool.kind == "twist_drill" || tool.kind == "drill") {
+  if (milling) {
+    const std::string_view kind = tool.kind;
+    mt::milling_machine_tool_body* body = nullptr;
+    if (kind == "twist_drill" || kind == "drill") body = &model.create<mt::twist_drill>();
+    else if (kind == "center_drill" || kind == "centerdrill") body = &model.create<mt::center_drill>();
+    else if (kind == "reamer") body = &model.create<mt::reamer>();
+    else if (kind == "tapered_reamer") body = &model.create<mt::tapered_reamer>();
+    else if (kind == "tap") body = &model.create<mt::tap>();
+    else if (kind == "countersink") body = &model.create<mt::countersink>();
+    else if (kind == "boring_tool") body = &model.create<mt::boring_tool>();
+    else if (kind == "facemill") body = &model.create<mt::facemill>();
+    else if (kind == "ballnose_endmill" || kind == "ball_endmill") body = &model.create<mt::ball_endmill>();
+    else if (kind == "bullnose_endmill") body = &model.create<mt::bullnose_endmill>();
+    else body = &model.create<mt::endmill>();
     auto& dimension = model.create<mt::milling_tool_dimension>();
     dimension.diameter = tool.diameter.value_or(0);
-    mt::milling_machine_tool_body* body = nullptr;
-    if (tool.kind == "center_drill")
-      body = &model.create<mt::center_drill>();
-    else
-      body = &model.create<mt::twist_drill>();
+    if (kind == "twist_drill" || kind == "drill") dimension.tool_tip_half_angle = 59;  // the usual 118 degree point
+    if (tool.corner_radius) dimension.edge_radius = *tool.corner_radius;
     body->dimension = &dimension;
-    body->number_of_teeth = tool.flutes.value_or(2);
+    if (tool.flutes) body->number_of_teeth = *tool.flutes;
+    else if (kind == "twist_drill" || kind == "drill" || kind == "center_drill" || kind == "centerdrill")
+      body->number_of_teeth = 2;
+    if (!tool.hand.empty())
+      body->hand_of_cut = tool.hand == "left" ? mt::hand::left : tool.hand == "neutral" ? mt::hand::neutral : mt::hand::right;
     auto& cutter = model.create<mt::milling_cutting_tool>();
     cutter.its_tool_body = body;
     made = &cutter;
