@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
   };
   std::vector<Command> commands = {
       {"wc -l (baseline)", {"wc", "-l", path}, {}},
-      {"stepnc validate -j1", {stepnc, "--jobs", "1", "validate", path}, {}},
-      {"stepnc validate", {stepnc, "validate", path}, {}},
+      // The read and its structural checks: every ISO 14649 file breaks
+      // representation_item.wr1, so with rules validate stops at 100 errors.
+      {"stepnc validate --no-rules -j1", {stepnc, "--jobs", "1", "validate", "--no-rules", path}, {}},
+      {"stepnc validate --no-rules", {stepnc, "validate", "--no-rules", path}, {}},
       {"stepnc info", {stepnc, "info", path}, {}},
       {"stepnc query '/project'", {stepnc, "query", path, "/project"}, {}},
       {"stepnc format -j1 -o", {stepnc, "--jobs", "1", "format", path, "-o", formatted}, {}},
