@@ -90,7 +90,9 @@ ImportResult import_program(std::string_view program_text, const ImportOptions& 
   // The interpreter refuses a T the list does not name, at its block.
   gcode::Options run;
   run.tools = gcode::tools_from(*options.tools);
-  const gcode::Result motion = gcode::interpret_text(std::string(program_text), *controller, run);
+  // Parsed once: the turning rules read the blocks too (G50 S, G40-G42).
+  const gcode::Program program = gcode::parse_program(std::string(program_text), *controller);
+  const gcode::Result motion = gcode::interpret(program, *controller, run);
   for (const gcode::Diagnostic& error : motion.errors) result.errors.push_back(error.to_string(options.program_file));
   if (!motion.ok()) {
     result.unsupported = motion.unsupported();
@@ -102,7 +104,7 @@ ImportResult import_program(std::string_view program_text, const ImportOptions& 
   result.header.originating_system = "stepnc import";
   const ProcessKind kind = options.kind.value_or(is_lathe(options.controller) ? ProcessKind::turning : ProcessKind::milling);
   if (kind == ProcessKind::turning)
-    import_turning(motion, program_text, options, result);
+    import_turning(motion, program, options, result);
   else
     import_milling(motion, options, result);
   if (!result.errors.empty()) result.model.reset();

@@ -9,8 +9,8 @@
 namespace stepnc::recognize {
 
 // Seed 002 (G2STEP): Fanuc lathe motion to turning workingsteps.
-// The program's text is read again for what the calls do not carry (G50 S).
-void import_turning(const gcode::Result& motion, std::string_view program_text, const ImportOptions& options,
+// The parsed blocks give what the calls do not carry (G50 S, G40-G42).
+void import_turning(const gcode::Result& motion, const gcode::Program& program, const ImportOptions& options,
                     ImportResult& result);
 
 // Seed 004: milling motion to milling and drilling workingsteps.

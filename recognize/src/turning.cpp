@@ -5,16 +5,13 @@
 #include <fmt/format.h>
 
 #include "importers.h"
-#include "stepnc/gcode/controller.h"
 #include "turning_steps.h"
 
 namespace stepnc::recognize {
 
-void import_turning(const gcode::Result& result, std::string_view program_text, const ImportOptions& options,
+void import_turning(const gcode::Result& result, const gcode::Program& program, const ImportOptions& options,
                     ImportResult& out) {
   using namespace turning;
-  const auto controller = gcode::controller(options.controller);
-  const gcode::Program program = gcode::parse_program(std::string(program_text), *controller);
   std::vector<std::uint32_t> compensated_lines;
   if (!read_compensation(result, program, options, out, compensated_lines)) return;
   Motion motion;
