@@ -13,6 +13,7 @@
 
 #include "stepnc/io/output.h"
 #include "stepnc/p21/diagnostic.h"
+#include "stepnc/tooling/tool_list.h"
 
 namespace stepnc::cli {
 
@@ -55,6 +56,14 @@ CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::s
 // A whole input file (`-`: standard input), or nullopt after printing why
 // it could not be read.
 std::optional<std::string> read_input(const std::string& path);
+// A tool list (`--tools`, `--magazine`) read with tooling::read_tool_list,
+// or, after printing why not, the exit code: exit_failure when the file
+// cannot be read, exit_invalid_input when the list has errors.
+struct ToolsInput {
+  tooling::ToolList list;
+  int exit_code = exit_ok;
+};
+ToolsInput read_tools(const std::string& path);
 // `-o,--output`: a file, or `-` (the default) for standard output.
 CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description);
 

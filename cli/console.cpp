@@ -35,6 +35,19 @@ std::optional<std::string> read_input(const std::string& path) {
   return text;
 }
 
+ToolsInput read_tools(const std::string& path) {
+  ToolsInput tools;
+  const auto csv = read_input(path);
+  if (!csv) {
+    tools.exit_code = exit_failure;
+    return tools;
+  }
+  tools.list = tooling::read_tool_list(*csv, path);
+  for (const std::string& error : tools.list.errors) fmt::print(stderr, "{}\n", error);
+  if (!tools.list.ok()) tools.exit_code = exit_invalid_input;
+  return tools;
+}
+
 CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description) {
   output = "-";
   return command.add_option("-o,--output", output, description + " ('-', the default: standard output)")

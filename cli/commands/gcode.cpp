@@ -7,7 +7,6 @@
 #include "command.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/gcode/output.h"
-#include "stepnc/tooling/tool_list.h"
 
 namespace stepnc::cli {
 namespace {
@@ -30,12 +29,9 @@ int run_gcode(const GcodeOptions& options) {
   }
   gcode::Options run;
   if (!options.tools.empty()) {
-    const auto csv = read_input(options.tools);
-    if (!csv) return exit_failure;
-    const auto list = tooling::read_tool_list(*csv, options.tools);
-    for (const auto& e : list.errors) fmt::print(stderr, "{}\n", e);
-    if (!list.ok()) return exit_invalid_input;
-    run.tools = gcode::tools_from(list);
+    const ToolsInput tools = read_tools(options.tools);
+    if (tools.exit_code != exit_ok) return tools.exit_code;
+    run.tools = gcode::tools_from(tools.list);
   }
   auto text = read_input(options.file);
   if (!text) return exit_failure;

@@ -38,12 +38,9 @@ int run_import(const ImportCommandOptions& options) {
       return exit_usage;
     }
   }
-  const auto csv = read_input(options.tools);
-  if (!csv) return exit_failure;
-  const tooling::ToolList tools = tooling::read_tool_list(*csv, options.tools);
-  for (const std::string& error : tools.errors) fmt::print(stderr, "{}\n", error);
-  if (!tools.ok()) return exit_invalid_input;
-  import.tools = &tools;
+  const ToolsInput tools = read_tools(options.tools);
+  if (tools.exit_code != exit_ok) return tools.exit_code;
+  import.tools = &tools.list;
 
   const auto program = read_input(options.file);
   if (!program) return exit_failure;

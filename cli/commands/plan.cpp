@@ -8,7 +8,6 @@
 
 #include "command.h"
 #include "load.h"
-#include "stepnc/io/input.h"
 #include "stepnc/planning/plan.h"
 
 namespace stepnc::cli {
@@ -71,17 +70,11 @@ int run_plan(const PlanCommandOptions& options) {
   plan_options.sequence.fewest_tool_changes = options.order == "fewest-tool-changes";
   plan_options.toolpaths = options.toolpaths;
   if (options.remainder_first) plan_options.pass_order = machining::PassOrder::remainder_first;
-  tooling::ToolList library;
+  ToolsInput library;
   if (!options.tools.empty()) {
-    std::string csv;
-    if (const auto error = io::read_text(options.tools, csv)) {
-      fmt::print(stderr, "error: {}\n", *error);
-      return exit_failure;
-    }
-    library = tooling::read_tool_list(csv, options.tools);
-    for (const std::string& error : library.errors) fmt::print(stderr, "{}\n", error);
-    if (!library.ok()) return exit_invalid_input;
-    plan_options.tools = &library;
+    library = read_tools(options.tools);
+    if (library.exit_code != exit_ok) return library.exit_code;
+    plan_options.tools = &library.list;
   }
   // Read leniently: a missing its_tool or its_technology is what late
   // binding fills; every other problem stops the plan.
