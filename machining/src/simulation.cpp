@@ -219,28 +219,51 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
   return report;
 }
 
+RadialProfile::RadialProfile(double z_min, double z_max, double bin, double stock_radius) : z_min_(z_min), bin_(bin) {
+  const auto n = static_cast<std::size_t>(std::max(1, static_cast<int>(std::ceil((z_max - z_min) / bin))));
+  outer.assign(n, stock_radius);
+  inner.assign(n, 0.0);
+}
+
+std::pair<int, int> RadialProfile::span(Tip a, Tip b, double width) const {
+  const int last = bins() - 1;
+  auto index = [&](double z) { return std::clamp(static_cast<int>(std::floor((z - z_min_) / bin_)), 0, last); };
+  // A point tool's body reaches every bin in front of the move.
+  return {index(std::min(a.z, b.z) - width), width > 0 ? index(std::max(a.z, b.z)) : last};
+}
+
+double RadialProfile::reach(Tip a, Tip b, int k, double width, bool internal) const {
+  // Tip positions with z in [lo, hi] reach bin k's middle: a point tool
+  // from anywhere at or below it, a grooving insert within its width.
+  const double infinity = std::numeric_limits<double>::infinity();
+  const double z = centre_z(k), lo = width > 0 ? z : -infinity, hi = width > 0 ? z + width : z;
+  if (a.z > b.z) std::swap(a, b);
+  if (hi < a.z || lo > b.z) return internal ? -infinity : infinity;
+  if (b.z - a.z < 1e-12) return internal ? std::max(a.x, b.x) : std::min(a.x, b.x);
+  auto x_at = [&](double at) { return a.x + (b.x - a.x) * (at - a.z) / (b.z - a.z); };
+  const double p = x_at(std::max(lo, a.z)), q = x_at(std::min(hi, b.z));
+  return internal ? std::max(p, q) : std::min(p, q);
+}
+
+void RadialProfile::cut(Tip a, Tip b, double width, bool internal) {
+  const auto [lo, hi] = span(a, b, width);
+  for (int k = lo; k <= hi; ++k) {
+    const double x = reach(a, b, k, width, internal);
+    const auto i = static_cast<std::size_t>(k);
+    if (internal) inner[i] = std::max(inner[i], x);
+    else outer[i] = std::min(outer[i], std::max(0.0, x));
+  }
+}
+
 SimulationReport simulate_turning(const MachiningProject& project, const Program& program, double bin) {
   SimulationReport report;
   const Workpiece& w = project.workpiece;
   const double z0 = -w.stock_length, z1 = w.stock_front;
-  const int n = static_cast<int>(std::ceil((z1 - z0) / bin));
-  std::vector<double> r(static_cast<std::size_t>(n), w.stock_radius);
-  auto centre_z = [&](int k) { return z0 + (k + 0.5) * bin; };
-  auto index = [&](double z) { return std::clamp(static_cast<int>(std::floor((z - z0) / bin)), 0, n - 1); };
+  RadialProfile swept(z0, z1, bin, w.stock_radius);
+  const int n = swept.bins();
+  std::vector<double>& r = swept.outer;
+  auto centre_z = [&](int k) { return swept.centre_z(k); };
 
-  // An external turning tool occupies the quadrant x' >= x, z' >= z of its
-  // tip (body above the tip and towards the front); a grooving insert only
-  // its width behind the reference corner: x' >= x, z - width <= z' <= z.
-  // For a straight move, the lowest radius the tool reaches at z' is the
-  // smaller x of the part of the move at or below z'.
-  // The lowest x the move reaches over tip positions with z in [lo, hi].
-  auto reach = [](Vec3 a, Vec3 b, double lo, double hi) {
-    if (a.z > b.z) std::swap(a, b);
-    if (hi < a.z || lo > b.z) return std::numeric_limits<double>::infinity();
-    if (b.z - a.z < 1e-12) return std::min(a.x, b.x);
-    auto x_at = [&](double z) { return a.x + (b.x - a.x) * (z - a.z) / (b.z - a.z); };
-    return std::min(x_at(std::max(lo, a.z)), x_at(std::min(hi, b.z)));
-  };
   double width = 0;
   bool cuts = true, first_move = true;
   for (const Move& m : expand_motion(program)) {
@@ -258,25 +281,22 @@ SimulationReport simulate_turning(const MachiningProject& project, const Program
       if (rapid) continue;
     }
     if (!cuts) continue;
-    const int lo = index(std::min(m.from.z, m.to.z) - width);
-    const int hi = width > 0 ? index(std::max(m.from.z, m.to.z)) : n - 1;
-    bool collided = false;
+    const RadialProfile::Tip from{m.from.z, m.from.x}, to{m.to.z, m.to.x};
+    if (!rapid) {
+      swept.cut(from, to, width, false);
+      continue;
+    }
+    const auto [lo, hi] = swept.span(from, to, width);
     for (int k = lo; k <= hi; ++k) {
-      const double z = centre_z(k);
-      const double x = width > 0 ? reach(m.from, m.to, z, z + width)
-                                 : reach(m.from, m.to, -std::numeric_limits<double>::infinity(), z);
-      double& radius = r[static_cast<std::size_t>(k)];
-      if (rapid) {
-        if (radius - x > tolerance && !collided) {
-          collided = true;
-          report.problems.push_back(fmt::format("rapid (block {}) reaches radius {:.3f} at z {:.3f}, material up to {:.3f}",
-                                                m.block, x, z, radius));
-        }
-      } else {
-        radius = std::min(radius, std::max(0.0, x));
+      const double x = swept.reach(from, to, k, width, false);
+      const double radius = r[static_cast<std::size_t>(k)];
+      if (radius - x > tolerance) {
+        report.problems.push_back(fmt::format("rapid (block {}) reaches radius {:.3f} at z {:.3f}, material up to {:.3f}",
+                                              m.block, x, centre_z(k), radius));
+        break;
       }
     }
-    if (rapid) ++report.rapids_checked;
+    ++report.rapids_checked;
   }
 
   std::map<int, Allowance> allowance;

@@ -11,6 +11,8 @@
 #include "stepnc/gcode/controller.h"
 #include "stepnc/gcode/interpreter.h"
 #include "stepnc/recognize/turning.h"
+
+#include "stepnc/machining/simulation.h"
 #include "turning_steps.h"
 
 namespace stepnc::recognize::turning {
@@ -177,35 +179,11 @@ MachinedProfile machine_profile(std::string_view program_text, std::string_view 
   const gcode::Result run = gcode::interpret_text(std::string(program_text), *controller, options);
   for (const gcode::Diagnostic& error : run.errors) profile.errors.push_back(error.to_string("program"));
   if (!run.ok()) return profile;
-  const int n = std::max(1, static_cast<int>(std::ceil((z_max - z_min) / bin)));
-  profile.outer.assign(static_cast<std::size_t>(n), stock_radius);
-  profile.inner.assign(static_cast<std::size_t>(n), 0.0);
-  auto index = [&](double z) { return std::clamp(static_cast<int>(std::floor((z - z_min) / bin)), 0, n - 1); };
-  const double inf = std::numeric_limits<double>::infinity();
-
+  machining::RadialProfile swept(z_min, z_max, bin, stock_radius);
   // A straight move of the programmed point from a to b, (z, x).
   auto cut = [&](Point a, Point b, const tooling::Tool* tool) {
-    const bool inside = tool && internal_tool(*tool);
     const double width = tool && tool->kind == "grooving_tool" ? tool->width.value_or(0) : 0;
-    if (a.z > b.z) std::swap(a, b);
-    auto x_at = [&](double z) { return b.z - a.z < 1e-12 ? (inside ? std::max(a.x, b.x) : std::min(a.x, b.x))
-                                                          : a.x + (b.x - a.x) * (z - a.z) / (b.z - a.z); };
-    // The extreme x the move reaches with its point at z in [lo, hi].
-    auto reach = [&](double lo, double hi) {
-      if (hi < a.z || lo > b.z) return inside ? -inf : inf;
-      const double p = x_at(std::max(lo, a.z)), q = x_at(std::min(hi, b.z));
-      return inside ? std::max(p, q) : std::min(p, q);
-    };
-    const int lo = index(a.z - width);
-    const int hi = width > 0 ? index(b.z) : n - 1;
-    for (int k = lo; k <= hi; ++k) {
-      const double z = z_min + (k + 0.5) * bin;
-      const double x = width > 0 ? reach(z, z + width) : reach(-inf, z);
-      if (inside)
-        profile.inner[static_cast<std::size_t>(k)] = std::max(profile.inner[static_cast<std::size_t>(k)], x);
-      else
-        profile.outer[static_cast<std::size_t>(k)] = std::min(profile.outer[static_cast<std::size_t>(k)], std::max(0.0, x));
-    }
+    swept.cut({a.z, a.x}, {b.z, b.x}, width, tool && internal_tool(*tool));
   };
   std::optional<Point> at;
   std::vector<Point> chords;
@@ -229,6 +207,8 @@ MachinedProfile machine_profile(std::string_view program_text, std::string_view 
       at = from;
     }
   }
+  profile.outer = std::move(swept.outer);
+  profile.inner = std::move(swept.inner);
   return profile;
 }
 
