@@ -50,11 +50,14 @@ std::optional<Decision> crossed_islands(const Feature& f, const Recognised& out)
         for (const Vec2 p : ring) allowance = std::min(allowance, polygons::signed_distance(op.area, p));
       allowance = std::max(0.0, allowance);
     }
+    const polygons::Area kept = islands.empty() ? islands : polygons::offset(islands, allowance + fit);
     for (const auto& cut : op.cuts) {
+      // The islands first: a pocket with true islands never walks the
+      // layers below (one subtraction per layer).
       polygons::Area standing = holes_of(cut.area);
+      if (!kept.empty() && !standing.empty()) standing = polygons::subtract(standing, kept);
       for (auto other = cuts.begin(); other != cuts.end() && (*other)->z <= cut.z + 1e-6 && !standing.empty(); ++other)
         standing = polygons::subtract(standing, (*other)->area);
-      if (!islands.empty() && !standing.empty()) standing = polygons::subtract(standing, polygons::offset(islands, allowance + fit));
       if (polygons::area(standing) <= 1e-6) continue;
       const Box where = bounds(standing.rings);
       return Decision{"rule I1 (ours): an island is what every layer leaves standing",

@@ -165,7 +165,13 @@ struct Trip {
   std::string want, got, error;
 };
 
-Trip trip(const std::string& sample, const std::string& dialect) {
+// The sample posted and its post imported; `want` is the sample's summary.
+struct PostedImport {
+  std::string want;
+  Imported imported;
+};
+
+PostedImport post_and_import(const std::string& sample, const std::string& dialect) {
   static const meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
   const auto read = exchange::read_model_text(sample_text(sample), sample, registry);
   REQUIRE(read.ok());
@@ -177,9 +183,14 @@ Trip trip(const std::string& sample, const std::string& dialect) {
   if (w.block_max.x > w.block_min.x)
     stock = fmt::format("block:{}:{}:{}@{},{},{}", w.block_max.x - w.block_min.x, w.block_max.y - w.block_min.y,
                         w.block_max.z - w.block_min.z, w.block_min.x, w.block_min.y, w.block_min.z);
-  const auto imported = import(posted.text, posted.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc", stock);
-  if (!imported.result.ok()) return {"", "", "import failed: " + imported.result.errors.front()};
-  return {summary(read.file->model), summary(*imported.result.model), ""};
+  return {summary(read.file->model),
+          import(posted.text, posted.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc", stock)};
+}
+
+Trip trip(const std::string& sample, const std::string& dialect) {
+  const PostedImport p = post_and_import(sample, dialect);
+  if (!p.imported.result.ok()) return {"", "", "import failed: " + p.imported.result.errors.front()};
+  return {p.want, summary(*p.imported.result.model), ""};
 }
 
 std::string round_trip(const std::string& sample, const std::string& dialect) {
@@ -284,6 +295,33 @@ TEST_CASE("an island the tool crosses at an upper layer is not read: a region wi
   CHECK(std::any_of(decisions.begin(), decisions.end(), [](const recognize::Decision& d) {
     return d.rule.starts_with("rule I1") && d.outcome.find("Z 10 leaves at X 40..60 Y 25..35 is cut only above it") != std::string::npos;
   }));
+}
+
+// Rules P1, S1 and S2 say which blocks they read; the slots' ends and the
+// outside profile's rectangle are written as Part 10 has them.
+TEST_CASE("slots_outside_profile's post comes back by rules P1, S1 and S2", "[recognize][milling][posters]") {
+  const PostedImport p = post_and_import("milling/slots_outside_profile.stp", "rs274ngc");
+  REQUIRE(p.imported.result.ok());
+  for (const std::string rule : {"rule P1", "rule S1", "rule S2"}) {
+    INFO(rule);
+    int found = 0;
+    for (const auto& step : p.imported.result.steps)
+      for (const auto& d : step.decisions)
+        if (d.rule.starts_with(rule) && !d.lines.empty()) ++found;
+    CHECK(found == 1);
+  }
+  const auto& model = *p.imported.result.model;
+  REQUIRE(all_of<ms::general_outside_profile>(model).size() == 1);
+  const auto* part = dynamic_cast<const ms::rectangular_closed_profile*>(
+      all_of<ms::general_outside_profile>(model).front()->feature_boundary);
+  REQUIRE(part != nullptr);
+  CHECK(part->profile_length->theoretical_size == Approx(90));
+  CHECK(part->profile_width->theoretical_size == Approx(50));
+  CHECK(all_of<ms::radiused_slot_end_type>(model).size() == 2);
+  CHECK(all_of<ms::open_slot_end_type>(model).size() == 2);
+  // The posted tool list gives no corner radius: a U that carries only the width.
+  CHECK(all_of<ms::rounded_u_profile>(model).size() == 2);
+  CHECK(all_of<ms::square_u_profile>(model).empty());
 }
 
 // Every other milling sample: which round-trip today (asserted, so a
