@@ -82,6 +82,25 @@ class Writer {
     outline.closed_profile_shape = line;
     return &outline;
   }
+  // A straight travel path (a face's course, a step's wall, a slot's
+  // centre line, an outside profile's sweep).
+  ms::linear_path* linear_path(double distance, const char* name, Vec3 along) {
+    auto* its_direction = direction(name, along.x, along.y, along.z);
+    auto& path = m_.create<ms::linear_path>();
+    path.distance = length(distance);
+    path.its_direction = its_direction;
+    return &path;
+  }
+  // A U with 90 degree walls and both radii r (ISO 14649-10 square_u_profile).
+  ms::square_u_profile* square_u(double width, double r) {
+    auto& u = m_.create<ms::square_u_profile>();
+    u.width = length(width);
+    u.first_radius = length(r);
+    u.first_angle = 90;
+    u.second_radius = length(r);
+    u.second_angle = 90;
+    return &u;
+  }
   // A closed polyline (the first point repeated at the end).
   ms::polyline* polyline(const std::string& name, const machining::polygons::Ring& ring) {
     auto& line = m_.create<ms::polyline>();
@@ -294,12 +313,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
     } else if (f.entity == "planar_face") {
       auto& face = m.create<ms::planar_face>();
       place(face);
-      auto* along = w.direction("COURSE OF TRAVEL", 1, 0, 0);
-      auto* distance = w.length(f.length);
-      auto& path = m.create<ms::linear_path>();
-      path.distance = distance;
-      path.its_direction = along;
-      face.course_of_travel = &path;
+      face.course_of_travel = w.linear_path(f.length, "COURSE OF TRAVEL", {1, 0, 0});
       auto& width = m.create<ms::numeric_parameter>();
       width.parameter_name = "PROFILE LENGTH";
       width.its_parameter_value = f.width;
@@ -344,23 +358,14 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       auto& pocket = m.create<ms::open_pocket>();
       place(pocket);
       pocket.orthogonal_radius = w.length(f.corner_radius);
-      auto& u = m.create<ms::square_u_profile>();
-      u.width = w.length(f.width);
-      u.first_radius = w.length(f.corner_radius);
-      u.first_angle = 90;
-      u.second_radius = w.length(f.corner_radius);
-      u.second_angle = 90;
-      pocket.open_boundary = &u;
+      pocket.open_boundary = w.square_u(f.width, f.corner_radius);
       out = &pocket;
     } else if (f.entity == "step") {
       // The wall's foot along the placement's local X; the removed material
       // on its left, out to the stock's edge (ISO 14649-10 step).
       auto& step = m.create<ms::step>();
       place(step);
-      auto& path = m.create<ms::linear_path>();
-      path.distance = w.length(f.length);
-      path.its_direction = w.direction("WALL", 1, 0, 0);
-      step.open_boundary = &path;
+      step.open_boundary = w.linear_path(f.length, "WALL", {1, 0, 0});
       out = &step;
     } else if (f.entity == "general_outside_profile") {
       // Rule P1: the stock round the part cleared down to the depth; the
@@ -368,31 +373,19 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       auto& profile = m.create<ms::general_outside_profile>();
       place(profile);
       profile.feature_boundary = w.closed_profile(f.boundary, f.id + ": OUTLINE");
-      auto& sweep = m.create<ms::linear_path>();
-      sweep.distance = w.length(f.depth);
-      sweep.its_direction = w.direction("SWEEP", 0, 0, -1);
-      profile.profile_swept_shape = &sweep;
+      profile.profile_swept_shape = w.linear_path(f.depth, "SWEEP", {0, 0, -1});
       out = &profile;
     } else if (f.entity == "slot") {
       // Rules S1, S2: the centre line from the placement along its local X.
       auto& slot = m.create<ms::slot>();
       place(slot);
-      auto& course = m.create<ms::linear_path>();
-      course.distance = w.length(f.length);
-      course.its_direction = w.direction("COURSE OF TRAVEL", 1, 0, 0);
-      slot.course_of_travel = &course;
+      slot.course_of_travel = w.linear_path(f.length, "COURSE OF TRAVEL", {1, 0, 0});
       // Part 10 square_u_profile radii are positive_length_measures: a
       // flat end mill's floor (no corner radius) is written as the only U
       // that carries just the width, rounded_u_profile.
       const tooling::Tool* tool = tools.find(r.operations[f.operations.front()].tool);
       if (tool && tool->corner_radius && *tool->corner_radius > 0) {
-        auto& u = m.create<ms::square_u_profile>();
-        u.width = w.length(f.width);
-        u.first_radius = w.length(*tool->corner_radius);
-        u.first_angle = 90;
-        u.second_radius = w.length(*tool->corner_radius);
-        u.second_angle = 90;
-        slot.swept_shape = &u;
+        slot.swept_shape = w.square_u(f.width, *tool->corner_radius);
       } else {
         auto& u = m.create<ms::rounded_u_profile>();
         u.width = w.length(f.width);
