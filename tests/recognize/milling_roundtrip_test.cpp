@@ -297,6 +297,25 @@ TEST_CASE("an island the tool crosses at an upper layer is not read: a region wi
   }));
 }
 
+// Rules S1 and S2 on a program of our own: one stroke of a 10 mm end mill
+// inside a 100 x 50 x 20 block is a slot with radiused ends; a band of two
+// strokes 6 mm apart (16 wide) across the block is wider than the tool, so
+// not a cut along a line (S2): it stays a closed pocket with the general
+// profile of the swept area (as before the rule).
+TEST_CASE("a stroke inside the stock is a radiused slot; a band wider than the tool is not an open slot", "[recognize][milling]") {
+  const std::string program =
+      "G21 G90 G17\nT1 M6\nS3000 M3\nG0 Z50\nG0 X20 Y20\nG0 Z22\nG1 Z15 F300\nG1 X60 F600\nG0 Z50\n"
+      "S3200 M3\nG0 X80 Y-10\nG0 Z22\nG1 Z16 F300\nG1 Y60 F600\nG1 X86\nG1 Y-10\nG0 Z50\nM30\n";
+  const auto imported =
+      import(program, "tool,kind,diameter,length\n1,endmill,10,0\n", "rs274ngc", "block:100:50:20@0,0,0");
+  REQUIRE(imported.result.ok());
+  CHECK(summary(*imported.result.model) ==
+        "bottom_and_side_finish_milling on slot from (20.00, 20.00) along (1, 0) length 40.00 width 10.00 ends "
+        "radiused_slot_end_type radiused_slot_end_type floor Z15.00\n"
+        "bottom_and_side_finish_milling on closed_pocket x 75.00..91.00 y -15.00..65.00 r- floor Z16.00\n");
+  CHECK(all_of<ms::open_slot_end_type>(*imported.result.model).empty());
+}
+
 // Rules P1, S1 and S2 say which blocks they read; the slots' ends and the
 // outside profile's rectangle are written as Part 10 has them.
 TEST_CASE("slots_outside_profile's post comes back by rules P1, S1 and S2", "[recognize][milling][posters]") {
