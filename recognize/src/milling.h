@@ -91,12 +91,29 @@ struct Operation {
   // what the operation cut: per layer Z, and the swept region
   std::vector<double> layers;
   machining::polygons::Area area;
+  // Each distinct layer path's swept region, at the lowest Z it ran (rule I1).
+  struct LayerCut {
+    double z = 0;
+    machining::polygons::Area area;
+  };
+  std::vector<LayerCut> cuts;
   // freeform: the explicit toolpath (cutter location points, feed moves)
   std::vector<std::vector<Vec3>> toolpaths;
 };
 
+// A closed profile read from a ring of a cutting area (rule I1's bosses,
+// rule P1's part outline).
+struct ClosedProfile {
+  std::string entity;        // circular_closed_profile, rectangular_closed_profile, general_closed_profile
+  Vec2 centre;               // the placement's location in the setup's XY
+  Vec2 ref_direction{1, 0};  // rectangular: along its length
+  double diameter = 0, length = 0, width = 0;
+  machining::polygons::Ring outline;  // general: relative to centre
+};
+
 struct Feature {
-  std::string entity;  // round_hole, closed_pocket, open_pocket, step, planar_face, region_projection
+  std::string entity;  // round_hole, closed_pocket, open_pocket, step, slot, general_outside_profile,
+                       // planar_face, region_projection
   std::string id;
   Vec3 origin;         // placement at the top face
   Vec2 ref_direction{1, 0};  // the placement's local X in the setup's XY
@@ -108,6 +125,9 @@ struct Feature {
   double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket; open pocket (U) width and
                                                     // radius; step wall length
   machining::polygons::Ring outline;                // general profile, relative to origin
+  std::vector<ClosedProfile> bosses;                // closed pocket: its islands (rule I1), top at origin.z
+  ClosedProfile boundary;                           // general_outside_profile: the part (rule P1)
+  bool open_ends = false;                           // slot: open (S2) or radiused (S1) ends; length = course
   std::vector<std::size_t> operations;
   std::vector<Decision> decisions;
   machining::polygons::Area area;     // what its operations cut
@@ -142,6 +162,45 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
 
 // Decides each milling feature's type and size from its operations' areas.
 void finish_features(const Tools& tools, const ImportOptions& options, Recognised& out);
+
+// Reading shapes from cutting areas (milling_features.cpp).
+constexpr double fit = 0.02;  // mm: how far an outline may stray from the shape it is read as
+// A dimension read from a cutting area (exact to a few um): to 0.01 mm
+// when it is that close to it, else to 1 um.
+double dimension(double value);
+// The axis-aligned rounded rectangle that fits a ring best: its box, and
+// the corner radius (from the area, refined within 0.1 mm) and how far the
+// ring strays from it.
+struct RoundedRectangle {
+  Vec2 centre;
+  double w = 0, h = 0, corner = 0, worst = 0;
+};
+RoundedRectangle fit_rounded_rectangle(const machining::polygons::Ring& ring);
+// The lines of the operations of a feature (what its decisions cite).
+std::vector<std::uint32_t> first_lines(const Feature& f, const Recognised& out);
+
+// Signed area of a ring (shoelace): positive counter-clockwise (an outer
+// ring of an Area), negative for a hole.
+double ring_area(const machining::polygons::Ring& ring);
+// A ring read as a closed profile (milling_profiles.cpp): a disc is
+// circular, an axis-aligned rectangle with sharp corners rectangular, any
+// other ring a general polyline.
+ClosedProfile closed_profile(const machining::polygons::Ring& ring);
+
+// Rule I1 (milling_islands.cpp): why the feature's layers do not leave
+// standing islands (a layer cuts over what another left), if they do not.
+std::optional<Decision> crossed_islands(const Feature& f, const Recognised& out);
+// Rule I1: the holes of a one-outline cutting area are the pocket's bosses
+// (f.bosses, top at the pocket's top); `walls` gets their outlines.
+void read_islands(Feature& f, const std::vector<std::uint32_t>& lines, std::vector<Vec2>& walls);
+// Rule P1 (milling_profiles.cpp): a ring whose outside is the stock's edge
+// around an uncut part is a general_outside_profile.
+bool outside_profile(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, int& profiles,
+                     std::vector<Vec2>& walls);
+// Rules S1, S2 (milling_slots.cpp): a stadium inside the stock, or a band
+// the tool's width across it, is a slot.
+bool slot_feature(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, double tool_diameter,
+                  int& slots, std::vector<Vec2>& walls);
 
 // Writes the project.
 void write_model(const Recognised& recognised, const Tools& tools, const ImportOptions& options, ImportResult& result);

@@ -213,9 +213,14 @@ std::vector<Vec3> move_points(const Move& m) {
 polygons::Area swept_area(const std::vector<Move>& moves, double radius) {
   // The path as XY points, then one polygon per straight piece (the piece
   // thickened by the radius) and a disc at the ends and wherever the path
-  // turns enough for the pieces' joint to miss the disc by 0.5 um.
-  std::vector<Vec2> path;
+  // turns enough for the pieces' joint to miss the disc by 0.5 um. A move
+  // that does not start where the last one ended begins a new path: the
+  // rapid or approach between them cut nothing at this Z.
+  std::vector<std::vector<Vec2>> paths;
   for (const Move& m : moves) {
+    if (paths.empty() || std::hypot(m.from.x - paths.back().back().x, m.from.y - paths.back().back().y) > 1e-6)
+      paths.emplace_back();
+    std::vector<Vec2>& path = paths.back();
     const auto points = move_points(m);
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Vec2 p{points[i].x, points[i].y};
@@ -223,21 +228,22 @@ polygons::Area swept_area(const std::vector<Move>& moves, double radius) {
     }
   }
   std::vector<polygons::Ring> pieces;
-  if (path.empty()) return {};
   const double min_turn = 2 * std::acos(std::max(-1.0, 1 - 0.0005 / std::max(radius, 1e-3)));
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    bool disc = i == 0 || i + 1 == path.size();
-    if (!disc) {
-      const double in = std::atan2(path[i].y - path[i - 1].y, path[i].x - path[i - 1].x);
-      const double out = std::atan2(path[i + 1].y - path[i].y, path[i + 1].x - path[i].x);
-      disc = std::abs(std::remainder(out - in, 2 * M_PI)) > min_turn;
+  for (const std::vector<Vec2>& path : paths) {
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      bool disc = i == 0 || i + 1 == path.size();
+      if (!disc) {
+        const double in = std::atan2(path[i].y - path[i - 1].y, path[i].x - path[i - 1].x);
+        const double out = std::atan2(path[i + 1].y - path[i].y, path[i + 1].x - path[i].x);
+        disc = std::abs(std::remainder(out - in, 2 * M_PI)) > min_turn;
+      }
+      if (disc) pieces.push_back(polygons::circle(path[i], radius));
+      if (i == 0) continue;
+      const Vec2 a = path[i - 1], b = path[i];
+      const double len = std::hypot(b.x - a.x, b.y - a.y);
+      const double nx = -(b.y - a.y) / len * radius, ny = (b.x - a.x) / len * radius;
+      pieces.push_back({{a.x + nx, a.y + ny}, {a.x - nx, a.y - ny}, {b.x - nx, b.y - ny}, {b.x + nx, b.y + ny}});
     }
-    if (disc) pieces.push_back(polygons::circle(path[i], radius));
-    if (i == 0) continue;
-    const Vec2 a = path[i - 1], b = path[i];
-    const double len = std::hypot(b.x - a.x, b.y - a.y);
-    const double nx = -(b.y - a.y) / len * radius, ny = (b.x - a.x) / len * radius;
-    pieces.push_back({{a.x + nx, a.y + ny}, {a.x - nx, a.y - ny}, {b.x - nx, b.y - ny}, {b.x + nx, b.y + ny}});
   }
   // Unite in a balanced tree, so each union stays small.
   std::vector<polygons::Area> areas;
@@ -395,10 +401,15 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
       for (const Move& m : layer->moves)
         for (const double v : {m.from.x, m.from.y, m.to.x, m.to.y, m.centre.x, m.centre.y})
           key.push_back(std::llround(v * 1000));
-      if (std::find(swept.begin(), swept.end(), key) != swept.end()) continue;
+      if (const auto seen = std::find(swept.begin(), swept.end(), key); seen != swept.end()) {
+        auto& cut = op.cuts[static_cast<std::size_t>(seen - swept.begin())];
+        cut.z = std::min(cut.z, layer->z);
+        continue;
+      }
       swept.push_back(std::move(key));
       const polygons::Area area = swept_area(layer->moves, radius);
       op.area = op.area.empty() ? area : polygons::unite(op.area, area);
+      op.cuts.push_back({layer->z, area});
     }
 
     // SEEDS-SPEC 4.2.4 rule 5: a face mill, or a layer that sweeps the

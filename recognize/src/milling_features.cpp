@@ -18,16 +18,7 @@ namespace polygons = machining::polygons;
 
 namespace {
 
-constexpr double fit = 0.02;  // mm: how far an outline may stray from the shape it is read as
-
 double round_to(double value, double step) { return std::round(value / step) * step; }
-
-// A dimension read from a cutting area (exact to a few um): to 0.01 mm when
-// it is that close to it, else to 1 um.
-double dimension(double value) {
-  const double hundredths = round_to(value, 0.01);
-  return std::abs(value - hundredths) < 0.003 ? hundredths : round_to(value, 1e-3);
-}
 
 // Distance from p to the boundary of a rectangle of half sizes (hx, hy) with
 // corner radius r about the origin (negative inside).
@@ -35,6 +26,56 @@ double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r) {
   const double qx = std::abs(p.x) - (hx - r), qy = std::abs(p.y) - (hy - r);
   return std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0) - r;
 }
+
+}  // namespace
+
+double dimension(double value) {
+  const double hundredths = round_to(value, 0.01);
+  return std::abs(value - hundredths) < 0.003 ? hundredths : round_to(value, 1e-3);
+}
+
+RoundedRectangle fit_rounded_rectangle(const polygons::Ring& ring) {
+  const auto [x0, y0, x1, y1] = bounds({ring});
+  RoundedRectangle out;
+  out.w = x1 - x0, out.h = y1 - y0;
+  out.centre = {(x0 + x1) / 2, (y0 + y1) / 2};
+  // The corner radius: first from the area (w h - (4 - pi) r^2), then the
+  // radius within 0.1 mm of it that fits the outline best.
+  const double a = polygons::area(polygons::make_area(ring));
+  const double estimate = std::sqrt(std::max(0.0, (out.w * out.h - a) / (4 - M_PI)));
+  auto misfit = [&](double r) {
+    double worst = 0;
+    for (const Vec2 p : ring)
+      worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - out.centre.x, p.y - out.centre.y}, out.w / 2,
+                                                                  out.h / 2, r)));
+    return worst;
+  };
+  const double most = std::min(out.w, out.h) / 2;
+  out.corner = std::min(estimate, most), out.worst = misfit(out.corner);
+  for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, most); r += 0.001)
+    if (const double m = misfit(r); m < out.worst) out.worst = m, out.corner = r;
+  // Sharp corners: a box a few um off (G-code rounding) spoils the estimate.
+  if (const double m = misfit(0); m < out.worst) out.worst = m, out.corner = 0;
+  out.corner = dimension(out.corner);
+  return out;
+}
+
+double ring_area(const polygons::Ring& ring) {
+  double twice = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Vec2 p = ring[i], q = ring[(i + 1) % ring.size()];
+    twice += p.x * q.y - q.x * p.y;
+  }
+  return twice / 2;
+}
+
+std::vector<std::uint32_t> first_lines(const Feature& f, const Recognised& out) {
+  std::vector<std::uint32_t> lines;
+  for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+  return lines;
+}
+
+namespace {
 
 void hole_depths(Feature& hole, const ImportOptions& options, double top) {
   if (options.stock && options.stock->shape == Stock::Shape::block) {
@@ -66,8 +107,7 @@ void planar_face(Feature& f, Recognised& out, int number) {
   f.length = dimension(x1 - x0);
   f.width = dimension(y1 - y0);
   f.depth = dimension(out.top_z - f.deepest);
-  std::vector<std::uint32_t> lines;
-  for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+  const std::vector<std::uint32_t> lines = first_lines(f, out);
   f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: face mill or whole top -> planar_face",
                          fmt::format("planar_face {:g} along X x {:g}, {:g} deep ({})", f.length, f.width, f.depth,
                                      out.stock_top ? "the stock's top" : "the swept band"),
@@ -178,10 +218,40 @@ bool open_feature(Feature& f, const Recognised& out, const std::vector<std::uint
   return true;
 }
 
+// Rough or finish (SEEDS-SPEC 4.5.6): what each operation left of the
+// final walls (`walls`) and floor.
+void rough_or_finish(Feature& f, const std::vector<Vec2>& walls, Recognised& out) {
+  for (std::size_t k = 0; k < f.operations.size(); ++k) {
+    Operation& op = out.operations[f.operations[k]];
+    double side = 1e300;
+    for (const Vec2 p : walls) side = std::min(side, polygons::signed_distance(op.area, p));
+    side = std::max(0.0, dimension(side));
+    const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
+    const bool rough = side > 0.005 || bottom > 0.005;
+    op.entity = rough ? "bottom_and_side_rough_milling" : "bottom_and_side_finish_milling";
+    if (rough) {
+      op.allowance_side = side;
+      op.allowance_bottom = bottom;
+    } else if (k > 0) {
+      const Operation& before = out.operations[f.operations[k - 1]];
+      if (before.allowance_side && *before.allowance_side > 0) {
+        op.radial = before.allowance_side;
+        op.decisions.push_back({"rule M5 (ours): a finish after a rough engages the wall by the rough's side allowance",
+                                fmt::format("radial depth {:g}", *op.radial), {op.first_line}});
+      }
+    }
+    op.decisions.push_back({"SEEDS-SPEC 4.5.6: the group that reaches the final walls and floor is the finish; "
+                            "allowances = final - reached",
+                            rough ? fmt::format("{}: side allowance {:g}, bottom allowance {:g}", op.entity, side, bottom)
+                                  : fmt::format("{}: reaches the walls and floor", op.entity),
+                            {op.first_line}});
+  }
+}
+
 }  // namespace
 
 void finish_features(const Tools& tools, const ImportOptions& options, Recognised& out) {
-  int holes = 0, pockets = 0, regions = 0, faces = 0, opens = 0, steps = 0;
+  int holes = 0, pockets = 0, regions = 0, faces = 0, opens = 0, steps = 0, profiles = 0, slots = 0;
   // Faces first: what they leave is the top of the features below them.
   double face_floor = out.top_z;
   for (Feature& f : out.features)
@@ -195,8 +265,7 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
     if (f.entity == "round_hole") {
       f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
       f.origin.z = top;
-      std::vector<std::uint32_t> lines;
-      for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
+      const std::vector<std::uint32_t> lines = first_lines(f, out);
       f.decisions.insert(f.decisions.begin(),
                          {"seed 004 §4.1 (case study): tool type plus canned cycles -> hole",
                           fmt::format("round_hole at ({:g}, {:g}), diameter {:g} from the largest tool", f.origin.x,
@@ -212,47 +281,40 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
     // A milled feature: its outline from the area its operations cut.
     f.depth = round_to(top - f.deepest, 1e-4);
     std::vector<const polygons::Ring*> outers;
-    for (const auto& ring : f.area.rings) {
-      double a = 0;
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Vec2 p = ring[i], q = ring[(i + 1) % ring.size()];
-        a += p.x * q.y - q.x * p.y;
+    for (const auto& ring : f.area.rings)
+      if (ring_area(ring) > 0) outers.push_back(&ring);
+    const std::vector<std::uint32_t> lines = first_lines(f, out);
+    std::vector<Vec2> walls;  // where the final walls are
+    f.origin.z = top;
+    const std::optional<Decision> crossed = crossed_islands(f, out);
+    const bool one_outline = outers.size() == 1 && !crossed;
+    if (one_outline && f.area.rings.size() > 1) {
+      if (outside_profile(f, out, lines, profiles, walls)) {
+        rough_or_finish(f, walls, out);
+        continue;
       }
-      if (a > 0) outers.push_back(&ring);
+      read_islands(f, lines, walls);
     }
-    std::vector<std::uint32_t> lines;
-    for (const std::size_t o : f.operations) lines.push_back(out.operations[o].first_line);
-    if (outers.size() != 1 || f.area.rings.size() != 1) {
+    if (!one_outline) {
       f.outline = bounds(f.area.rings).ring();  // the extent of the cutting area
       f.entity = "region_projection";
       f.id = fmt::format("REGION{}", ++regions);
-      f.decisions.push_back({"rule M6 (ours): a cutting area of several outlines or with islands is not read",
-                             "a region; its operations keep their motion as freeform operations", lines});
+      if (crossed) f.decisions.push_back(*crossed);
+      else
+        f.decisions.push_back({"rule M6 (ours): a cutting area of several outlines is not read",
+                               "a region; its operations keep their motion as freeform operations", lines});
       for (const std::size_t o : f.operations) out.operations[o].entity = "freeform_operation";
       continue;
     }
     const polygons::Ring& ring = *outers.front();
-    std::vector<Vec2> walls(ring.begin(), ring.end());  // where the final walls are
-    f.origin.z = top;
-    if (!open_feature(f, out, lines, opens, steps, walls)) {
-      const auto [x0, y0, x1, y1] = bounds({ring});
-      const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
-      const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
+    walls.insert(walls.end(), ring.begin(), ring.end());
+    const double tool_diameter = 2 * tools.radius(out.operations[f.operations.front()].tool);
+    const bool islands = !f.bosses.empty();
+    if (islands || (!slot_feature(f, out, lines, tool_diameter, slots, walls) &&
+                    !open_feature(f, out, lines, opens, steps, walls))) {
+      const auto [centre, w, h, corner, worst] = fit_rounded_rectangle(ring);
       f.origin = {dimension(centre.x), dimension(centre.y), top};
-      // The corner radius: first from the area (w h - (4 - pi) r^2), then the
-      // radius within 0.1 mm of it that fits the outline best.
-      const double estimate = std::sqrt(std::max(0.0, (w * h - a) / (4 - M_PI)));
-      auto misfit = [&](double r) {
-        double worst = 0;
-        for (const Vec2 p : ring)
-          worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, w / 2, h / 2, r)));
-        return worst;
-      };
-      double corner = std::min(estimate, std::min(w, h) / 2), worst = misfit(corner);
-      for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, std::min(w, h) / 2); r += 0.001)
-        if (const double m = misfit(r); m < worst) worst = m, corner = r;
-      corner = dimension(corner);
-      if (std::abs(w - h) < fit && std::abs(corner - w / 2) < fit && worst < fit) {
+      if (!islands && std::abs(w - h) < fit && std::abs(corner - w / 2) < fit && worst < fit) {
         f.entity = "round_hole";
         f.diameter = dimension(w);
         f.id = fmt::format("HOLE{} D={:g}MM", ++holes, f.diameter);
@@ -282,34 +344,8 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
                                lines});
       }
     }  // closed features
-    // Rough or finish: what each operation left of the final walls and floor.
-    for (std::size_t k = 0; k < f.operations.size(); ++k) {
-      Operation& op = out.operations[f.operations[k]];
-      double side = 1e300;
-      for (const Vec2 p : walls) side = std::min(side, polygons::signed_distance(op.area, p));
-      side = std::max(0.0, dimension(side));
-      const double bottom = std::max(0.0, dimension(*std::min_element(op.layers.begin(), op.layers.end()) - f.deepest));
-      const bool rough = side > 0.005 || bottom > 0.005;
-      op.entity = rough ? "bottom_and_side_rough_milling" : "bottom_and_side_finish_milling";
-      if (rough) {
-        op.allowance_side = side;
-        op.allowance_bottom = bottom;
-      } else if (k > 0) {
-        const Operation& before = out.operations[f.operations[k - 1]];
-        if (before.allowance_side && *before.allowance_side > 0) {
-          op.radial = before.allowance_side;
-          op.decisions.push_back({"rule M5 (ours): a finish after a rough engages the wall by the rough's side allowance",
-                                  fmt::format("radial depth {:g}", *op.radial), {op.first_line}});
-        }
-      }
-      op.decisions.push_back({"SEEDS-SPEC 4.5.6: the group that reaches the final walls and floor is the finish; "
-                              "allowances = final - reached",
-                              rough ? fmt::format("{}: side allowance {:g}, bottom allowance {:g}", op.entity, side, bottom)
-                                    : fmt::format("{}: reaches the walls and floor", op.entity),
-                              {op.first_line}});
-    }
+    rough_or_finish(f, walls, out);
   }
-  (void)tools;
   // Ids of the operations, as Fig. 11 names them.
   for (Operation& op : out.operations) {
     const std::string verb = op.entity == "drilling"                         ? "DRILL"

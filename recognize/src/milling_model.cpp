@@ -60,6 +60,55 @@ class Writer {
     l.implicit_tolerance = &t;
     return &l;
   }
+  // A closed profile, centred on its feature's placement.
+  ms::closed_profile* closed_profile(const ClosedProfile& p, const std::string& name) {
+    auto* at = placement(name, {0, 0, 0});
+    if (p.entity == "circular_closed_profile") {
+      auto& circle = m_.create<ms::circular_closed_profile>();
+      circle.placement = at;
+      circle.diameter = length(p.diameter);
+      return &circle;
+    }
+    if (p.entity == "rectangular_closed_profile") {
+      auto& rectangle = m_.create<ms::rectangular_closed_profile>();
+      rectangle.placement = at;
+      rectangle.profile_width = length(p.width);
+      rectangle.profile_length = length(p.length);
+      return &rectangle;
+    }
+    auto* line = polyline(name, p.outline);
+    auto& outline = m_.create<ms::general_closed_profile>();
+    outline.placement = at;
+    outline.closed_profile_shape = line;
+    return &outline;
+  }
+  // A straight travel path (a face's course, a step's wall, a slot's
+  // centre line, an outside profile's sweep).
+  ms::linear_path* linear_path(double distance, const char* name, Vec3 along) {
+    auto* its_direction = direction(name, along.x, along.y, along.z);
+    auto& path = m_.create<ms::linear_path>();
+    path.distance = length(distance);
+    path.its_direction = its_direction;
+    return &path;
+  }
+  // A U with 90 degree walls and both radii r (ISO 14649-10 square_u_profile).
+  ms::square_u_profile* square_u(double width, double r) {
+    auto& u = m_.create<ms::square_u_profile>();
+    u.width = length(width);
+    u.first_radius = length(r);
+    u.first_angle = 90;
+    u.second_radius = length(r);
+    u.second_angle = 90;
+    return &u;
+  }
+  // A closed polyline (the first point repeated at the end).
+  ms::polyline* polyline(const std::string& name, const machining::polygons::Ring& ring) {
+    auto& line = m_.create<ms::polyline>();
+    line.name = name;
+    for (const Vec2 p : ring) line.points.push_back(point("", p.x, p.y, 0));
+    line.points.push_back(line.points.front());
+    return &line;
+  }
   mill::milling_technology* technology(const Setting& s) {
     // Fig. 11 #57: F2400 mm/min = 0.04 m/s; S1200 M3 = -20 rev/s (clockwise negative).
     auto& t = m_.create<mill::milling_technology>();
@@ -264,12 +313,7 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
     } else if (f.entity == "planar_face") {
       auto& face = m.create<ms::planar_face>();
       place(face);
-      auto* along = w.direction("COURSE OF TRAVEL", 1, 0, 0);
-      auto* distance = w.length(f.length);
-      auto& path = m.create<ms::linear_path>();
-      path.distance = distance;
-      path.its_direction = along;
-      face.course_of_travel = &path;
+      face.course_of_travel = w.linear_path(f.length, "COURSE OF TRAVEL", {1, 0, 0});
       auto& width = m.create<ms::numeric_parameter>();
       width.parameter_name = "PROFILE LENGTH";
       width.its_parameter_value = f.width;
@@ -289,14 +333,24 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
         pocket.feature_boundary = &outline;
         pocket.orthogonal_radius = w.length(f.corner_radius);
       } else {
-        auto& line = m.create<ms::polyline>();
-        line.name = f.id + ": OUTLINE";
-        for (const Vec2 p : f.outline) line.points.push_back(w.point("", p.x, p.y, 0));
-        line.points.push_back(line.points.front());
+        auto* line = w.polyline(f.id + ": OUTLINE", f.outline);
         auto& outline = m.create<ms::general_closed_profile>();
         outline.placement = w.placement(f.id + ": OUTLINE", {0, 0, 0});
-        outline.closed_profile_shape = &line;
+        outline.closed_profile_shape = line;
         pocket.feature_boundary = &outline;
+      }
+      // Rule I1: each island a boss from the floor to the pocket's top,
+      // placed in the setup's frame as the posters read bosses.
+      for (std::size_t k = 0; k < f.bosses.size(); ++k) {
+        const ClosedProfile& b = f.bosses[k];
+        const std::string id = fmt::format("{} BOSS{}", f.id, k + 1);
+        auto& boss = m.create<ms::boss>();
+        boss.its_id = id;
+        boss.its_workpiece = &workpiece;
+        boss.feature_placement = w.placement(id, {b.centre.x, b.centre.y, f.origin.z}, b.ref_direction);
+        boss.depth = w.plane(id + ": DEPTH", {0, 0, -f.depth});
+        boss.its_boundary = w.closed_profile(b, id + ": OUTLINE");
+        pocket.its_boss.push_back(&boss);
       }
       out = &pocket;
     } else if (f.entity == "open_pocket") {
@@ -304,32 +358,47 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       auto& pocket = m.create<ms::open_pocket>();
       place(pocket);
       pocket.orthogonal_radius = w.length(f.corner_radius);
-      auto& u = m.create<ms::square_u_profile>();
-      u.width = w.length(f.width);
-      u.first_radius = w.length(f.corner_radius);
-      u.first_angle = 90;
-      u.second_radius = w.length(f.corner_radius);
-      u.second_angle = 90;
-      pocket.open_boundary = &u;
+      pocket.open_boundary = w.square_u(f.width, f.corner_radius);
       out = &pocket;
     } else if (f.entity == "step") {
       // The wall's foot along the placement's local X; the removed material
       // on its left, out to the stock's edge (ISO 14649-10 step).
       auto& step = m.create<ms::step>();
       place(step);
-      auto& path = m.create<ms::linear_path>();
-      path.distance = w.length(f.length);
-      path.its_direction = w.direction("WALL", 1, 0, 0);
-      step.open_boundary = &path;
+      step.open_boundary = w.linear_path(f.length, "WALL", {1, 0, 0});
       out = &step;
+    } else if (f.entity == "general_outside_profile") {
+      // Rule P1: the stock round the part cleared down to the depth; the
+      // profile swept down along -Z by the depth.
+      auto& profile = m.create<ms::general_outside_profile>();
+      place(profile);
+      profile.feature_boundary = w.closed_profile(f.boundary, f.id + ": OUTLINE");
+      profile.profile_swept_shape = w.linear_path(f.depth, "SWEEP", {0, 0, -1});
+      out = &profile;
+    } else if (f.entity == "slot") {
+      // Rules S1, S2: the centre line from the placement along its local X.
+      auto& slot = m.create<ms::slot>();
+      place(slot);
+      slot.course_of_travel = w.linear_path(f.length, "COURSE OF TRAVEL", {1, 0, 0});
+      // Part 10 square_u_profile radii are positive_length_measures: a
+      // flat end mill's floor (no corner radius) is written as the only U
+      // that carries just the width, rounded_u_profile.
+      const tooling::Tool* tool = tools.find(r.operations[f.operations.front()].tool);
+      if (tool && tool->corner_radius && *tool->corner_radius > 0) {
+        slot.swept_shape = w.square_u(f.width, *tool->corner_radius);
+      } else {
+        auto& u = m.create<ms::rounded_u_profile>();
+        u.width = w.length(f.width);
+        slot.swept_shape = &u;
+      }
+      for (int end = 0; end < 2; ++end)
+        slot.end_conditions.push_back(f.open_ends ? static_cast<ms::slot_end_type*>(&m.create<ms::open_slot_end_type>())
+                                                  : &m.create<ms::radiused_slot_end_type>());
+      out = &slot;
     } else {
       auto& region = m.create<ms::region_projection>();
       region.feature_placement = w.placement(f.id, f.origin);
-      auto& line = m.create<ms::polyline>();
-      line.name = f.id + ": EXTENT";
-      for (const Vec2 p : f.outline) line.points.push_back(w.point("", p.x, p.y, 0));
-      line.points.push_back(line.points.front());
-      region.proj_curve = &line;
+      region.proj_curve = w.polyline(f.id + ": EXTENT", f.outline);
       region.proj_dir = w.direction("PROJECTION", 0, 0, -1);
       region.depth = w.length(std::max(0.0, r.top_z - f.deepest));
       out = &region;

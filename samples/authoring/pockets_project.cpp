@@ -269,4 +269,71 @@ stepnc::meta::FileHeader open_profiles_header() {
                 "GENERAL_PROFILE AND PARTIAL_CIRCULAR_PROFILE OPEN POCKETS, CONTOUR_PARALLEL ROUGH AND FINISH");
 }
 
+void build_slots_outside_profile(Model& m) {
+  // A 120 x 80 x 30 block, origin at a bottom corner. The stock round a
+  // 90 x 50 part (centred at (60, 40)) is milled 6 mm down to the block's
+  // edge (GENERAL_OUTSIDE_PROFILE); on the part's top a slot with radiused
+  // ends (its centre line from (30, 40) along X, 40 long, 5 deep) and a
+  // slot with open ends across the whole block along Y at X 90 (4 deep),
+  // both as wide as the 10 mm end mill (R0.5 corners) that cuts them.
+  Shop shop(m, "BLOCK 120 X 80 X 30", 120, 80, 30);
+  auto* mill_10 = milling_tool<tools::endmill>(m, "ENDMILL 10MM R0.5", 10, 3, 75, 0.5);
+
+  auto& part = m.create<ms::rectangular_closed_profile>();
+  part.profile_length = shop.size(90);
+  part.profile_width = shop.size(50);
+  auto& sweep = m.create<ms::linear_path>();
+  sweep.distance = shop.size(6);
+  sweep.its_direction = direction(m, 0, "DOWN", 0, 0, -1);
+  auto& outside = m.create<ms::general_outside_profile>();
+  outside.its_id = "OUTSIDE 90 X 50";
+  outside.its_workpiece = shop.workpiece;
+  outside.feature_placement = shop.at("OUTSIDE 90 X 50", 60, 40, 30);
+  outside.depth = shop.depth("OUTSIDE DEPTH", 6);
+  outside.profile_swept_shape = &sweep;
+  outside.feature_boundary = &part;
+  const auto [rough, finish] = shop.rough_and_finish("ROUGH OUTSIDE", "FINISH OUTSIDE", mill_10, 3, 5, 6);
+  outside.its_operations = {rough, finish};
+
+  // A slot as wide as the tool: centre-line passes, one finishing operation.
+  auto slot = [&](const char* name, double x, double y, double ux, double uy, double length, double depth,
+                  ms::slot_end_type* first_end, ms::slot_end_type* second_end) {
+    auto& course = m.create<ms::linear_path>();
+    course.distance = shop.size(length);
+    course.its_direction = direction(m, 0, name, ux, uy, 0);
+    auto& u = m.create<ms::square_u_profile>();
+    u.width = shop.size(10);
+    u.first_radius = shop.size(0.5);
+    u.first_angle = 90;
+    u.second_radius = shop.size(0.5);
+    u.second_angle = 90;
+    auto& s = m.create<ms::slot>();
+    s.its_id = name;
+    s.its_workpiece = shop.workpiece;
+    s.feature_placement = shop.at(name, x, y, 30);
+    s.depth = shop.depth(name, depth);
+    s.course_of_travel = &course;
+    s.swept_shape = &u;
+    s.end_conditions = {first_end, second_end};
+    auto& op = shop.bottom_and_side<mill::bottom_and_side_finish_milling>(
+        name, mill_10, technology(m, 0, 0.01, -50), 2.5, 10);  // 600 mm/min, 3000 rev/min
+    s.its_operations = {&op};
+    return std::pair{&s, static_cast<ms::machining_operation*>(&op)};
+  };
+  const auto [closed_slot, mill_closed_slot] = slot("SLOT RADIUSED ENDS", 30, 40, 1, 0, 40, 5,
+                                                    &m.create<ms::radiused_slot_end_type>(),
+                                                    &m.create<ms::radiused_slot_end_type>());
+  const auto [through_slot, mill_through_slot] =
+      slot("SLOT OPEN ENDS", 90, 0, 0, 1, 80, 4, &m.create<ms::open_slot_end_type>(), &m.create<ms::open_slot_end_type>());
+  shop.main_workplan("SLOTS AND AN OUTSIDE PROFILE", {{&outside, rough},
+                                                      {&outside, finish},
+                                                      {closed_slot, mill_closed_slot},
+                                                      {through_slot, mill_through_slot}});
+}
+
+stepnc::meta::FileHeader slots_outside_profile_header() {
+  return header("slots_outside_profile.stp", "STEPNC SAMPLE: SLOTS ON A PART MILLED ROUND ITS OUTSIDE PROFILE",
+                "GENERAL_OUTSIDE_PROFILE ROUGH AND FINISH, SLOTS WITH RADIUSED AND OPEN ENDS");
+}
+
 }  // namespace stepnc_samples

@@ -2,7 +2,8 @@
 // Everyday milling features built in code: an L-shaped closed pocket with
 // an island (its_boss), machined contour-parallel, and a round hole milled
 // with an end mill smaller than the hole (rough and finish), open pockets
-// bounded by general open profiles.
+// bounded by general open profiles, slots on a part milled round its
+// outside profile.
 #pragma once
 
 #include "stepnc/meta/io.h"
@@ -21,5 +22,9 @@ stepnc::meta::FileHeader hole_milling_header();
 // samples/milling/open_profiles.stp
 void build_open_profiles(stepnc::meta::Model& model);
 stepnc::meta::FileHeader open_profiles_header();
+
+// samples/milling/slots_outside_profile.stp
+void build_slots_outside_profile(stepnc::meta::Model& model);
+stepnc::meta::FileHeader slots_outside_profile_header();
 
 }  // namespace stepnc_samples
