@@ -15,11 +15,9 @@ namespace {
 class FanucPrinter final : public GcodePrinter {
  public:
   explicit FanucPrinter(const Program& program)
-      : GcodePrinter(program, Style{3, true, '(', 0, program.machine == MachineKind::turning, false}) {}
+      : GcodePrinter(program, Style{3, true, '(', 0, false}) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
-
   void prologue() override {
     line("%");
     start_line();

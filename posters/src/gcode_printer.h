@@ -24,7 +24,6 @@ struct Style {
   bool keep_point = false;
   char comment_open = '(';   // ';' for comments to the end of the line
   int block_number_step = 0;  // N10, N20, ... when > 0
-  bool diameter_mode = false;  // lathe: X words are diameters
   bool multi_turn_arcs = true;  // G2/G3 take a turn count (helices); else one block per turn
 };
 
@@ -76,7 +75,7 @@ class GcodePrinter {
   void start_line();
   void word(std::string_view text);
   void word(char letter, double value);          // X12.5 in program units
-  void x_word(double radius) { word('X', style_.diameter_mode ? 2 * radius : radius); }
+  void x_word(double radius) { word('X', lathe() ? 2 * radius : radius); }  // a lathe's X is a diameter
   void finish_line();
   void line(std::string_view text);
   void comment(std::string_view text);
@@ -85,6 +84,9 @@ class GcodePrinter {
   void arc_block(const Arc& a);
   void forget_motion_mode() { motion_mode_.clear(); }
   void forget_position() { known_ = false; }
+
+  // A turning program: X words are diameters, no Y, the lathe's codes.
+  bool lathe() const { return program_.machine == MachineKind::turning; }
 
   const Program& program_;
   Style style_;

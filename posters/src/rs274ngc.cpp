@@ -11,11 +11,9 @@ namespace {
 class Rs274ngcPrinter final : public GcodePrinter {
  public:
   explicit Rs274ngcPrinter(const Program& program)
-      : GcodePrinter(program, Style{4, false, '(', 0, program.machine == MachineKind::turning}) {}
+      : GcodePrinter(program, Style{4, false, '(', 0}) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
-
   void prologue() override {
     line("%");
     // Lathe: XZ plane, diameter mode.

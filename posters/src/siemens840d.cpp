@@ -40,10 +40,9 @@ int siemens_tool_type(ToolKind kind) {
 class Siemens840dPrinter final : public GcodePrinter {
  public:
   Siemens840dPrinter(const Program& program, const PrintOptions& options)
-      : GcodePrinter(program, Style{3, false, ';', 10, program.machine == MachineKind::turning}), options_(options) {}
+      : GcodePrinter(program, Style{3, false, ';', 10}), options_(options) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
   // The 840D's code for the spindle direction the cycles restore: 3 = M3, 4 = M4.
   double spindle_direction() const { return spindle_clockwise_ ? 3 : 4; }
 
