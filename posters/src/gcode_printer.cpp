@@ -230,6 +230,13 @@ void GcodePrinter::comment(std::string_view text) {
   finish_line();
 }
 
+void GcodePrinter::feed_rate(const FeedRate& f) {
+  start_line();
+  if (const std::string_view mode = feed_mode_word(f.per_revolution); !mode.empty()) word(mode);
+  word('F', f.value);
+  finish_line();
+}
+
 void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
   const double resolution = 0.5 * std::pow(10.0, -style_.decimals);
   auto changed = [&](double a, double b) { return !known_ || force_all || std::abs(a - b) >= resolution; };

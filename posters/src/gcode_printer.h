@@ -44,7 +44,8 @@ class GcodePrinter {
   // Up to the machine-safe height in machine coordinates (program.h).
   virtual void machine_retract() = 0;
   virtual void spindle_on(const SpindleOn& s) = 0;
-  virtual void feed_rate(const FeedRate& f) = 0;
+  // The feed mode word a dialect writes before F, or empty for none.
+  virtual std::string_view feed_mode_word(bool per_revolution) const = 0;
   virtual void drill_cycle(const DrillCycle& c) = 0;
   // The canned drilling cycle words both ISO 6983 dialects share: G99
   // (return to R), the cycle's G code, X Y Z R, and Q for pecks. Dialects
@@ -95,6 +96,7 @@ class GcodePrinter {
 
  private:
   void statement(const Statement& s, std::size_t index);
+  void feed_rate(const FeedRate& f);
 
   PrintedProgram out_;
   std::string current_;

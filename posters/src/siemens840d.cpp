@@ -120,12 +120,8 @@ class Siemens840dPrinter final : public GcodePrinter {
     word(s.clockwise ? "M3" : "M4");
     finish_line();
   }
-  void feed_rate(const FeedRate& f) override {
-    start_line();
-    word(f.per_revolution ? "G95" : "G94");
-    word('F', f.value);
-    finish_line();
-  }
+  // G94 per minute, G95 per revolution, on every block that sets a feed.
+  std::string_view feed_mode_word(bool per_revolution) const override { return per_revolution ? "G95" : "G94"; }
   // MSG("...") shows the text on the operator panel; quotes cannot nest.
   void message(const Message& m) override {
     std::string text = m.text;
