@@ -8,6 +8,8 @@
 #include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -53,6 +55,11 @@ void add_run_command(CLI::App& app, Action& action);
 // The FILE argument every subcommand reads: an existing file, or `-` for
 // standard input.
 CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::string& description);
+// An option whose value is one of `choices` (CLI11 checks it, the bash
+// completion offers them): `-c,--controller` with gcode::controller_names(),
+// `-d,--dialect` with post::dialect_names().
+CLI::Option* add_choice_option(CLI::App& command, const std::string& spellings, std::string& value,
+                               const std::string& description, const std::vector<std::string_view>& choices);
 // A whole input file (`-`: standard input), or nullopt after printing why
 // it could not be read.
 std::optional<std::string> read_input(const std::string& path);

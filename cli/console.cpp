@@ -26,6 +26,12 @@ CLI::Option* add_input_option(CLI::App& command, std::string& file, const std::s
   return command.add_option("FILE", file, description + " ('-': standard input)")->required()->check(existing_or_stdin);
 }
 
+CLI::Option* add_choice_option(CLI::App& command, const std::string& spellings, std::string& value,
+                               const std::string& description, const std::vector<std::string_view>& choices) {
+  const std::vector<std::string> names(choices.begin(), choices.end());
+  return command.add_option(spellings, value, description)->check(CLI::IsMember(names));
+}
+
 std::optional<std::string> read_input(const std::string& path) {
   std::string text;
   if (const auto error = io::read_text(path, text)) {

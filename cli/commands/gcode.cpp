@@ -53,10 +53,8 @@ void add_gcode_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<GcodeOptions>();
   CLI::App* command = app.add_subcommand("gcode", "Read an ISO 6983 (G-code) program into motion");
   add_input_option(*command, options->file, "G-code program");
-  std::vector<std::string> names;
-  for (const std::string_view name : gcode::controller_names()) names.emplace_back(name);
-  command->add_option("-c,--controller", options->controller, "The controller whose dialect the program is in (default: rs274ngc)")
-      ->check(CLI::IsMember(names));
+  add_choice_option(*command, "-c,--controller", options->controller,
+                    "The controller whose dialect the program is in (default: rs274ngc)", gcode::controller_names());
   command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")->check(CLI::ExistingFile);
   command->add_flag("--canonical", options->canonical, "Print LinuxCNC canonical machining calls, one a line");
   command->add_flag("--json", options->json, "Print calls, cycles and provenance as JSON");

@@ -59,11 +59,9 @@ void add_import_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<ImportCommandOptions>();
   CLI::App* command = app.add_subcommand("import", "Turn a G-code program back into an ISO 14649 project (seeds 002, 004)");
   add_input_option(*command, options->file, "G-code program");
-  std::vector<std::string> names;
-  for (const std::string_view name : gcode::controller_names()) names.emplace_back(name);
-  command->add_option("-c,--controller", options->controller, "The controller whose dialect the program is in")
-      ->required()
-      ->check(CLI::IsMember(names));
+  add_choice_option(*command, "-c,--controller", options->controller, "The controller whose dialect the program is in",
+                    gcode::controller_names())
+      ->required();
   command->add_option("--tools", options->tools, "Tool list (CSV, shared/formats/tool-list.md)")
       ->required()
       ->check(CLI::ExistingFile)

@@ -36,9 +36,7 @@ void add_post_command(CLI::App& app, Action& action) {
   auto options = std::make_shared<PostOptions>();
   CLI::App* command = app.add_subcommand("post", "Write the NC program for a file's project");
   add_input_option(*command, options->file, "ISO 14649 Part 21 file");
-  command->add_option("-d,--dialect", options->dialect, "Output dialect")
-      ->required()
-      ->check(CLI::IsMember({"rs274ngc", "fanuc", "siemens840d", "canonical"}));
+  add_choice_option(*command, "-d,--dialect", options->dialect, "Output dialect", post::dialect_names())->required();
   add_output_option(*command, options->output, "Output program, replaced atomically");
   command->add_option("--trace", options->trace,
                       "Also write the NC block -> workingstep/operation/feature map (JSON); it lands with the program "

@@ -85,8 +85,8 @@ void add_run_command(CLI::App& app, Action& action) {
       ->check(CLI::ExistingFile);
   command->add_option("--journal", options->journal,
                       "SQLite journal: one transaction per record; a killed run resumes from it");
-  command->add_option("-d,--dialect", options->dialect, "Also print the program in executed order in this dialect")
-      ->check(CLI::IsMember({"rs274ngc", "fanuc", "siemens840d", "canonical"}));
+  add_choice_option(*command, "-d,--dialect", options->dialect, "Also print the program in executed order in this dialect",
+                    post::dialect_names());
   add_output_option(*command, options->output, "The program (with --dialect)");
   CLI::Option* status = command->add_option("--status", options->status,
                                             "Print a journal's per-node marks, current node and unit feature");

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "stepnc/control/magazine.h"
 
-#include "stepnc/tooling/tool_list.h"
-
 #include <charconv>
 #include <utility>
 
@@ -13,26 +11,26 @@ bool is_milling_cutter(std::string_view kind) {
   return kind == "endmill" || kind == "bullnose_endmill" || kind == "ballnose_endmill" || kind == "facemill";
 }
 
-MagazineTool* Magazine::find(std::string_view key) {
-  return const_cast<MagazineTool*>(std::as_const(*this).find(key));
+tooling::Tool* Magazine::find(std::string_view key) {
+  return const_cast<tooling::Tool*>(std::as_const(*this).find(key));
 }
 
-const MagazineTool* Magazine::find(std::string_view key) const {
-  for (const MagazineTool& t : tools)
+const tooling::Tool* Magazine::find(std::string_view key) const {
+  for (const tooling::Tool& t : tools)
     if (t.name == key) return &t;
   int number = 0;
   const auto [end, ec] = std::from_chars(key.data(), key.data() + key.size(), number);
   if (ec != std::errc{} || end != key.data() + key.size()) return nullptr;
-  for (const MagazineTool& t : tools)
+  for (const tooling::Tool& t : tools)
     if (t.number == number) return &t;
   return nullptr;
 }
 
-const MagazineTool* Magazine::match(const machining::Tool& tool) const {
-  for (const MagazineTool& t : tools)
+const tooling::Tool* Magazine::match(const machining::Tool& tool) const {
+  for (const tooling::Tool& t : tools)
     if (!tool.source.name.empty() && t.name == tool.source.name) return &t;
   if (tool.number)
-    for (const MagazineTool& t : tools)
+    for (const tooling::Tool& t : tools)
       if (t.number == *tool.number) return &t;
   return nullptr;
 }
@@ -47,20 +45,10 @@ MagazineResult read_magazine(std::string_view csv, std::string_view file_name) {
     };
     if (is_milling_cutter(read.kind) && read.diameter.value_or(0) <= 0)
       error(fmt::format("{} {} needs a diameter", read.kind, read.name));
-    for (const MagazineTool& other : result.magazine.tools)
+    for (const tooling::Tool& other : result.magazine.tools)
       if (!read.name.empty() && other.name == read.name)
         error(fmt::format("tool name '{}' is listed twice (line {})", read.name, other.line));
-    MagazineTool tool;
-    tool.number = read.number;
-    tool.kind = std::move(read.kind);
-    tool.name = std::move(read.name);
-    tool.diameter = read.diameter.value_or(0);
-    tool.corner_radius = read.corner_radius.value_or(0);
-    tool.length = read.length.value_or(0);
-    tool.flutes = read.flutes.value_or(0);
-    tool.available = read.available;
-    tool.line = read.line;
-    result.magazine.tools.push_back(std::move(tool));
+    result.magazine.tools.push_back(std::move(read));
   }
   return result;
 }

@@ -79,9 +79,9 @@ class Controller {
     }
     // T numbers are the magazine's pockets; tools it lacks get numbers above them.
     int next_number = 1;
-    for (const MagazineTool& t : magazine_.tools) next_number = std::max(next_number, t.number + 1);
+    for (const tooling::Tool& t : magazine_.tools) next_number = std::max(next_number, t.number + 1);
     for (m::Tool& tool : project_.tools) {
-      const MagazineTool* in_magazine = magazine_.match(tool);
+      const tooling::Tool* in_magazine = magazine_.match(tool);
       tool.number = in_magazine ? in_magazine->number : next_number++;
     }
     // Events must name nodes and tools that exist.
@@ -169,7 +169,7 @@ class Controller {
     if (node(leaf).kind != NodeKind::workingstep) return true;
     const int tool = tool_of(leaf);
     if (tool < 0) return false;  // a residual still without a tool
-    const MagazineTool* t = magazine_.match(project_.tools[static_cast<std::size_t>(tool)]);
+    const tooling::Tool* t = magazine_.match(project_.tools[static_cast<std::size_t>(tool)]);
     return t && t->available;
   }
 
@@ -216,11 +216,11 @@ class Controller {
   void apply(std::size_t i, std::string trigger) {
     fired_[i] = true;
     const Event& e = events_[i];
-    MagazineTool* tool = magazine_.find(e.tool);
+    tooling::Tool* tool = magazine_.find(e.tool);
     if (!tool && e.kind != Event::Kind::tool_broken) {
       // A program tool loaded into a free pocket.
       const m::Tool& t = *program_tool(e.tool);
-      MagazineTool added;
+      tooling::Tool added;
       added.number = t.number.value_or(0);
       added.name = t.source.name;
       added.kind = std::string(m::to_string(t.kind));
@@ -278,10 +278,10 @@ class Controller {
   void assign_residual_tools(std::vector<Decision>& decisions) {
     for (auto& [leaf, corner] : residual_corner_) {
       if (operation_of(leaf) >= 0 && tool_of(leaf) >= 0) continue;
-      const MagazineTool* best = nullptr;
-      for (const MagazineTool& t : magazine_.tools)
-        if (is_milling_cutter(t.kind) && t.available && t.diameter / 2 <= corner + 1e-9 &&
-            (!best || t.diameter > best->diameter))
+      const tooling::Tool* best = nullptr;
+      for (const tooling::Tool& t : magazine_.tools)
+        if (is_milling_cutter(t.kind) && t.available && t.diameter.value_or(0) / 2 <= corner + 1e-9 &&
+            (!best || t.diameter.value_or(0) > best->diameter.value_or(0)))
           best = &t;
       if (!best) continue;
       m::Tool tool;
@@ -290,10 +290,10 @@ class Controller {
                   : best->kind == "ballnose_endmill" ? m::ToolKind::ball_end_mill
                                                      : m::ToolKind::flat_end_mill;
       tool.number = best->number;
-      tool.diameter = best->diameter;
-      tool.corner_radius = best->corner_radius;
-      tool.flutes = best->flutes > 0 ? best->flutes : 2;
-      tool.length = best->length;
+      tool.diameter = best->diameter.value_or(0);
+      tool.corner_radius = best->corner_radius.value_or(0);
+      tool.flutes = best->flutes.value_or(0) > 0 ? *best->flutes : 2;
+      tool.length = best->length.value_or(0);
       project_.tools.push_back(tool);
       m::Operation op = project_.operations[static_cast<std::size_t>(residual_operation_[leaf])];
       op.tool = static_cast<int>(project_.tools.size()) - 1;
@@ -441,7 +441,7 @@ class Controller {
       if (fired_[i] || e.kind != Event::Kind::tool_broken || e.unit != k || !matches(e.node, leaf)) continue;
       const int tool = tool_of(leaf);
       const std::string tool_name = project_.tools[static_cast<std::size_t>(tool)].source.name;
-      if (MagazineTool* t = magazine_.find(tool_name)) t->available = false;
+      if (tooling::Tool* t = magazine_.find(tool_name)) t->available = false;
       fired_[i] = true;
       emit({"event", "tool_broken", name(leaf), k,
             fmt::format("events:{}: tool {} broke in {} at unit feature {}", e.line, tool_name, name(leaf), k)});

@@ -1063,13 +1063,28 @@ class Interpreter {
   // RTP retract plane, RFP reference plane, SDIS safety distance, DP depth
   // (or DPR below RFP). G0 to RFP + SDIS, the body, G0 to RTP.
   // An 840D cycle call's arguments by position (empty: left out), at least
-  // `count` of them, and its event with the values given.
+  // `count` of them, and its event with the values given; need() and the
+  // lengths read them as every cycle does.
   struct CycleArguments {
     std::vector<std::optional<double>> a;
     CycleEvent event;
+    const Interpreter* interpreter = nullptr;  // its units (G70/G71)
+    const NamedWord* call = nullptr;           // the cycle's name and column, for messages
+
+    // Argument i as written; left out, an error naming it `what`.
+    double need(std::size_t i, const char* what) const {
+      if (!a[i]) stop(fmt::format("{} needs {}", call->name, what), call->column);
+      return *a[i];
+    }
+    // need(i, what) in mm.
+    double length(std::size_t i, const char* what) const { return interpreter->to_mm(need(i, what)); }
+    // Argument i in mm, or `otherwise` (mm) when left out.
+    double length_or(std::size_t i, double otherwise) const { return a[i] ? interpreter->to_mm(*a[i]) : otherwise; }
   };
   CycleArguments cycle_arguments(const NamedWord& n, const Block& block, std::size_t count) {
     CycleArguments out;
+    out.interpreter = this;
+    out.call = &n;
     for (std::uint32_t arg : n.args) out.a.push_back(arg == Word::none ? std::nullopt : std::optional(eval(arg, n.column)));
     if (out.a.size() > std::max<std::size_t>(count, 12))
       stop(fmt::format("{} takes at most {} parameters, not {}", n.name, std::max<std::size_t>(count, 12), out.a.size()),
@@ -1086,15 +1101,11 @@ class Interpreter {
 
   void siemens_drilling(const NamedWord& n, const Block& block) {
     if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
-    CycleArguments arguments = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
-    auto& a = arguments.a;
-    auto& event = arguments.event;
-    auto need = [&](std::size_t i, const char* name) {
-      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
-      return *a[i];
-    };
-    const double rtp = to_mm(need(0, "RTP")), rfp = to_mm(need(1, "RFP")), sdis = to_mm(a[2].value_or(0));
-    const double dp = a[3] ? to_mm(*a[3]) : rfp - to_mm(need(4, "DP or DPR"));
+    CycleArguments args = cycle_arguments(n, block, 12);  // named, not bound: lambdas capture them
+    auto& a = args.a;
+    auto& event = args.event;
+    const double rtp = args.length(0, "RTP"), rfp = args.length(1, "RFP"), sdis = args.length_or(2, 0);
+    const double dp = a[3] ? args.length(3, "DP") : rfp - args.length(4, "DP or DPR");
     if (dp > rfp) stop(fmt::format("{}: DP {} above RFP {}", n.name, to_units(dp), to_units(rfp)), n.column);
     if (n.name != "CYCLE85" && n.name != "CYCLE84" && state_.feed <= 0)
       stop(fmt::format("{} with zero feed rate", n.name), n.column);
@@ -1106,16 +1117,16 @@ class Interpreter {
     const double dwell = a[5].value_or(0);
     move(CallKind::rapid, at(rfp + sdis));
     if (n.name == "CYCLE83") {
-      deep_hole_drilling(n, a, rfp, sdis, dp, at);
+      deep_hole_drilling(n, args, rfp, sdis, dp, at);
     } else if (n.name == "CYCLE84") {
-      rigid_tapping(n, a, rfp + sdis, dp, at);
+      rigid_tapping(n, args, rfp + sdis, dp, at);
     } else if (n.name == "CYCLE85") {  // FFR in, DTB, RFF out to RFP + SDIS
       const double feed = state_.feed;
-      state_.feed = to_mm(need(6, "FFR"));
+      state_.feed = args.length(6, "FFR");
       emit(CallKind::feed_rate).v[0] = state_.feed;
       move(CallKind::linear, at(dp));
       if (dwell > 0) emit(CallKind::dwell).v[0] = dwell;
-      state_.feed = to_mm(a[7].value_or(*a[6]));
+      state_.feed = args.length_or(7, args.length(6, "FFR"));
       emit(CallKind::feed_rate).v[0] = state_.feed;
       move(CallKind::linear, at(rfp + sdis));
       state_.feed = feed;
@@ -1131,12 +1142,12 @@ class Interpreter {
       // An oriented spindle stop at the bottom (POSS); with a lift-off, G0
       // by RPA, RPO, RPAP off the wall, up to RFP + SDIS and back over the
       // hole; then out to RTP and SDIR restarts the spindle.
-      const int sdir = to_int(need(6, "SDIR"), n.column);
+      const int sdir = to_int(args.need(6, "SDIR"), n.column);
       if (sdir != 3 && sdir != 4) stop("CYCLE86: SDIR must be 3 or 4", n.column);
       restart = sdir == 3 ? 1 : -1;
       state_.spindle_direction = 0;
       emit(CallKind::spindle_stop).text = "oriented";
-      const double rpa = to_mm(a[7].value_or(0)), rpo = to_mm(a[8].value_or(0)), rpap = to_mm(a[9].value_or(0));
+      const double rpa = args.length_or(7, 0), rpo = args.length_or(8, 0), rpap = args.length_or(9, 0);
       if (rpa != 0 || rpo != 0 || rpap != 0) {
         const auto centre = program_position();  // over the hole, at the bottom
         auto over = [&](double dx, double dy, double z) {
@@ -1176,43 +1187,38 @@ class Interpreter {
     if (comp_.on()) stop(fmt::format("{} with radius compensation on (G40 first)", n.name), n.column);
     const bool face = n.name == "CYCLE71";
     const bool circular = n.name == "POCKET2";
-    CycleArguments arguments = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
-    auto& a = arguments.a;
-    auto& event = arguments.event;
-    auto need = [&](std::size_t i, const char* name) {
-      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
-      return *a[i];
-    };
-    auto length = [&](std::size_t i, const char* name) { return to_mm(need(i, name)); };
+    CycleArguments args = cycle_arguments(n, block, face ? 16 : circular ? 17 : 20);
+    auto& a = args.a;
+    auto& event = args.event;
     auto fail = [&](const std::string& error) {
       if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
     };
     const double radius = tool_of(state_.tool).value_or(Tool{}).diameter / 2;
     milling::Planes planes;
-    planes.rtp = length(0, "RTP");
-    planes.rfp = length(1, "RFP");
-    planes.sdis = a[2] ? to_mm(*a[2]) : 0;
+    planes.rtp = args.length(0, "RTP");
+    planes.rfp = args.length(1, "RFP");
+    planes.sdis = args.length_or(2, 0);
     const double start_z = program_position()[2];
     std::vector<milling::Path> paths;
     std::optional<std::size_t> finish_path;  // POCKET1/2 VARI 0 or 2: SSF applies to it
     std::string error;
     if (face) {
       milling::Face f;
-      planes.dp = length(3, "_DP");
+      planes.dp = args.length(3, "_DP");
       f.planes = planes;
-      f.corner_x = length(4, "_PA");
-      f.corner_y = length(5, "_PO");
-      f.length = length(6, "_LENG");
-      f.width = length(7, "_WID");
+      f.corner_x = args.length(4, "_PA");
+      f.corner_y = args.length(5, "_PO");
+      f.length = args.length(6, "_LENG");
+      f.width = args.length(7, "_WID");
       f.angle_deg = a[8].value_or(0);
-      f.max_depth = length(9, "_MID");
-      f.stepover = length(10, "_MIDA");
-      f.overrun = a[11] ? to_mm(*a[11]) : 0;
-      f.bottom_allowance = a[12] ? to_mm(*a[12]) : 0;
-      f.feed = length(13, "_FFP1");
-      f.side_overrun = a[15] ? to_mm(*a[15]) : f.overrun;
+      f.max_depth = args.length(9, "_MID");
+      f.stepover = args.length(10, "_MIDA");
+      f.overrun = args.length_or(11, 0);
+      f.bottom_allowance = args.length_or(12, 0);
+      f.feed = args.length(13, "_FFP1");
+      f.side_overrun = args.length_or(15, f.overrun);
       f.tool_radius = radius;
-      const int vari = to_int(need(14, "_VARI"), n.column);
+      const int vari = to_int(args.need(14, "_VARI"), n.column);
       const int units = vari % 10, tens = vari / 10;
       if (vari < 0 || units < 1 || units > 2 || tens < 1 || tens > 4)
         stop(fmt::format("CYCLE71: _VARI {} (units 1 rough, 2 finish; tens 1-4 the pass pattern)", vari), n.column);
@@ -1227,34 +1233,34 @@ class Interpreter {
     } else {
       const std::size_t tail = circular ? 8 : 11;  // FFD's place; MID, CDIR, FAL, VARI, MIDF, FFP2, SSF follow FFP1
       milling::Pocket p;
-      planes.dp = a[3] ? to_mm(*a[3]) : planes.rfp - length(4, "DP or DPR");
+      planes.dp = a[3] ? args.length(3, "DP") : planes.rfp - args.length(4, "DP or DPR");
       p.planes = planes;
       p.circular = circular;
       if (circular) {
-        p.length = p.width = 2 * length(5, "PRAD");
+        p.length = p.width = 2 * args.length(5, "PRAD");
         p.corner_radius = p.length / 2;
-        p.cx = length(6, "CPA");
-        p.cy = length(7, "CPO");
+        p.cx = args.length(6, "CPA");
+        p.cy = args.length(7, "CPO");
       } else {
-        p.length = length(5, "LENG");
-        p.width = length(6, "WID");
-        p.corner_radius = a[7] ? to_mm(*a[7]) : 0;
-        p.cx = length(8, "CPA");
-        p.cy = length(9, "CPO");
+        p.length = args.length(5, "LENG");
+        p.width = args.length(6, "WID");
+        p.corner_radius = args.length_or(7, 0);
+        p.cx = args.length(8, "CPA");
+        p.cy = args.length(9, "CPO");
         p.angle_deg = a[10].value_or(0);
       }
-      p.plunge_feed = length(tail, "FFD");
-      p.feed = length(tail + 1, "FFP1");
-      p.max_depth = length(tail + 2, "MID");
-      const int cdir = to_int(need(tail + 3, "CDIR"), n.column);
+      p.plunge_feed = args.length(tail, "FFD");
+      p.feed = args.length(tail + 1, "FFP1");
+      p.max_depth = args.length(tail + 2, "MID");
+      const int cdir = to_int(args.need(tail + 3, "CDIR"), n.column);
       if (cdir < 0 || cdir > 3) stop(fmt::format("{}: CDIR {} (0 climb, 1 conventional, 2 G2, 3 G3)", n.name, cdir), n.column);
       // Climb inside a pocket with the spindle clockwise (M3) runs G3.
       p.ccw = cdir == 3 || (cdir < 2 && (cdir == 0) == (state_.spindle_direction >= 0));
-      p.allowance = a[tail + 4] ? to_mm(*a[tail + 4]) : 0;
+      p.allowance = args.length_or(tail + 4, 0);
       const int vari = to_int(a[tail + 5].value_or(0), n.column);
       if (vari < 0 || vari > 2) stop(fmt::format("{}: VARI {} (0 complete, 1 rough, 2 finish)", n.name, vari), n.column);
-      p.finish_depth = a[tail + 6] ? to_mm(*a[tail + 6]) : p.max_depth;
-      p.finish_feed = a[tail + 7] ? to_mm(*a[tail + 7]) : p.feed;
+      p.finish_depth = args.length_or(tail + 6, p.max_depth);
+      p.finish_feed = args.length_or(tail + 7, p.feed);
       p.tool_radius = radius;
       if (vari != 2) {  // roughing leaves FAL on the walls
         paths.push_back(milling::pocket_path(p, start_z, budget(), error));
@@ -1317,14 +1323,8 @@ class Interpreter {
   // stops FALD (_FALD) above DP. Straight insertion only (VARI tens 0, 1).
   void siemens_pocket_or_slot(const NamedWord& n, const Block& block) {
     const bool slot = n.name == "SLOT1", circular = n.name == "POCKET4";
-    CycleArguments arguments = cycle_arguments(n, block, slot ? 24 : circular ? 19 : 23);
-    auto& a = arguments.a;
-    auto need = [&](std::size_t i, const char* name) {
-      if (!a[i]) stop(fmt::format("{} needs {}", n.name, name), n.column);
-      return *a[i];
-    };
-    auto length = [&](std::size_t i, const char* name) { return to_mm(need(i, name)); };
-    auto optional_length = [&](std::size_t i) { return a[i] ? to_mm(*a[i]) : 0.0; };
+    CycleArguments args = cycle_arguments(n, block, slot ? 24 : circular ? 19 : 23);
+    auto& a = args.a;
     // Where each parameter sits in the three lists.
     struct Places {
       std::size_t mid, fal, fald, ffp1, ffd, cdir, vari;
@@ -1332,16 +1332,16 @@ class Interpreter {
     const Places at = slot ? Places{15, 17, 22, 14, 13, 16, 18} : circular ? Places{7, 8, 9, 10, 11, 12, 13}
                                                                            : Places{10, 11, 12, 13, 14, 15, 16};
     milling::Pocket p;
-    p.planes.rtp = length(0, "RTP");
-    p.planes.rfp = length(1, "RFP");
-    p.planes.sdis = optional_length(2);
-    p.planes.dp = slot && !a[3] ? p.planes.rfp - length(4, "DP or DPR") : length(3, "DP");
-    p.max_depth = length(at.mid, "MID");
-    p.allowance = optional_length(at.fal);
-    const double bottom_allowance = optional_length(at.fald);
-    p.feed = length(at.ffp1, "FFP1");
-    p.plunge_feed = length(at.ffd, "FFD");
-    const int cdir = to_int(need(at.cdir, "CDIR"), n.column);
+    p.planes.rtp = args.length(0, "RTP");
+    p.planes.rfp = args.length(1, "RFP");
+    p.planes.sdis = args.length_or(2, 0);
+    p.planes.dp = slot && !a[3] ? p.planes.rfp - args.length(4, "DP or DPR") : args.length(3, "DP");
+    p.max_depth = args.length(at.mid, "MID");
+    p.allowance = args.length_or(at.fal, 0);
+    const double bottom_allowance = args.length_or(at.fald, 0);
+    p.feed = args.length(at.ffp1, "FFP1");
+    p.plunge_feed = args.length(at.ffd, "FFD");
+    const int cdir = to_int(args.need(at.cdir, "CDIR"), n.column);
     if (cdir < 0 || cdir > 3) stop(fmt::format("{}: CDIR {} (0 climb, 1 conventional, 2 G2, 3 G3)", n.name, cdir), n.column);
     p.ccw = cdir == 3 || (cdir < 2 && (cdir == 0) == (state_.spindle_direction >= 0));
     const int vari = to_int(a[at.vari].value_or(0), n.column);
@@ -1361,37 +1361,37 @@ class Interpreter {
     std::vector<std::pair<double, double>> centres;  // and the angle of each slot
     std::vector<double> angles;
     if (slot) {
-      p.length = length(6, "LENG");
-      p.width = length(7, "WID");
+      p.length = args.length(6, "LENG");
+      p.width = args.length(7, "WID");
       if (!(p.width > 0) || p.length < p.width)
         stop(fmt::format("SLOT1: WID {} must be above zero and at most LENG {}", to_units(p.width), to_units(p.length)),
              n.column);
       p.corner_radius = p.width / 2;
-      const int count = to_int(need(5, "NUM"), n.column);
+      const int count = to_int(args.need(5, "NUM"), n.column);
       if (count < 1 || count > 1000) stop(fmt::format("SLOT1: NUM {} must be a count from 1 to 1000", count), n.column);
-      const double cpa = length(8, "CPA"), cpo = length(9, "CPO"), rad = optional_length(10);
+      const double cpa = args.length(8, "CPA"), cpo = args.length(9, "CPO"), rad = args.length_or(10, 0);
       const double first = a[11].value_or(0), index = a[12] && *a[12] != 0 ? *a[12] : 360.0 / count;
       for (int i = 0; i < count; ++i) {
         const double angle = first + i * index;
         centres.emplace_back(cpa + rad * std::cos(angle * deg), cpo + rad * std::sin(angle * deg));
         angles.push_back(angle);
       }
-      p.finish_depth = a[19] ? to_mm(*a[19]) : p.max_depth;
-      p.finish_feed = a[20] ? to_mm(*a[20]) : p.feed;
+      p.finish_depth = args.length_or(19, p.max_depth);
+      p.finish_feed = args.length_or(20, p.feed);
       finish_speed = a[21].value_or(0);
     } else {
       if (circular) {
         p.circular = true;
-        p.length = p.width = 2 * length(4, "PRAD");
+        p.length = p.width = 2 * args.length(4, "PRAD");
         p.corner_radius = p.length / 2;
       } else {
-        p.length = length(4, "LENG");
-        p.width = length(5, "WID");
-        p.corner_radius = optional_length(6);
+        p.length = args.length(4, "LENG");
+        p.width = args.length(5, "WID");
+        p.corner_radius = args.length_or(6, 0);
       }
-      centres.emplace_back(length(circular ? 5 : 7, "PA"), length(circular ? 6 : 8, "PO"));
+      centres.emplace_back(args.length(circular ? 5 : 7, "PA"), args.length(circular ? 6 : 8, "PO"));
       angles.push_back(circular ? 0 : a[9].value_or(0));
-      p.stepover = optional_length(circular ? 14 : 17);
+      p.stepover = args.length_or(circular ? 14 : 17, 0);
       for (const std::size_t blank : circular ? std::vector<std::size_t>{15, 16} : std::vector<std::size_t>{18, 19, 20})
         if (a[blank] && *a[blank] != 0)
           unsupported(fmt::format("{} with a pre-machined blank (AP1, AP2, AD)", n.name), n.column);
@@ -1421,7 +1421,7 @@ class Interpreter {
         if (!error.empty()) stop(fmt::format("{}: {}", n.name, error), n.column);
       }
     }
-    emit_feature_paths(paths, finish_paths, finish_speed, p.planes.rtp, arguments.event);
+    emit_feature_paths(paths, finish_paths, finish_speed, p.planes.rtp, args.event);
   }
 
   // What is left of the call budget, for a cycle that builds its path first.
@@ -1454,11 +1454,12 @@ class Interpreter {
   // distance above the last depth (0.6 mm, or depth / 50 up to 7 mm beyond
   // 30 mm deep); VARI 0 (chip breaking): back 1 mm at feed.
   template <class At>
-  void deep_hole_drilling(const NamedWord& n, const std::vector<std::optional<double>>& a, double rfp, double sdis,
-                          double dp, const At& at) {
-    const double first = a[5] ? to_mm(*a[5]) : a[6] ? rfp - to_mm(*a[6]) : dp;
+  void deep_hole_drilling(const NamedWord& n, const CycleArguments& args, double rfp, double sdis, double dp,
+                          const At& at) {
+    const auto& a = args.a;
+    const double first = args.length_or(5, a[6] ? rfp - args.length(6, "FDPR") : dp);
     if (first > rfp || first < dp) stop("CYCLE83: FDEP must lie between RFP and DP", n.column);
-    const double dam = to_mm(a[7].value_or(0)), dtb = a[8].value_or(0), dts = a[9].value_or(0);
+    const double dam = args.length_or(7, 0), dtb = a[8].value_or(0), dts = a[9].value_or(0);
     const double frf = a[10].value_or(1);
     const int vari = to_int(a[11].value_or(0), n.column);
     if (vari != 0 && vari != 1) unsupported(fmt::format("CYCLE83 VARI={}", vari), n.column);
@@ -1503,11 +1504,11 @@ class Interpreter {
   // DTB at the bottom, out again at SST1 with the spindle reversed; SDAC is
   // restored after the cycle.
   template <class At>
-  void rigid_tapping(const NamedWord& n, const std::vector<std::optional<double>>& a, double start, double dp,
-                     const At& at) {
+  void rigid_tapping(const NamedWord& n, const CycleArguments& args, double start, double dp, const At& at) {
+    const auto& a = args.a;
     double pitch = 0;
     if (a[8]) {
-      pitch = to_mm(*a[8]);
+      pitch = args.length(8, "PIT");
     } else if (a[7]) {
       // ISO metric coarse threads M3 to M48 (ISO 261).
       static constexpr std::array<std::pair<int, double>, 21> coarse = {{{3, 0.5}, {4, 0.7}, {5, 0.8}, {6, 1}, {8, 1.25},

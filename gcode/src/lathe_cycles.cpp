@@ -18,6 +18,18 @@ constexpr const char* over_budget = "more moves than the call budget allows";
 
 double sign(double v) { return v > eps ? 1 : v < -eps ? -1 : 0; }
 
+// A cycle's (a, b) frame: a the axis its passes step along, b the axis they
+// cut along. Along Z (G71, G74): a is X, b is Z; along X (G72, G75): a is
+// Z, b is X.
+struct Axes {
+  bool along_z = true;
+  double a(Point p) const { return along_z ? p.x : p.z; }
+  double b(Point p) const { return along_z ? p.z : p.x; }
+  Point point(double a, double b) const { return along_z ? Point{a, b} : Point{b, a}; }
+  const char* a_name() const { return along_z ? "X" : "Z"; }
+  const char* b_name() const { return along_z ? "Z" : "X"; }
+};
+
 Move rapid(Point p) { return straight(MoveKind::rapid, p); }
 Move feed(Point p) { return straight(MoveKind::feed, p); }
 
@@ -60,16 +72,14 @@ Path shifted(const Path& path, Point by) {
 // to A's level. Then the contour from A (as type I) and a rapid to A.
 static std::string rough_with_pockets(const Contour& contour, const Roughing& r, const Path& path, Path& out,
                                std::size_t max_moves) {
-  auto a_of = [&](Point p) { return r.along_z ? p.x : p.z; };
-  auto b_of = [&](Point p) { return r.along_z ? p.z : p.x; };
-  auto point = [&](double a, double b) { return r.along_z ? Point{a, b} : Point{b, a}; };
+  const Axes axes{r.along_z};
   const Point start = contour.start;
-  const double ds = sign(a_of(path.front().end) - a_of(start));
-  const double db = sign(b_of(path.back().end) - b_of(start));
-  auto alpha = [&](Point p) { return (a_of(p) - a_of(start)) * ds; };
-  auto beta = [&](Point p) { return (b_of(p) - b_of(start)) * db; };
-  auto a_at = [&](double level) { return a_of(start) + ds * level; };
-  auto b_at = [&](double along) { return b_of(start) + db * along; };
+  const double ds = sign(axes.a(path.front().end) - axes.a(start));
+  const double db = sign(axes.b(path.back().end) - axes.b(start));
+  auto alpha = [&](Point p) { return (axes.a(p) - axes.a(start)) * ds; };
+  auto beta = [&](Point p) { return (axes.b(p) - axes.b(start)) * db; };
+  auto a_at = [&](double level) { return axes.a(start) + ds * level; };
+  auto b_at = [&](double along) { return axes.b(start) + db * along; };
   // Whether p (on m's circle) lies on the arc from `from`.
   auto on_arc = [&](Point from, const Move& m, Point p) {
     const double a0 = angle(m.centre, from), a1 = angle(m.centre, m.end), ap = angle(m.centre, p);
@@ -97,13 +107,14 @@ static std::string rough_with_pockets(const Contour& contour, const Roughing& r,
       } else {
         const double rad = std::hypot(from.x - m.centre.x, from.z - m.centre.z);
         // In (a, b): the line a = const (by alpha) or b = const.
-        const double c_fixed = by_alpha ? a_of(m.centre) : b_of(m.centre), c_free = by_alpha ? b_of(m.centre) : a_of(m.centre);
+        const double c_fixed = by_alpha ? axes.a(m.centre) : axes.b(m.centre);
+        const double c_free = by_alpha ? axes.b(m.centre) : axes.a(m.centre);
         const double fixed = by_alpha ? a_at(value) : b_at(value);
         const double d = fixed - c_fixed;
         if (std::abs(d) <= rad + eps) {
           const double h = std::sqrt(std::max(0.0, rad * rad - d * d));
           for (const double free : {c_free - h, c_free + h}) {
-            const Point p = by_alpha ? point(fixed, free) : point(free, fixed);
+            const Point p = by_alpha ? axes.point(fixed, free) : axes.point(free, fixed);
             if (on_arc(from, m, p)) found.push_back(p);
           }
         }
@@ -125,7 +136,7 @@ static std::string rough_with_pockets(const Contour& contour, const Roughing& r,
       top = std::max(top, alpha(m.end));
       if (m.kind == MoveKind::arc) {
         const double rad = std::hypot(from.x - m.centre.x, from.z - m.centre.z);
-        const Point deepest = point(a_of(m.centre) + ds * rad, b_of(m.centre));
+        const Point deepest = axes.point(axes.a(m.centre) + ds * rad, axes.b(m.centre));
         if (on_arc(from, m, deepest)) top = std::max(top, alpha(deepest));
       }
       from = m.end;
@@ -147,13 +158,13 @@ static std::string rough_with_pockets(const Contour& contour, const Roughing& r,
       else stretches.emplace_back(cuts[i], cuts[i + 1]);
     }
     for (const auto& [from, to] : stretches) {
-      out.push_back(rapid(point(a_of(start), b_at(from))));
-      if (k > 1) out.push_back(rapid(point(a_at(level - r.depth), b_at(from))));
-      out.push_back(feed(point(a_at(level), b_at(from))));
-      out.push_back(feed(point(a_at(level), b_at(to))));
+      out.push_back(rapid(axes.point(axes.a(start), b_at(from))));
+      if (k > 1) out.push_back(rapid(axes.point(a_at(level - r.depth), b_at(from))));
+      out.push_back(feed(axes.point(a_at(level), b_at(from))));
+      out.push_back(feed(axes.point(a_at(level), b_at(to))));
       const double lift = std::max(0.0, std::min(r.retract, level));
-      out.push_back(rapid(point(a_at(level - lift), b_at(to - lift))));
-      out.push_back(rapid(point(a_of(start), b_at(to - lift))));
+      out.push_back(rapid(axes.point(a_at(level - lift), b_at(to - lift))));
+      out.push_back(rapid(axes.point(axes.a(start), b_at(to - lift))));
     }
   }
   out.push_back(rapid(start));
@@ -170,23 +181,18 @@ static std::string rough_with_pockets(const Contour& contour, const Roughing& r,
 std::string rough(const Contour& contour, const Roughing& r, Path& out, std::size_t max_moves) {
   if (contour.moves.empty()) return "the contour has no move";
   if (!(r.depth > 0)) return "the depth of cut must be above zero";
-  // (a, b): a the axis the passes step along (X for G71, Z for G72), b the
-  // axis they cut along.
-  auto a_of = [&](Point p) { return r.along_z ? p.x : p.z; };
-  auto b_of = [&](Point p) { return r.along_z ? p.z : p.x; };
-  auto point = [&](double a, double b) { return r.along_z ? Point{a, b} : Point{b, a}; };
+  const Axes axes{r.along_z};
   const Point start = contour.start;
   const Move& first_block = contour.moves.front();
-  const char* a_name = r.along_z ? "X" : "Z";
   // Type II: the first block moves along the cut too (Z in G71's N P block).
-  bool type2 = std::abs(b_of(first_block.end) - b_of(start)) > 1e-6 || first_block.kind == MoveKind::arc;
+  bool type2 = std::abs(axes.b(first_block.end) - axes.b(start)) > 1e-6 || first_block.kind == MoveKind::arc;
   // Depth into the material (alpha) and distance along the cut (beta), from the start point.
-  const double ds = sign(a_of(first_block.end) - a_of(start));
-  if (ds == 0) return fmt::format("the first contour block does not move in {} away from the start point", a_name);
-  const double db = sign(b_of(contour.moves.back().end) - b_of(start));
-  if (db == 0) return fmt::format("the contour does not run along {}", r.along_z ? "Z" : "X");
-  auto alpha = [&](Point p) { return (a_of(p) - a_of(start)) * ds; };
-  auto beta = [&](Point p) { return (b_of(p) - b_of(start)) * db; };
+  const double ds = sign(axes.a(first_block.end) - axes.a(start));
+  if (ds == 0) return fmt::format("the first contour block does not move in {} away from the start point", axes.a_name());
+  const double db = sign(axes.b(contour.moves.back().end) - axes.b(start));
+  if (db == 0) return fmt::format("the contour does not run along {}", axes.b_name());
+  auto alpha = [&](Point p) { return (axes.a(p) - axes.a(start)) * ds; };
+  auto beta = [&](Point p) { return (axes.b(p) - axes.b(start)) * db; };
 
   const Path path = shifted(contour.moves, r.allowance);
   // Type I: after the first block the contour only comes out of the
@@ -197,7 +203,7 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out, std::siz
     const std::vector<Point> points = path[i].kind == MoveKind::arc ? arc_samples(at, path[i], 16) : std::vector{path[i].end};
     for (const Point p : points) {
       if (beta(p) < beta(at) - 1e-6)
-        return fmt::format("the contour goes back along {} (G71 and G72 need it to go one way)", r.along_z ? "Z" : "X");
+        return fmt::format("the contour goes back along {} (G71 and G72 need it to go one way)", axes.b_name());
       if (i > 0 && alpha(p) > alpha(at) + 1e-6) type2 = true;
       at = p;
     }
@@ -217,14 +223,14 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out, std::siz
         }
         // The circle meets the level twice at most; the one on the arc lies between its end points along b.
         const double rad = std::hypot(from.x - m.centre.x, from.z - m.centre.z);
-        const double a_level = a_of(start) + ds * level;
-        const double d = a_level - a_of(m.centre);
+        const double a_level = axes.a(start) + ds * level;
+        const double d = a_level - axes.a(m.centre);
         const double h = std::sqrt(std::max(0.0, rad * rad - d * d));
         const double lo = std::min(beta(from), beta(m.end)) - 1e-6, hi = std::max(beta(from), beta(m.end)) + 1e-6;
         double best = beta(m.end);
         bool found = false;
-        for (const double b : {b_of(m.centre) - h, b_of(m.centre) + h}) {
-          const double candidate = (b - b_of(start)) * db;
+        for (const double b : {axes.b(m.centre) - h, axes.b(m.centre) + h}) {
+          const double candidate = (b - axes.b(start)) * db;
           if (candidate >= lo && candidate <= hi && (!found || candidate < best)) best = candidate, found = true;
         }
         return best;
@@ -236,18 +242,18 @@ std::string rough(const Contour& contour, const Roughing& r, Path& out, std::siz
 
   const MoveKind infeed = first_block.kind == MoveKind::rapid ? MoveKind::rapid : MoveKind::feed;
   const double top = alpha(path.front().end);
-  const double b_start = b_of(start);
+  const double b_start = axes.b(start);
   for (int k = 1; k * r.depth < top - 1e-6; ++k) {
     if (out.size() > max_moves) return over_budget;
     const double level = k * r.depth;
-    const double a = a_of(start) + ds * level;
+    const double a = axes.a(start) + ds * level;
     const double b_end = b_start + db * hit(level);
-    out.push_back(straight(infeed, point(a, b_start)));
+    out.push_back(straight(infeed, axes.point(a, b_start)));
     if ((b_end - b_start) * db <= 1e-6) continue;  // no material at this level
-    out.push_back(feed(point(a, b_end)));
+    out.push_back(feed(axes.point(a, b_end)));
     // 45 degree lift by e, then back along the cut at rapid.
-    out.push_back(rapid(point(a - ds * r.retract, b_end - db * r.retract)));
-    out.push_back(rapid(point(a - ds * r.retract, b_start)));
+    out.push_back(rapid(axes.point(a - ds * r.retract, b_end - db * r.retract)));
+    out.push_back(rapid(axes.point(a - ds * r.retract, b_start)));
   }
   // The last pass follows the contour with its allowance (type I).
   out.push_back(straight(infeed, path.front().end));
@@ -285,32 +291,30 @@ Path finish(const Contour& contour) {
 // bottom the relief, a rapid back to the start level, then to the next
 // column; after the last, back to the start point.
 std::string peck(const Pecking& p, Path& out, std::size_t max_moves) {
-  auto a_of = [&](Point q) { return p.along_z ? q.x : q.z; };
-  auto b_of = [&](Point q) { return p.along_z ? q.z : q.x; };
-  auto point = [&](double a, double b) { return p.along_z ? Point{a, b} : Point{b, a}; };
-  const double a0 = a_of(p.start), a1 = a_of(p.end), b0 = b_of(p.start), b1 = b_of(p.end);
+  const Axes axes{p.along_z};
+  const double a0 = axes.a(p.start), a1 = axes.a(p.end), b0 = axes.b(p.start), b1 = axes.b(p.end);
   const double da = sign(a1 - a0), db = sign(b1 - b0);
-  if (db == 0) return fmt::format("the end point does not move in {} from the start point", p.along_z ? "Z" : "X");
+  if (db == 0) return fmt::format("the end point does not move in {} from the start point", axes.b_name());
   if (da != 0 && !(p.step > 0))
-    return fmt::format("stepping to another {} needs a step above zero", p.along_z ? "X" : "Z");
+    return fmt::format("stepping to another {} needs a step above zero", axes.a_name());
   if (p.peck < 0 || p.retract < 0 || p.relief < 0) return "peck, retract and relief must not be negative";
   if (p.peck > 0 && p.retract >= p.peck) return "the return e must be smaller than the peck depth";
   double a = a0;
   for (bool first = true;; first = false) {
     if (out.size() > max_moves) return over_budget;
-    if (!first) out.push_back(rapid(point(a, b0)));
+    if (!first) out.push_back(rapid(axes.point(a, b0)));
     double b = b0;
     while (true) {
       const double next = p.peck > 0 && std::abs(b1 - b) > p.peck + eps ? b + db * p.peck : b1;
-      out.push_back(feed(point(a, next)));
+      out.push_back(feed(axes.point(a, next)));
       if (next == b1) break;
-      out.push_back(rapid(point(a, next - db * p.retract)));
+      out.push_back(rapid(axes.point(a, next - db * p.retract)));
       b = next;
       if (out.size() > max_moves) return over_budget;
     }
     const double relieved = a - da * p.relief;
-    if (p.relief > 0 && da != 0) out.push_back(rapid(point(relieved, b1)));
-    out.push_back(rapid(point(da != 0 ? relieved : a, b0)));
+    if (p.relief > 0 && da != 0) out.push_back(rapid(axes.point(relieved, b1)));
+    out.push_back(rapid(axes.point(da != 0 ? relieved : a, b0)));
     if (da == 0 || std::abs(a1 - a) <= eps) break;
     a = std::abs(a1 - a) > p.step + eps ? a + da * p.step : a1;
   }

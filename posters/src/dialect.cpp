@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <iterator>
+#include <utility>
 
 #include "dialects.h"
 
@@ -11,22 +12,33 @@ namespace stepnc::post {
 
 using namespace stepnc::machining;
 
+namespace {
+
+// The one spelling of each dialect's name, in the order of Dialect.
+constexpr std::pair<Dialect, std::string_view> dialect_table[] = {
+    {Dialect::rs274ngc, "rs274ngc"},
+    {Dialect::fanuc, "fanuc"},
+    {Dialect::siemens840d, "siemens840d"},
+    {Dialect::canonical, "canonical"}};
+
+}  // namespace
+
 std::optional<Dialect> dialect_from_name(std::string_view name) {
-  if (name == "rs274ngc") return Dialect::rs274ngc;
-  if (name == "fanuc") return Dialect::fanuc;
-  if (name == "siemens840d") return Dialect::siemens840d;
-  if (name == "canonical") return Dialect::canonical;
+  for (const auto& [dialect, spelling] : dialect_table)
+    if (spelling == name) return dialect;
   return std::nullopt;
 }
 
 std::string_view to_string(Dialect dialect) {
-  switch (dialect) {
-    case Dialect::rs274ngc: return "rs274ngc";
-    case Dialect::fanuc: return "fanuc";
-    case Dialect::siemens840d: return "siemens840d";
-    case Dialect::canonical: return "canonical";
-  }
+  for (const auto& [known, spelling] : dialect_table)
+    if (known == dialect) return spelling;
   return "unknown";
+}
+
+std::vector<std::string_view> dialect_names() {
+  std::vector<std::string_view> names;
+  for (const auto& entry : dialect_table) names.push_back(entry.second);
+  return names;
 }
 
 PrintedProgram print(const Program& program, Dialect dialect, const PrintOptions& options) {

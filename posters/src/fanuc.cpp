@@ -15,11 +15,9 @@ namespace {
 class FanucPrinter final : public GcodePrinter {
  public:
   explicit FanucPrinter(const Program& program)
-      : GcodePrinter(program, Style{3, true, '(', 0, program.machine == MachineKind::turning, false}) {}
+      : GcodePrinter(program, Style{3, true, '(', 0, false}) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
-
   void prologue() override {
     line("%");
     start_line();
@@ -91,11 +89,10 @@ class FanucPrinter final : public GcodePrinter {
     line("M19");
   }
   void coolant(const Coolant& c) override { line(c.flood ? "M08" : c.mist ? "M07" : "M09"); }
-  void feed_rate(const FeedRate& f) override {
-    start_line();
-    if (lathe()) word(f.per_revolution ? "G99" : "G98");
-    word('F', f.value);
-    finish_line();
+  // Lathe (0i-TF, G code system A): G98 per minute, G99 per revolution;
+  // a mill stays in the prologue's G94.
+  std::string_view feed_mode_word(bool per_revolution) const override {
+    return lathe() ? (per_revolution ? "G99" : "G98") : "";
   }
   void dwell(const Dwell& d) override {
     start_line();

@@ -230,14 +230,20 @@ void GcodePrinter::comment(std::string_view text) {
   finish_line();
 }
 
+void GcodePrinter::feed_rate(const FeedRate& f) {
+  start_line();
+  if (const std::string_view mode = feed_mode_word(f.per_revolution); !mode.empty()) word(mode);
+  word('F', f.value);
+  finish_line();
+}
+
 void GcodePrinter::motion(std::string_view g, Vec3 to, bool force_all) {
   const double resolution = 0.5 * std::pow(10.0, -style_.decimals);
   auto changed = [&](double a, double b) { return !known_ || force_all || std::abs(a - b) >= resolution; };
-  const bool lathe = program_.machine == MachineKind::turning;
   start_line();
   const bool new_mode = motion_mode_ != g;
   if (new_mode) word(g);
-  const bool dx = changed(to.x, last_.x), dy = !lathe && changed(to.y, last_.y), dz = changed(to.z, last_.z);
+  const bool dx = changed(to.x, last_.x), dy = !lathe() && changed(to.y, last_.y), dz = changed(to.z, last_.z);
   if (dx) x_word(to.x);
   if (dy) word('Y', to.y);
   if (dz) word('Z', to.z);

@@ -24,7 +24,6 @@ struct Style {
   bool keep_point = false;
   char comment_open = '(';   // ';' for comments to the end of the line
   int block_number_step = 0;  // N10, N20, ... when > 0
-  bool diameter_mode = false;  // lathe: X words are diameters
   bool multi_turn_arcs = true;  // G2/G3 take a turn count (helices); else one block per turn
 };
 
@@ -45,7 +44,8 @@ class GcodePrinter {
   // Up to the machine-safe height in machine coordinates (program.h).
   virtual void machine_retract() = 0;
   virtual void spindle_on(const SpindleOn& s) = 0;
-  virtual void feed_rate(const FeedRate& f) = 0;
+  // The feed mode word a dialect writes before F, or empty for none.
+  virtual std::string_view feed_mode_word(bool per_revolution) const = 0;
   virtual void drill_cycle(const DrillCycle& c) = 0;
   // The canned drilling cycle words both ISO 6983 dialects share: G99
   // (return to R), the cycle's G code, X Y Z R, and Q for pecks. Dialects
@@ -76,7 +76,7 @@ class GcodePrinter {
   void start_line();
   void word(std::string_view text);
   void word(char letter, double value);          // X12.5 in program units
-  void x_word(double radius) { word('X', style_.diameter_mode ? 2 * radius : radius); }
+  void x_word(double radius) { word('X', lathe() ? 2 * radius : radius); }  // a lathe's X is a diameter
   void finish_line();
   void line(std::string_view text);
   void comment(std::string_view text);
@@ -86,6 +86,9 @@ class GcodePrinter {
   void forget_motion_mode() { motion_mode_.clear(); }
   void forget_position() { known_ = false; }
 
+  // A turning program: X words are diameters, no Y, the lathe's codes.
+  bool lathe() const { return program_.machine == MachineKind::turning; }
+
   const Program& program_;
   Style style_;
   std::uint32_t provenance_ = 0;
@@ -93,6 +96,7 @@ class GcodePrinter {
 
  private:
   void statement(const Statement& s, std::size_t index);
+  void feed_rate(const FeedRate& f);
 
   PrintedProgram out_;
   std::string current_;

@@ -11,11 +11,9 @@ namespace {
 class Rs274ngcPrinter final : public GcodePrinter {
  public:
   explicit Rs274ngcPrinter(const Program& program)
-      : GcodePrinter(program, Style{4, false, '(', 0, program.machine == MachineKind::turning}) {}
+      : GcodePrinter(program, Style{4, false, '(', 0}) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
-
   void prologue() override {
     line("%");
     // Lathe: XZ plane, diameter mode.
@@ -54,11 +52,9 @@ class Rs274ngcPrinter final : public GcodePrinter {
     word(s.clockwise ? "M3" : "M4");
     finish_line();
   }
-  void feed_rate(const FeedRate& f) override {
-    start_line();
-    if (lathe()) word(f.per_revolution ? "G95" : "G94");
-    word('F', f.value);
-    finish_line();
+  // Lathe: G94 per minute, G95 per revolution; a mill stays in the prologue's G94.
+  std::string_view feed_mode_word(bool per_revolution) const override {
+    return lathe() ? (per_revolution ? "G95" : "G94") : "";
   }
   void tolerance(const Tolerance& t) override {
     // Path blending within the model tolerance keeps the contour intent.

@@ -40,10 +40,9 @@ int siemens_tool_type(ToolKind kind) {
 class Siemens840dPrinter final : public GcodePrinter {
  public:
   Siemens840dPrinter(const Program& program, const PrintOptions& options)
-      : GcodePrinter(program, Style{3, false, ';', 10, program.machine == MachineKind::turning}), options_(options) {}
+      : GcodePrinter(program, Style{3, false, ';', 10}), options_(options) {}
 
  private:
-  bool lathe() const { return program_.machine == MachineKind::turning; }
   // The 840D's code for the spindle direction the cycles restore: 3 = M3, 4 = M4.
   double spindle_direction() const { return spindle_clockwise_ ? 3 : 4; }
 
@@ -121,12 +120,8 @@ class Siemens840dPrinter final : public GcodePrinter {
     word(s.clockwise ? "M3" : "M4");
     finish_line();
   }
-  void feed_rate(const FeedRate& f) override {
-    start_line();
-    word(f.per_revolution ? "G95" : "G94");
-    word('F', f.value);
-    finish_line();
-  }
+  // G94 per minute, G95 per revolution, on every block that sets a feed.
+  std::string_view feed_mode_word(bool per_revolution) const override { return per_revolution ? "G95" : "G94"; }
   // MSG("...") shows the text on the operator panel; quotes cannot nest.
   void message(const Message& m) override {
     std::string text = m.text;

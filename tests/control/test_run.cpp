@@ -317,6 +317,22 @@ TEST_CASE("Bad input: unknown nodes and tools in events, bad magazines and event
       control::read_magazine("tool,kind,name,diameter\n1,endmill,A,10\n1,endmill,B,8\n2,endmill,A,8\n", "m.csv");
   CHECK(twice.errors == std::vector<std::string>{"m.csv:3:1: error: tool 1 is listed twice",
                                                  "m.csv:4:1: error: tool name 'A' is listed twice (line 2)"});
+  // The pockets are the tool list's rows as read: every column, blanks left empty.
+  const control::MagazineResult full = control::read_magazine(
+      "tool,kind,name,diameter,corner_radius,flutes,life_minutes,available\nT3,bullnose_endmill,B6,6,1,,45,no\n");
+  REQUIRE(full.ok());
+  REQUIRE(full.magazine.tools.size() == 1);
+  const tooling::Tool& pocket = full.magazine.tools[0];
+  CHECK(pocket.number == 3);
+  CHECK(pocket.diameter == 6.0);
+  CHECK(pocket.corner_radius == 1.0);
+  CHECK_FALSE(pocket.flutes);
+  CHECK(pocket.life_minutes == 45.0);
+  CHECK_FALSE(pocket.available);
+  CHECK(pocket.line == 2);
+  CHECK(full.magazine.find("T3") == nullptr);  // a T number is looked up without its letter
+  CHECK(full.magazine.find("3") == &pocket);
+  CHECK(full.magazine.find("B6") == &pocket);
 }
 
 // Blocks generated for instance `id` (a workingstep or NC function).

@@ -274,6 +274,14 @@ TEST_CASE("Lathe cycle errors name the word and the block", "[gcode][fanuc][lath
                             "N20 X60.\nM30\n");
   REQUIRE(back.errors.size() == 1);
   CHECK(back.errors[0].message == "G71: the contour goes back along Z (G71 and G72 need it to go one way)");
+  // G72 and G75 cut along X: their messages name X where G71 and G74 name Z.
+  const Result back_x = lathe("G99\nG00 X62. Z2.\nG72 W2. R1.\nG72 P30 Q40 F0.2\nN30 G00 Z-10.\nG01 X40.\nX50.\n"
+                              "N40 Z2.\nM30\n");
+  REQUIRE(back_x.errors.size() == 1);
+  CHECK(back_x.errors[0].message == "G72: the contour goes back along X (G71 and G72 need it to go one way)");
+  const Result flat = lathe("G99\nG00 X62. Z-30.\nG75 R0.5\nG75 X62. Z-34. P3000 Q2000 F0.1\nM30\n");
+  REQUIRE(flat.errors.size() == 1);
+  CHECK(flat.errors[0].message == "G75: the end point does not move in X from the start point");
   // An error inside the contour is reported at its own block.
   const Result inside = lathe("G99\nG00 X60. Z2.\nG70 P10 Q20\nM30\nN10 G00 X20.\nG01 Z-10. E1\nN20 X60.\n");
   REQUIRE(inside.errors.size() == 1);

@@ -342,3 +342,37 @@ TEST_CASE("Siemens 840D CYCLE86 with a lift-off: off the wall, up, back over the
     for (int k = 0; k < 3; ++k) CHECK(moves[i][static_cast<std::size_t>(k)] == Approx(expected[i][static_cast<std::size_t>(k)]));
   CHECK(r.calls[r.cycles[0].end_call - 1].kind == CallKind::spindle_clockwise);
 }
+
+// Every 840D cycle reads its arguments one way (interpreter.cpp,
+// CycleArguments): a required one left out is an error naming the cycle,
+// the parameter and the call's column; lengths follow G70 (inch).
+TEST_CASE("Siemens 840D cycles: a missing argument is named, lengths follow G70", "[gcode][siemens]") {
+  const auto message = [](const std::string& cycle) {
+    const Result r = interpret_text("N10 G17 G71 G90 G94 F150\nN20 $TC_DP6[1,1]=4\nN30 T1 D1\nN40 M6\nN50 S800 M3\n"
+                                    "N60 G0 X0 Y0 Z20\nN70 " + cycle + "\nN80 M30\n",
+                                    *controller("siemens840d"));
+    REQUIRE(r.errors.size() == 1);
+    CHECK(r.errors[0].pos.line == 7);
+    CHECK(r.errors[0].pos.column == 5);  // the cycle's name
+    return r.errors[0].message;
+  };
+  CHECK(message("CYCLE81(,0,2,-10)") == "CYCLE81 needs RTP");
+  CHECK(message("CYCLE81(10,0,2)") == "CYCLE81 needs DP or DPR");
+  CHECK(message("CYCLE85(10,0,2,-10)") == "CYCLE85 needs FFR");
+  CHECK(message("POCKET1(10,0,2,-5,,,20,4,0,0,0,100,200,5,0,0,1)") == "POCKET1 needs LENG");
+  CHECK(message("CYCLE71(10,0,2,-1,0,0,60,40,0,,3,0,0,300,11)") == "CYCLE71 needs _MID");
+  CHECK(message("SLOT1(10,0,2,-5,,,30,10,0,0,20,0,90,100,200,5,0,0,1)") == "SLOT1 needs NUM");
+
+  // G70: RTP 1, RFP 0, SDIS 0.1, DP -0.5 inch are 25.4, 0, 2.54, -12.7 mm.
+  const Result inch = interpret_text("N10 G17 G70 G90 G94 F6\nN20 S800 M3\nN30 G0 X0 Y0 Z2\nN40 CYCLE81(1,0,0.1,-0.5)\nN50 M30\n",
+                                     *controller("siemens840d"));
+  for (const auto& e : inch.errors) INFO(e.to_string("i.mpf"));
+  REQUIRE(inch.ok());
+  REQUIRE(inch.cycles.size() == 1);
+  std::vector<double> z;
+  for (std::uint32_t i = inch.cycles[0].first_call; i < inch.cycles[0].end_call; ++i) z.push_back(inch.calls[i].v[2]);
+  REQUIRE(z.size() == 3);
+  CHECK(z[0] == Approx(2.54));
+  CHECK(z[1] == Approx(-12.7));
+  CHECK(z[2] == Approx(25.4));
+}

@@ -29,6 +29,10 @@ TEST_CASE("dialect names") {
   CHECK(dialect_from_name("fanuc") == Dialect::fanuc);
   CHECK_FALSE(dialect_from_name("heidenhain"));
   CHECK(to_string(Dialect::canonical) == "canonical");
+  // The names the CLI offers (post, run --dialect), each read back to its dialect.
+  const std::vector<std::string_view> expected = {"rs274ngc", "fanuc", "siemens840d", "canonical"};
+  CHECK(dialect_names() == expected);
+  for (const std::string_view name : dialect_names()) CHECK(to_string(*dialect_from_name(name)) == name);
 }
 
 TEST_CASE("hole cycles in each dialect") {

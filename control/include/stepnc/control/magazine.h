@@ -5,38 +5,27 @@
 /// before it selects a node (seed 003 4.2, rule 2).
 #pragma once
 
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "stepnc/machining/description.h"
+#include "stepnc/tooling/tool_list.h"
 
 namespace stepnc::control {
 
-/// One magazine pocket.
-struct MagazineTool {
-  int number = 0;            ///< the pocket's tool number (T)
-  std::string kind;          ///< ISO 14649 tool body entity: endmill, twist_drill, reamer, ...
-  std::string name;          ///< the cutting tool's its_id
-  double diameter = 0;       ///< mm
-  double corner_radius = 0;  ///< mm
-  double length = 0;         ///< mm
-  int flutes = 0;            ///< number of teeth
-  bool available = true;     ///< `available` column: yes (default) or no
-  int line = 0;              ///< line of the tool list it came from, for messages
-};
-
 /// The tools of a controller's magazine.
 struct Magazine {
-  std::vector<MagazineTool> tools;  ///< in file order
+  /// The pockets, in file order: the tool list's rows as read (a pocket's
+  /// T number is its `number`; `available=no` marks a known, missing tool).
+  std::vector<tooling::Tool> tools;
 
   /// The tool named `key` (its name) or numbered `key` (T number), or null.
-  MagazineTool* find(std::string_view key);
+  tooling::Tool* find(std::string_view key);
   /// Const overload of find().
-  const MagazineTool* find(std::string_view key) const;
+  const tooling::Tool* find(std::string_view key) const;
   /// The magazine's tool for a program tool: same name, else same number.
-  const MagazineTool* match(const machining::Tool& tool) const;
+  const tooling::Tool* match(const machining::Tool& tool) const;
 };
 
 /// A magazine, and the problems found reading it.

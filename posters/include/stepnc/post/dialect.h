@@ -20,6 +20,8 @@ enum class Dialect { rs274ngc, fanuc, siemens840d, canonical };
 std::optional<Dialect> dialect_from_name(std::string_view name);
 /// The dialect's name, as dialect_from_name() takes it.
 std::string_view to_string(Dialect dialect);
+/// Every dialect's name, in the order of Dialect (for command lines and messages).
+std::vector<std::string_view> dialect_names();
 
 /// One NC line that came from a block with provenance.
 struct TraceEntry {
