@@ -163,4 +163,22 @@ Box bounds(const std::vector<machining::polygons::Ring>& rings);
 // Points along a move (arcs as chords within Clipper's chordal tolerance).
 std::vector<Vec3> move_points(const Move& move);
 
+// Sizes read off cutting areas (milling_features.cpp): how far an outline
+// may stray from the shape it is read as, in mm.
+inline constexpr double fit = 0.02;
+// A dimension read from a cutting area (exact to a few um): to 0.01 mm
+// when it is within 3 um of it, else to 1 um.
+double dimension(double value);
+// Distance from p to the boundary of a rectangle of half sizes (hx, hy)
+// with corner radius r about the origin (negative inside).
+double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r);
+
+// Rules O1-O7 (milling_open_features.cpp): a milled feature whose cutting
+// area runs off the block stock's top is open there. Sets the feature's
+// type, size and place and returns true when a rule reads it; `walls`
+// gets the outline points off the open sides (where allowances are
+// measured). Otherwise returns false and leaves it alone.
+bool open_feature(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, int& opens, int& steps,
+                  std::vector<Vec2>& walls);
+
 }  // namespace stepnc::recognize::milling
