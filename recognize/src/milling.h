@@ -107,7 +107,12 @@ struct Feature {
   bool conical = false;               // round_hole: that tip is a drill's point (118 deg)
   double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket; open pocket (U) width and
                                                     // radius; step wall length
-  machining::polygons::Ring outline;                // general profile, relative to origin
+  machining::polygons::Ring outline;                // general profile, relative to origin in the placement's frame
+  // open_pocket (rules O2-O6): its open_boundary entity; a partial
+  // circle's radius and sweep, a vee's radius, angle and tilt (degrees);
+  // a U's width and radius and a general profile's orthogonal radius above.
+  std::string profile;
+  double profile_radius = 0, sweep_angle = 0, profile_angle = 0, tilt_angle = 0;
   std::vector<std::size_t> operations;
   std::vector<Decision> decisions;
   machining::polygons::Area area;     // what its operations cut
@@ -177,8 +182,10 @@ double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r);
 // area runs off the block stock's top is open there. Sets the feature's
 // type, size and place and returns true when a rule reads it; `walls`
 // gets the outline points off the open sides (where allowances are
-// measured). Otherwise returns false and leaves it alone.
-bool open_feature(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, int& opens, int& steps,
-                  std::vector<Vec2>& walls);
+// measured). Otherwise returns false and leaves it a closed pocket (with
+// a decision saying why when it runs off the stock). `tool_radius`: the
+// smallest tool that cut it (it rounds the pocket's corners).
+bool open_feature(Feature& f, const Recognised& out, double tool_radius, const std::vector<std::uint32_t>& lines,
+                  int& opens, int& steps, std::vector<Vec2>& walls);
 
 }  // namespace stepnc::recognize::milling

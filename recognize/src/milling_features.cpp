@@ -139,7 +139,9 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
     const polygons::Ring& ring = *outers.front();
     std::vector<Vec2> walls(ring.begin(), ring.end());  // where the final walls are
     f.origin.z = top;
-    if (!open_feature(f, out, lines, opens, steps, walls)) {
+    double tool_radius = 1e300;  // the smallest tool's: it rounds the pocket's corners
+    for (const std::size_t o : f.operations) tool_radius = std::min(tool_radius, tools.radius(out.operations[o].tool));
+    if (!open_feature(f, out, tool_radius, lines, opens, steps, walls)) {
       const auto [x0, y0, x1, y1] = bounds({ring});
       const double w = x1 - x0, h = y1 - y0, a = polygons::area(f.area);
       const Vec2 centre{(x0 + x1) / 2, (y0 + y1) / 2};
@@ -214,7 +216,6 @@ void finish_features(const Tools& tools, const ImportOptions& options, Recognise
                               {op.first_line}});
     }
   }
-  (void)tools;
   // Ids of the operations, as Fig. 11 names them.
   for (Operation& op : out.operations) {
     const std::string verb = op.entity == "drilling"                         ? "DRILL"

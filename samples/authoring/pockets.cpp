@@ -4,6 +4,7 @@
 //   pockets l_pocket_island OUT.stp   an L pocket with an island
 //   pockets hole_milling OUT.stp      a round hole milled with a smaller end mill
 //   pockets open_profiles OUT.stp     open pockets with general open profiles
+//   pockets open_vee_rounded_u OUT.stp  vee and rounded-U open pockets
 #include <cstdio>
 #include <string_view>
 
@@ -22,6 +23,9 @@ int main(int argc, char** argv) {
   if (which == "open_profiles")
     return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_open_profiles,
                                         stepnc_samples::open_profiles_header());
-  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling|open_profiles OUT.stp\n", argv[0]);
+  if (which == "open_vee_rounded_u")
+    return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_open_vee_rounded_u,
+                                        stepnc_samples::open_vee_rounded_u_header());
+  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling|open_profiles|open_vee_rounded_u OUT.stp\n", argv[0]);
   return 2;
 }

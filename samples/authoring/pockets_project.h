@@ -2,7 +2,7 @@
 // Everyday milling features built in code: an L-shaped closed pocket with
 // an island (its_boss), machined contour-parallel, and a round hole milled
 // with an end mill smaller than the hole (rough and finish), open pockets
-// bounded by general open profiles.
+// bounded by general open profiles, and vee and rounded-U open pockets.
 #pragma once
 
 #include "stepnc/meta/io.h"
@@ -21,5 +21,9 @@ stepnc::meta::FileHeader hole_milling_header();
 // samples/milling/open_profiles.stp
 void build_open_profiles(stepnc::meta::Model& model);
 stepnc::meta::FileHeader open_profiles_header();
+
+// samples/milling/open_vee_rounded_u.stp
+void build_open_vee_rounded_u(stepnc::meta::Model& model);
+stepnc::meta::FileHeader open_vee_rounded_u_header();
 
 }  // namespace stepnc_samples

@@ -241,7 +241,8 @@ std::string read_back(const std::string& sample, post::Dialect dialect) {
 TEST_CASE("posted programs of every sample read back to the poster's canonical motion", "[gcode][posters]") {
   for (const char* sample : {"milling/example1.stp", "milling/open_pocket_step.stp", "milling/facing_toolpath.stp",
                              "milling/nested_setup_functions.stp", "milling/nist/ex1E.stp", "milling/l_pocket_island.stp",
-                             "milling/hole_milling.stp", "milling/open_profiles.stp", "turning/shaft.stp"})
+                             "milling/hole_milling.stp", "milling/open_profiles.stp", "milling/open_vee_rounded_u.stp",
+                             "turning/shaft.stp"})
     for (const auto dialect : {post::Dialect::rs274ngc, post::Dialect::fanuc, post::Dialect::siemens840d}) {
       CHECK(read_back(sample, dialect) == "");
     }
