@@ -426,10 +426,13 @@ void general(const std::vector<Vec2>& chain, int side, const Opening& o, Reading
     r.corner = 0;
     r.worst = misfit(posted_area(r.points, 0, 0, side, o), o);
   }
-  // Placed at the middle of the profile's lowest extent, as a U.
+  // Placed amid the profile's extent to the open side (the posters take
+  // a placement on the stock only), else amid the cut.
   double x0 = 1e300, x1 = -1e300, low = 1e300;
   for (const Vec2 p : r.points) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), low = std::min(low, p.y);
-  r.origin = {(x0 + x1) / 2, low};
+  r.origin = {(x0 + x1) / 2, (low + o.edge_y(side)) / 2};
+  if (!o.strictly_inside(Frame(side).global(r.origin)))
+    r.origin = Frame(side).local({(o.cut.x0 + o.cut.x1) / 2, (o.cut.y0 + o.cut.y1) / 2});
   for (Vec2& p : r.points) p = {dimension(p.x - r.origin.x), dimension(p.y - r.origin.y)};
   r.detail = fmt::format("{} points{}", r.points.size(),
                          r.corner > 0 ? fmt::format(", orthogonal radius {:g}", r.corner) : std::string());
