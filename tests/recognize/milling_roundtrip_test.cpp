@@ -305,30 +305,32 @@ TEST_CASE("a corner and a through channel are open pockets with general profiles
       "G0 X-10 Y33\nG0 Z25\nG1 Z15 F300\nG1 X17 F600\nG1 Y60\nG0 Z50\n"
       "G0 X-10 Y41\nG0 Z25\nG1 Z15 F300\nG1 X9 F600\nG1 Y60\nG0 Z50\n"
       "G0 X-10 Y49\nG0 Z25\nG1 Z15 F300\nG1 X1 F600\nG1 Y60\nG0 Z50\nM30\n";
-  const auto open = import(corner, tools, "rs274ngc", "block:100:50:20@0,0,0");
-  REQUIRE(open.result.ok());
-  CHECK(same_within_hundredth(
-      "bottom_and_side_finish_milling on open_pocket polyline (30.00, 20.00) (30.00, 50.00) open towards (-1, 0) r- "
-      "floor Z15.00\n",
-      summary(*open.result.model)));
-  std::string decisions = decisions_of(open);
-  CHECK(decisions.find("rule O7 (ours)") != std::string::npos);
-  CHECK(decisions.find("two adjacent sides (a corner)") != std::string::npos);
-  CHECK(decisions.find("rule O6 (ours): an outline between open sides") != std::string::npos);
-  CHECK(posted_open_pockets(*open.result.model) == 1);
-
   const std::string channel =
       "G21 G90 G17\nT1 M6\nS3000 M3\nG0 Z50\nG0 X45 Y-10\nG0 Z25\nG1 Z15 F300\nG1 Y60 F600\nG1 X55\nG1 Y-10\n"
       "G0 Z50\nM30\n";
-  const auto through = import(channel, tools, "rs274ngc", "block:100:50:20@0,0,0");
-  REQUIRE(through.result.ok());
-  CHECK(same_within_hundredth(
-      "bottom_and_side_finish_milling on open_pocket polyline (60.00, 50.00) (40.00, 50.00) open towards (0, -1) r- "
-      "floor Z15.00\n",
-      summary(*through.result.model)));
-  decisions = decisions_of(through);
-  CHECK(decisions.find("two opposite sides (a through channel)") != std::string::npos);
-  CHECK(posted_open_pockets(*through.result.model) == 1);
+  struct Case {
+    const std::string& program;
+    std::string summary, shape;
+  };
+  for (const Case& c :
+       {Case{corner,
+             "bottom_and_side_finish_milling on open_pocket polyline (30.00, 20.00) (30.00, 50.00) open towards (-1, 0) "
+             "r- floor Z15.00\n",
+             "two adjacent sides (a corner)"},
+        Case{channel,
+             "bottom_and_side_finish_milling on open_pocket polyline (60.00, 50.00) (40.00, 50.00) open towards (0, -1) "
+             "r- floor Z15.00\n",
+             "two opposite sides (a through channel)"}}) {
+    INFO(c.shape);
+    const auto open = import(c.program, tools, "rs274ngc", "block:100:50:20@0,0,0");
+    REQUIRE(open.result.ok());
+    CHECK(same_within_hundredth(c.summary, summary(*open.result.model)));
+    const std::string decisions = decisions_of(open);
+    CHECK(decisions.find("rule O7 (ours)") != std::string::npos);
+    CHECK(decisions.find(c.shape) != std::string::npos);
+    CHECK(decisions.find("rule O6 (ours): an outline between open sides") != std::string::npos);
+    CHECK(posted_open_pockets(*open.result.model) == 1);
+  }
 }
 
 // Bad input for the open rules: a tool path that leaves a tongue of
