@@ -124,10 +124,15 @@ struct Feature {
   bool conical = false;               // round_hole: that tip is a drill's point (118 deg)
   double length = 0, width = 0, corner_radius = 0;  // rectangular closed pocket; open pocket (U) width and
                                                     // radius; step wall length
-  machining::polygons::Ring outline;                // general profile, relative to origin
+  machining::polygons::Ring outline;                // general profile, relative to origin in the placement's frame
   std::vector<ClosedProfile> bosses;                // closed pocket: its islands (rule I1), top at origin.z
   ClosedProfile boundary;                           // general_outside_profile: the part (rule P1)
   bool open_ends = false;                           // slot: open (S2) or radiused (S1) ends; length = course
+  // open_pocket (rules O2-O6): its open_boundary entity; a partial
+  // circle's radius and sweep, a vee's radius, angle and tilt (degrees);
+  // a U's width and radius and a general profile's orthogonal radius above.
+  std::string profile;
+  double profile_radius = 0, sweep_angle = 0, profile_angle = 0, tilt_angle = 0;
   std::vector<std::size_t> operations;
   std::vector<Decision> decisions;
   machining::polygons::Area area;     // what its operations cut
@@ -221,5 +226,19 @@ Box bounds(const std::vector<machining::polygons::Ring>& rings);
 
 // Points along a move (arcs as chords within Clipper's chordal tolerance).
 std::vector<Vec3> move_points(const Move& move);
+
+// Distance from p to the boundary of a rectangle of half sizes (hx, hy)
+// with corner radius r about the origin (negative inside).
+double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r);
+
+// Rules O1-O7 (milling_open_features.cpp): a milled feature whose cutting
+// area runs off the block stock's top is open there. Sets the feature's
+// type, size and place and returns true when a rule reads it; `walls`
+// gets the outline points off the open sides (where allowances are
+// measured). Otherwise returns false and leaves it a closed pocket (with
+// a decision saying why when it runs off the stock). `tool_radius`: the
+// smallest tool that cut it (it rounds the pocket's corners).
+bool open_feature(Feature& f, const Recognised& out, double tool_radius, const std::vector<std::uint32_t>& lines,
+                  int& opens, int& steps, std::vector<Vec2>& walls);
 
 }  // namespace stepnc::recognize::milling

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -230,6 +231,7 @@ polygons::Area swept_area(const std::vector<Move>& moves, double radius) {
   std::vector<polygons::Ring> pieces;
   const double min_turn = 2 * std::acos(std::max(-1.0, 1 - 0.0005 / std::max(radius, 1e-3)));
   for (const std::vector<Vec2>& path : paths) {
+    bool disc_before = false;  // a disc at path[i - 1]
     for (std::size_t i = 0; i < path.size(); ++i) {
       bool disc = i == 0 || i + 1 == path.size();
       if (!disc) {
@@ -238,11 +240,23 @@ polygons::Area swept_area(const std::vector<Move>& moves, double radius) {
         disc = std::abs(std::remainder(out - in, 2 * M_PI)) > min_turn;
       }
       if (disc) pieces.push_back(polygons::circle(path[i], radius));
+      const bool disc_at_start = std::exchange(disc_before, disc);
       if (i == 0) continue;
       const Vec2 a = path[i - 1], b = path[i];
       const double len = std::hypot(b.x - a.x, b.y - a.y);
       const double nx = -(b.y - a.y) / len * radius, ny = (b.x - a.x) / len * radius;
       pieces.push_back({{a.x + nx, a.y + ny}, {a.x - nx, a.y - ny}, {b.x - nx, b.y - ny}, {b.x + nx, b.y + ny}});
+      // Where the path turns too slightly for a disc, the wedge between the
+      // previous piece's outer corner and this piece's is kept (a triangle
+      // from a, inside a's disc): without it the union has notches of
+      // several um along arcs of chords.
+      if (i > 1 && !disc_at_start) {
+        const Vec2 before = path[i - 2];
+        const double before_len = std::hypot(a.x - before.x, a.y - before.y);
+        const double px = -(a.y - before.y) / before_len * radius, py = (a.x - before.x) / before_len * radius;
+        const double outer = (a.x - before.x) * (b.y - a.y) - (a.y - before.y) * (b.x - a.x) > 0 ? -1 : 1;
+        pieces.push_back({a, {a.x + outer * px, a.y + outer * py}, {a.x + outer * nx, a.y + outer * ny}});
+      }
     }
   }
   // Unite in a balanced tree, so each union stays small.

@@ -354,11 +354,38 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
       }
       out = &pocket;
     } else if (f.entity == "open_pocket") {
-      // A U open towards the placement's local +Y (ISO 14649-10 square_u_profile).
+      // The profile in the feature's frame, open towards its local +y and
+      // run on along +y out of the block (ISO 14649-10 open_profile, as
+      // the posters read it): rules O2-O6.
       auto& pocket = m.create<ms::open_pocket>();
       place(pocket);
-      pocket.orthogonal_radius = w.length(f.corner_radius);
-      pocket.open_boundary = w.square_u(f.width, f.corner_radius);
+      if (f.corner_radius > 0 && f.profile != "rounded_u_profile")
+        pocket.orthogonal_radius = w.length(f.corner_radius);
+      if (f.profile == "square_u_profile") {
+        pocket.open_boundary = w.square_u(f.width, f.corner_radius);
+      } else if (f.profile == "rounded_u_profile") {
+        auto& u = m.create<ms::rounded_u_profile>();
+        u.width = w.length(f.width);
+        pocket.open_boundary = &u;
+      } else if (f.profile == "partial_circular_profile") {
+        auto& arc = m.create<ms::partial_circular_profile>();
+        arc.radius = w.length(f.profile_radius);
+        arc.sweep_angle = f.sweep_angle;
+        pocket.open_boundary = &arc;
+      } else if (f.profile == "vee_profile") {
+        auto& vee = m.create<ms::vee_profile>();
+        vee.profile_radius = w.length(f.profile_radius);
+        vee.profile_angle = f.profile_angle;
+        vee.tilt_angle = f.tilt_angle;
+        pocket.open_boundary = &vee;
+      } else {
+        auto& line = m.create<ms::polyline>();
+        line.name = f.id + ": PROFILE";
+        for (const Vec2 p : f.outline) line.points.push_back(w.point("", p.x, p.y, 0));
+        auto& general = m.create<ms::general_profile>();
+        general.its_profile = &line;
+        pocket.open_boundary = &general;
+      }
       out = &pocket;
     } else if (f.entity == "step") {
       // The wall's foot along the placement's local X; the removed material

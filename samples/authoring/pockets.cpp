@@ -5,6 +5,7 @@
 //   pockets hole_milling OUT.stp      a round hole milled with a smaller end mill
 //   pockets open_profiles OUT.stp     open pockets with general open profiles
 //   pockets slots_outside_profile OUT.stp   slots on a part milled round its outside
+//   pockets open_vee_rounded_u OUT.stp  vee and rounded-U open pockets
 #include <cstdio>
 #include <string_view>
 
@@ -26,6 +27,9 @@ int main(int argc, char** argv) {
   if (which == "slots_outside_profile")
     return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_slots_outside_profile,
                                         stepnc_samples::slots_outside_profile_header());
-  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling|open_profiles|slots_outside_profile OUT.stp\n", argv[0]);
+  if (which == "open_vee_rounded_u")
+    return stepnc_samples::write_sample(argc - 1, argv + 1, stepnc_samples::build_open_vee_rounded_u,
+                                        stepnc_samples::open_vee_rounded_u_header());
+  std::fprintf(stderr, "usage: %s l_pocket_island|hole_milling|open_profiles|slots_outside_profile|open_vee_rounded_u OUT.stp\n", argv[0]);
   return 2;
 }

@@ -71,8 +71,9 @@ struct Shop {
     functions->chip_removal = true;
   }
 
-  ms::axis2_placement_3d* at(const char* name, double x, double y, double z) {
-    return placement(m, 0, name, point(m, 0, name, x, y, z), up, along_x);
+  // A placement at (x, y, z), its local x along `ref` (X when none).
+  ms::axis2_placement_3d* at(const char* name, double x, double y, double z, ms::direction* ref = nullptr) {
+    return placement(m, 0, name, point(m, 0, name, x, y, z), up, ref ? ref : along_x);
   }
 
   ms::plane* depth(const char* name, double depth) { return plane(m, 0, name, at(name, 0, 0, -depth)); }
@@ -81,11 +82,12 @@ struct Shop {
 
   // A pocket with a planar floor, its top on the block's top (z).
   template <typename Pocket>
-  Pocket& pocket(const char* name, double x, double y, double z, const char* depth_name, double depth_value) {
+  Pocket& pocket(const char* name, double x, double y, double z, const char* depth_name, double depth_value,
+                 ms::direction* ref = nullptr) {
     auto& pocket = m.create<Pocket>();
     pocket.its_id = name;
     pocket.its_workpiece = workpiece;
-    pocket.feature_placement = at(name, x, y, z);
+    pocket.feature_placement = at(name, x, y, z, ref);
     pocket.depth = depth(depth_name, depth_value);
     pocket.bottom_condition = &m.create<ms::planar_pocket_bottom_condition>();
     return pocket;
@@ -334,6 +336,43 @@ void build_slots_outside_profile(Model& m) {
 stepnc::meta::FileHeader slots_outside_profile_header() {
   return header("slots_outside_profile.stp", "STEPNC SAMPLE: SLOTS ON A PART MILLED ROUND ITS OUTSIDE PROFILE",
                 "GENERAL_OUTSIDE_PROFILE ROUGH AND FINISH, SLOTS WITH RADIUSED AND OPEN ENDS");
+}
+
+void build_open_vee_rounded_u(Model& m) {
+  // A 120 x 80 x 30 block, origin at a bottom corner. A vee open pocket,
+  // 8 mm deep, its vertex at (35, 45): legs 60 degrees apart, tilted 10
+  // degrees, the vertex rounded to R8, both legs running out of the back
+  // face (Y 80). A rounded-U open pocket, 20 wide and 6 deep, its base at
+  // (88, 20), opening to the right face (X 120): its placement's local x
+  // runs along -Y so that its local +y, the open side, is +X.
+  Shop shop(m, "BLOCK 120 X 80 X 30", 120, 80, 30);
+  auto& vee = m.create<ms::vee_profile>();
+  vee.profile_radius = shop.size(8);
+  vee.profile_angle = 60;
+  vee.tilt_angle = 10;
+  auto& vee_pocket = shop.pocket<ms::open_pocket>("VEE OPEN POCKET", 35, 45, 30, "VEE DEPTH", 8);
+  vee_pocket.open_boundary = &vee;
+
+  auto& u = m.create<ms::rounded_u_profile>();
+  u.width = shop.size(20);
+  auto* minus_y = direction(m, 0, "MINUS Y", 0, -1, 0);
+  auto& u_pocket = shop.pocket<ms::open_pocket>("ROUNDED U OPEN POCKET", 88, 20, 30, "ROUNDED U DEPTH", 6, minus_y);
+  u_pocket.open_boundary = &u;
+
+  auto* mill_10 = milling_tool<tools::endmill>(m, "ENDMILL 10MM", 10, 3, 75);
+  const auto [rough_vee, finish_vee] = shop.rough_and_finish("ROUGH VEE", "FINISH VEE", mill_10, 4, 5, 8);
+  vee_pocket.its_operations = {rough_vee, finish_vee};
+  const auto [rough_u, finish_u] = shop.rough_and_finish("ROUGH ROUNDED U", "FINISH ROUNDED U", mill_10, 3, 5, 6);
+  u_pocket.its_operations = {rough_u, finish_u};
+  shop.main_workplan("VEE AND ROUNDED-U OPEN POCKETS", {{&vee_pocket, rough_vee},
+                                                        {&vee_pocket, finish_vee},
+                                                        {&u_pocket, rough_u},
+                                                        {&u_pocket, finish_u}});
+}
+
+stepnc::meta::FileHeader open_vee_rounded_u_header() {
+  return header("open_vee_rounded_u.stp", "STEPNC SAMPLE: VEE AND ROUNDED-U OPEN POCKETS",
+                "VEE_PROFILE AND ROUNDED_U_PROFILE OPEN POCKETS, CONTOUR_PARALLEL ROUGH AND FINISH");
 }
 
 }  // namespace stepnc_samples

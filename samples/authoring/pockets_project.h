@@ -3,7 +3,7 @@
 // an island (its_boss), machined contour-parallel, and a round hole milled
 // with an end mill smaller than the hole (rough and finish), open pockets
 // bounded by general open profiles, slots on a part milled round its
-// outside profile.
+// outside profile, and vee and rounded-U open pockets.
 #pragma once
 
 #include "stepnc/meta/io.h"
@@ -26,5 +26,8 @@ stepnc::meta::FileHeader open_profiles_header();
 // samples/milling/slots_outside_profile.stp
 void build_slots_outside_profile(stepnc::meta::Model& model);
 stepnc::meta::FileHeader slots_outside_profile_header();
+// samples/milling/open_vee_rounded_u.stp
+void build_open_vee_rounded_u(stepnc::meta::Model& model);
+stepnc::meta::FileHeader open_vee_rounded_u_header();
 
 }  // namespace stepnc_samples

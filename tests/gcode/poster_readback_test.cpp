@@ -242,6 +242,7 @@ TEST_CASE("posted programs of every sample read back to the poster's canonical m
   for (const char* sample : {"milling/example1.stp", "milling/open_pocket_step.stp", "milling/facing_toolpath.stp",
                              "milling/nested_setup_functions.stp", "milling/nist/ex1E.stp", "milling/l_pocket_island.stp",
                              "milling/hole_milling.stp", "milling/open_profiles.stp", "milling/slots_outside_profile.stp",
+                             "milling/open_vee_rounded_u.stp",
                              "turning/shaft.stp"})
     for (const auto dialect : {post::Dialect::rs274ngc, post::Dialect::fanuc, post::Dialect::siemens840d}) {
       CHECK(read_back(sample, dialect) == "");

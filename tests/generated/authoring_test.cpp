@@ -106,8 +106,8 @@ TEST_CASE("the turning project is written as a valid ISO 14649-12 file", "[gener
             static_cast<meta::Instance*>(first->its_operation->its_tool)) != nullptr);
 }
 
-// samples/milling/l_pocket_island.stp, hole_milling.stp, open_profiles.stp and slots_outside_profile.stp
-// are these programs' output (`pockets NAME OUT.stp`), byte
+// samples/milling/l_pocket_island.stp, hole_milling.stp, open_profiles.stp,
+// slots_outside_profile.stp and open_vee_rounded_u.stp are these programs' output (`pockets NAME OUT.stp`), byte
 // for byte, and read back into valid typed instances.
 TEST_CASE("the everyday milling samples are the authoring program's output", "[generated][authoring]") {
   struct Sample {
@@ -122,7 +122,9 @@ TEST_CASE("the everyday milling samples are the authoring program's output", "[g
                                Sample{"open_profiles.stp", stepnc_samples::build_open_profiles,
                                       stepnc_samples::open_profiles_header},
                                Sample{"slots_outside_profile.stp", stepnc_samples::build_slots_outside_profile,
-                                      stepnc_samples::slots_outside_profile_header}}) {
+                                      stepnc_samples::slots_outside_profile_header},
+                               Sample{"open_vee_rounded_u.stp", stepnc_samples::build_open_vee_rounded_u,
+                                      stepnc_samples::open_vee_rounded_u_header}}) {
     INFO(sample.file);
     meta::Model authored;
     sample.build(authored);

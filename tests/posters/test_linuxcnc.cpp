@@ -147,7 +147,7 @@ TEST_CASE("LinuxCNC runs the open pocket and step read from samples/milling/open
 TEST_CASE("LinuxCNC runs the explicit face milling, nested-setup, L pocket, hole milling, open profile and slot samples") {
   for (const std::string name :
        {"facing_toolpath", "nested_setup_functions", "l_pocket_island", "hole_milling", "open_profiles",
-        "slots_outside_profile"}) {
+        "slots_outside_profile", "open_vee_rounded_u"}) {
     const auto described = testing::describe_sample("milling/" + name + ".stp");
     for (const auto& d : described.diagnostics) INFO(d.to_string());
     REQUIRE(described.ok());
