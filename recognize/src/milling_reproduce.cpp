@@ -67,15 +67,20 @@ std::vector<const Run*> lowest_runs(const std::vector<Run>& runs) {
       for (const double v : {p.x, p.y})
         key = key * 1099511628211ULL ^ static_cast<std::uint64_t>(std::llround(v * 1000));
     auto& same = by_path[key];
-    bool skip = false;
+    bool placed = false;
     for (const std::size_t k : same) {
       if (!kept[k] || !same_xy(*kept[k], run)) continue;
       const int order = compare_z(run, *kept[k]);
-      if (order > 0) skip = true;
-      if (order < 0) kept[k] = nullptr;  // the new run lies under it
-      if (skip) break;
+      if (order > 0) {  // it lies over a kept one: nothing more to cut
+        placed = true;
+        break;
+      }
+      if (order < 0) {  // it lies under a kept one: it takes that one's place
+        if (placed) kept[k] = nullptr;
+        else kept[k] = &run, placed = true;
+      }
     }
-    if (skip) continue;
+    if (placed) continue;
     same.push_back(kept.size());
     kept.push_back(&run);
   }
@@ -83,8 +88,26 @@ std::vector<const Run*> lowest_runs(const std::vector<Run>& runs) {
   return kept;
 }
 
+// Runs cut into pieces at one z (a layer) and single sloped moves, so a
+// path that goes down layer by layer without a rapid still repeats.
+std::vector<Run> pieces(const std::vector<Run>& runs) {
+  std::vector<Run> out;
+  for (const Run& run : runs) {
+    if (run.size() == 1) out.push_back(run);
+    bool open = false;  // the last piece is this run's layer so far
+    for (std::size_t i = 1; i < run.size(); ++i) {
+      const bool flat = std::abs(run[i].z - run[i - 1].z) < 1e-9;
+      if (!(flat && open)) out.push_back({run[i - 1]});
+      out.back().push_back(run[i]);
+      open = flat;
+    }
+  }
+  return out;
+}
+
 void sweep(HeightMap& map, const std::vector<Run>& runs, double radius) {
-  for (const Run* run : lowest_runs(runs)) {
+  const std::vector<Run> cut = pieces(runs);
+  for (const Run* run : lowest_runs(cut)) {
     if (run->size() == 1) map.cut(run->front(), run->front(), radius);
     for (std::size_t i = 1; i < run->size(); ++i) map.cut((*run)[i - 1], (*run)[i], radius);
   }
