@@ -51,43 +51,78 @@ void sample_move(const Move& m, double step, F&& at) {
   }
 }
 
-class HeightMap {
- public:
-  HeightMap(Vec3 lo, Vec3 hi, double cell)
-      : lo_(lo), cell_(cell), nx_(static_cast<int>(std::ceil((hi.x - lo.x) / cell))),
-        ny_(static_cast<int>(std::ceil((hi.y - lo.y) / cell))),
-        h_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), hi.z), bottom_(lo.z) {}
-
-  int nx() const { return nx_; }
-  int ny() const { return ny_; }
-  Vec2 centre(int i, int j) const { return {lo_.x + (i + 0.5) * cell_, lo_.y + (j + 0.5) * cell_}; }
-  double& at(int i, int j) { return h_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)]; }
-
-  // Calls f(i, j) for every cell whose centre lies within r of p.
-  template <class F>
-  void disc(Vec3 p, double r, F&& f) {
-    const int i0 = std::max(0, static_cast<int>(std::floor((p.x - r - lo_.x) / cell_)));
-    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((p.x + r - lo_.x) / cell_)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((p.y - r - lo_.y) / cell_)));
-    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((p.y + r - lo_.y) / cell_)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const Vec2 c = centre(i, j);
-        if ((c.x - p.x) * (c.x - p.x) + (c.y - p.y) * (c.y - p.y) <= r * r) f(i, j);
-      }
-  }
-
-  double bottom() const { return bottom_; }
-
- private:
-  Vec3 lo_;
-  double cell_;
-  int nx_, ny_;
-  std::vector<double> h_;
-  double bottom_;
-};
-
 }  // namespace
+
+HeightMap::HeightMap(Vec3 lo, Vec3 hi, double cell)
+    : lo_(lo), cell_(cell), nx_(std::max(1, static_cast<int>(std::ceil((hi.x - lo.x) / cell)))),
+      ny_(std::max(1, static_cast<int>(std::ceil((hi.y - lo.y) / cell)))), top_(hi.z), bottom_(lo.z),
+      h_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_), hi.z) {}
+
+void HeightMap::cut(Vec3 a, Vec3 b, double r) {
+  const double dx = b.x - a.x, dy = b.y - a.y, dz = b.z - a.z, dd = dx * dx + dy * dy, length = std::sqrt(dd);
+  const double ux = length > 0 ? dx / length : 0, uy = length > 0 ? dy / length : 0;
+  // Rows and columns whose centres may lie within r of the segment.
+  const int j0 = std::max(0, static_cast<int>(std::ceil((std::min(a.y, b.y) - r - lo_.y) / cell_ - 0.5)));
+  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor((std::max(a.y, b.y) + r - lo_.y) / cell_ - 0.5)));
+  for (int j = j0; j <= j1; ++j) {
+    const double cy = lo_.y + (j + 0.5) * cell_;
+    // The row meets the swept capsule (two end discs and the band between
+    // them, a convex set) in one interval of x.
+    double xl = std::numeric_limits<double>::infinity(), xr = -xl;
+    for (const Vec3 end : {a, b}) {
+      const double e = cy - end.y;
+      if (e * e > r * r) continue;
+      const double half = std::sqrt(r * r - e * e);
+      xl = std::min(xl, end.x - half);
+      xr = std::max(xr, end.x + half);
+    }
+    if (length > 0) {
+      // Along the segment in [0, length], across it within r: each linear in x.
+      double p0 = -std::numeric_limits<double>::infinity(), p1 = -p0;
+      const double py = cy - a.y;
+      bool empty = false;
+      auto within = [&](double k, double c, double lo, double hi) {
+        if (std::abs(k) < 1e-12) {
+          empty = empty || c < lo || c > hi;
+          return;
+        }
+        const double s = (lo - c) / k, t = (hi - c) / k;
+        p0 = std::max(p0, std::min(s, t));
+        p1 = std::min(p1, std::max(s, t));
+      };
+      within(ux, py * uy, 0, length);
+      within(uy, -py * ux, -r, r);
+      if (!empty && p0 <= p1) {
+        xl = std::min(xl, a.x + p0);
+        xr = std::max(xr, a.x + p1);
+      }
+    }
+    if (xl > xr) continue;
+    const int i0 = std::max(0, static_cast<int>(std::ceil((xl - lo_.x) / cell_ - 0.5)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor((xr - lo_.x) / cell_ - 0.5)));
+    for (int i = i0; i <= i1; ++i) {
+      double z = std::min(a.z, b.z);
+      if (std::abs(dz) > 1e-12 && dd > 1e-18) {
+        // The tool reaches the cell for t in [t0, t1] (|c - p(t)| = r at
+        // both ends); the lowest z is at the end nearer the lower point.
+        const double cx = lo_.x + (i + 0.5) * cell_ - a.x, w = cx * dx + (cy - a.y) * dy;
+        const double q = cx * cx + (cy - a.y) * (cy - a.y) - r * r;
+        const double root = std::sqrt(std::max(0.0, w * w - dd * q));
+        const double t = dz < 0 ? std::min(1.0, (w + root) / dd) : std::max(0.0, (w - root) / dd);
+        z = a.z + dz * std::clamp(t, 0.0, 1.0);
+      }
+      double& h = h_[index(i, j)];
+      h = std::max(bottom_, std::min(h, z));
+    }
+  }
+}
+
+void HeightMap::cut(const Move& move, double radius) {
+  if (move.kind == Move::Kind::feed) return cut(move.from, move.to, radius);
+  if (move.kind != Move::Kind::arc) return;
+  const auto points = arc_points(move, cell_ / 4);
+  for (std::size_t k = 1; k < points.size(); ++k) cut(points[k - 1], points[k], radius);
+}
 
 std::string SimulationReport::text() const {
   std::string out;
@@ -160,12 +195,7 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
                                               "{:.3f}) at the cutting feed F{:g}",
                                               m.block, deepest, m.to.x, m.to.y, m.to.z, feed));
     }
-    sample_move(m, cell / 2, [&](Vec3 p) {
-      map.disc(p, radius, [&](int i, int j) {
-        double& h = map.at(i, j);
-        h = std::max(map.bottom(), std::min(h, p.z));
-      });
-    });
+    map.cut(m, radius);
   }
 
   std::map<int, Allowance> allowance;

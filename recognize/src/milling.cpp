@@ -81,6 +81,14 @@ void import_milling(const gcode::Result& motion, const ImportOptions& options, I
     return;
   }
   finish_features(tools, options, recognised);
+  // ISO 14649-10: the retract plane lies above the feature's top; the
+  // program's (its approach's start) kept under the security plane, so
+  // posting the import again is not refused.
+  for (Operation& op : recognised.operations) {
+    const double top = recognised.features[op.feature].origin.z;
+    op.retract_plane = std::min(std::max(0.0, op.retract_plane - top), std::max(0.0, recognised.security_z - top));
+  }
+  keep_typed_where_reproduced(tools, options, recognised);
   write_model(recognised, tools, options, result);
   for (const Operation& op : recognised.operations) {
     const Feature& feature = recognised.features[op.feature];

@@ -73,7 +73,7 @@ struct Operation {
   std::string id;
   int tool = 0;
   Setting setting;
-  double retract_plane = 0;
+  double retract_plane = 0;  // absolute while read; above its feature's top once the features are placed
   std::size_t feature = 0;
   std::uint32_t first_line = 0, last_line = 0;
   std::vector<Decision> decisions;
@@ -82,9 +82,11 @@ struct Operation {
   double dwell = 0, first_depth = 0, depth_of_step = 0, retract_distance = 0;
   bool spindle_stop_at_bottom = false;
   // milling
-  std::string strategy;  // contour_parallel, bidirectional_milling, unidirectional_milling, ""
-  int rotation = 0;      // -1 clockwise, 1 counter-clockwise
+  std::string strategy;  // contour_parallel, bidirectional_milling, unidirectional_milling, contour_bidirectional, ""
+  int rotation = 0;      // -1 clockwise, 1 counter-clockwise (rings, a contour_bidirectional's lap)
   bool climb = false;
+  std::optional<Vec2> feed_direction;  // strokes' direction (unidirectional, bidirectional, contour_bidirectional)
+  bool stepover_left = false;          // the next stroke lies left of the first
   std::optional<double> radial, axial, allowance_side, allowance_bottom;
   std::string approach;  // plunge_helix, plunge_ramp, plunge_toolaxis, ""
   double approach_radius = 0, approach_angle = 0;
@@ -207,8 +209,20 @@ bool outside_profile(Feature& f, const Recognised& out, const std::vector<std::u
 bool slot_feature(Feature& f, const Recognised& out, const std::vector<std::uint32_t>& lines, double tool_diameter,
                   int& slots, std::vector<Vec2>& walls);
 
-// Writes the project.
-void write_model(const Recognised& recognised, const Tools& tools, const ImportOptions& options, ImportResult& result);
+// Rule R1 (ours, milling_reproduce.cpp): a typed milling operation whose
+// posted motion does not cut what the program cut becomes a freeform one.
+void keep_typed_where_reproduced(const Tools& tools, const ImportOptions& options, Recognised& out);
+
+// Writes the project; `operation_ids` (when given) gets each operation's Part 21 id.
+void write_model(const Recognised& recognised, const Tools& tools, const ImportOptions& options, ImportResult& result,
+                 std::vector<std::uint32_t>* operation_ids = nullptr);
+
+// The most frequent of `values` (to 1 um); ties go to the larger.
+std::optional<double> most_frequent(const std::vector<double>& values);
+
+// The operation's strategy from one layer's horizontal moves, in program
+// order (milling_strategies.cpp: rules M4, M4a-M4c).
+void read_strategy(const std::vector<Move>& layer, int spindle_direction, Operation& op);
 
 // Swept region of moves at one Z by a tool of `radius` (Clipper union).
 machining::polygons::Area swept_area(const std::vector<Move>& moves, double radius);

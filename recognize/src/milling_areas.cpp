@@ -4,7 +4,8 @@
 // (the union of the tool's swept regions, Clipper) and the strategy from
 // the path. Moves that change Z before a layer are its approach (4.5.5);
 // a layer that starts above the previous one starts a new operation
-// (4.5.6, rough then finish). Motion the rules cannot read (x, y and z
+// (4.5.6, rough then finish); the strategy is read from one layer
+// (milling_strategies.cpp). Motion the rules cannot read (x, y and z
 // varying together) stays a freeform_operation with its explicit toolpath.
 #include <algorithm>
 #include <cmath>
@@ -42,8 +43,9 @@ std::vector<std::uint32_t> lines_of(const std::vector<Move>& moves) {
   return lines;
 }
 
-// The most frequent of `values` (to 1 um); ties go to the larger.
-std::optional<double> mode(const std::vector<double>& values) {
+}  // namespace
+
+std::optional<double> most_frequent(const std::vector<double>& values) {
   std::map<long long, int> count;
   for (const double v : values) ++count[std::llround(v * 1000)];
   std::optional<double> best;
@@ -56,6 +58,8 @@ std::optional<double> mode(const std::vector<double>& values) {
   return best;
 }
 
+namespace {
+
 // Gaps between the distinct X and between the distinct Y of a layer's
 // corners: rings or strokes a stepover apart repeat that gap.
 std::optional<double> stepover(const std::vector<Move>& layer) {
@@ -67,33 +71,12 @@ std::optional<double> stepover(const std::vector<Move>& layer) {
     for (std::size_t i = 1; i < values.size(); ++i)
       if (values[i] - values[i - 1] > 0.01) gaps.push_back(values[i] - values[i - 1]);
   }
-  return mode(gaps);
-}
-
-// Signed number of turns the path makes (heading changes summed):
-// contour-parallel rings turn one way, zig-zag strokes cancel out.
-double winding(const std::vector<Move>& layer) {
-  std::vector<Vec3> points;
-  for (const Move& m : layer) {
-    const auto p = move_points(m);
-    points.insert(points.end(), points.empty() ? p.begin() : p.begin() + 1, p.end());
-  }
-  double total = 0, last = 0;
-  bool have = false;
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const double dx = points[i].x - points[i - 1].x, dy = points[i].y - points[i - 1].y;
-    if (std::hypot(dx, dy) < 1e-4) continue;
-    const double heading = std::atan2(dy, dx);
-    if (have) total += std::remainder(heading - last, 2 * M_PI);
-    last = heading;
-    have = true;
-  }
-  return total / (2 * M_PI);
+  return most_frequent(gaps);
 }
 
 struct Layer {
   double z = 0;
-  std::size_t run = 0;         // the run it is in (section.runs)
+  std::vector<std::size_t> runs;  // the runs it is in (section.runs): a layer entered again continues
   std::vector<Move> moves;
   std::vector<Move> approach;  // the sloped moves that led down to it
 };
@@ -326,8 +309,9 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
       if (layers.empty() || std::abs(layers.back().z - m.to.z) > eps || !pending.empty()) {
         if (!layers.empty() && std::abs(layers.back().z - m.to.z) <= eps && !pending.empty()) {
           layers.back().approach.insert(layers.back().approach.end(), pending.begin(), pending.end());
+          if (layers.back().runs.back() != run_index) layers.back().runs.push_back(run_index);
         } else {
-          layers.push_back({m.to.z, run_index, {}, pending});
+          layers.push_back({m.to.z, {run_index}, {}, pending});
         }
         pending.clear();
       }
@@ -360,8 +344,11 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
     }
     op.setting.feed = feed;
     // Its runs as they are, should the feature not be read (then a freeform operation).
+    std::vector<std::size_t> runs;
     for (std::size_t i = 0; i < group.size(); ++i)
-      if (i == 0 || group[i]->run != group[i - 1]->run) op.toolpaths.push_back(path_of(section.runs[group[i]->run]));
+      for (const std::size_t run : group[i]->runs)
+        if (runs.empty() || runs.back() != run) runs.push_back(run);
+    for (const std::size_t run : runs) op.toolpaths.push_back(path_of(section.runs[run]));
     op.first_line = group.front()->approach.empty() ? group.front()->moves.front().line : group.front()->approach.front().line;
     op.last_line = group.back()->moves.back().line;
     op.retract_plane = group.front()->approach.empty() ? group.front()->z : group.front()->approach.front().from.z;
@@ -376,35 +363,22 @@ void recognise_milling(const Section& section, const Tools& tools, const ImportO
     read_approach(group.front()->approach, op);
 
     // Strategy from the layer with the most moves (the omitted layers of a
-    // listing may leave a short last one).
+    // listing may leave a short last one): every piece the group cut at that Z.
     const Layer* deepest = group.front();
     for (const Layer* layer : group)
       if (layer->moves.size() > deepest->moves.size()) deepest = layer;
-    const double turns = winding(deepest->moves);
-    if (std::abs(turns) >= 0.75) {
-      op.strategy = "contour_parallel";
-      op.rotation = turns < 0 ? -1 : 1;
-      // M3 and clockwise rings inside a pocket: the material on the tool's
-      // left, conventional (seed 004 Fig. 11 #58: CW, conventional).
-      op.climb = (op.rotation > 0) == (section.setting.direction >= 0);
-      op.decisions.push_back({"rule M4 (ours): the path turns one way (rings) -> contour_parallel",
-                              fmt::format("contour_parallel {}, {} ({:.2f} turns, spindle {})",
-                                          op.rotation < 0 ? "cw" : "ccw", op.climb ? "climb" : "conventional", turns,
-                                          section.setting.direction >= 0 ? "M3" : "M4"),
-                              {deepest->moves.front().line}});
-    } else {
-      op.strategy = "bidirectional_milling";
-      op.decisions.push_back({"rule M4 (ours): strokes whose turns cancel -> bidirectional_milling",
-                              fmt::format("bidirectional_milling ({:.2f} turns)", turns), {deepest->moves.front().line}});
-    }
-    op.radial = stepover(deepest->moves);
+    std::vector<Move> at_z;
+    for (const Layer* layer : group)
+      if (std::abs(layer->z - deepest->z) <= eps) at_z.insert(at_z.end(), layer->moves.begin(), layer->moves.end());
+    read_strategy(at_z, section.setting.direction, op);
+    if (!op.radial) op.radial = stepover(at_z);
     std::vector<double> steps;
     double above = out.top_z;
     for (const Layer* layer : group) {
       steps.push_back(above - layer->z);
       above = layer->z;
     }
-    op.axial = mode(steps);
+    op.axial = most_frequent(steps);
     op.decisions.push_back({"rule M5 (ours): the most frequent layer step and ring/stroke gap",
                             fmt::format("axial depth {:g}, radial depth {:g}", op.axial.value_or(0), op.radial.value_or(0)),
                             layer_lines});

@@ -103,15 +103,31 @@ void hole_depths(Feature& hole, const ImportOptions& options, double top) {
 void planar_face(Feature& f, Recognised& out, int number) {
   const auto [x0, y0, x1, y1] = bounds((out.stock_top ? *out.stock_top : f.area).rings);
   f.id = fmt::format("PLANAR FACE{}", number);
+  // The course of travel along the strokes (rules M4a-M4c), else along X.
+  Vec2 d{1, 0};
+  for (const std::size_t o : f.operations)
+    if (out.operations[o].feed_direction) {
+      d = *out.operations[o].feed_direction;
+      break;
+    }
   // ISO 14649-10 planar_face: the removal band lies to the right of the
-  // course of travel, which starts at the placement.
-  f.origin = {dimension(x0), dimension(y1), out.top_z};
-  f.length = dimension(x1 - x0);
-  f.width = dimension(y1 - y0);
+  // course of travel, which starts at the placement: the band's corner
+  // first along the course and leftmost across it.
+  const Vec2 left{-d.y, d.x};
+  double along0 = 1e300, along1 = -1e300, left0 = 1e300, left1 = -1e300;
+  for (const Vec2 p : {Vec2{x0, y0}, Vec2{x1, y0}, Vec2{x1, y1}, Vec2{x0, y1}}) {
+    along0 = std::min(along0, p.x * d.x + p.y * d.y), along1 = std::max(along1, p.x * d.x + p.y * d.y);
+    left0 = std::min(left0, p.x * left.x + p.y * left.y), left1 = std::max(left1, p.x * left.x + p.y * left.y);
+  }
+  f.origin = {dimension(d.x * along0 + left.x * left1), dimension(d.y * along0 + left.y * left1), out.top_z};
+  f.ref_direction = d;
+  f.length = dimension(along1 - along0);
+  f.width = dimension(left1 - left0);
   f.depth = dimension(out.top_z - f.deepest);
   const std::vector<std::uint32_t> lines = first_lines(f, out);
   f.decisions.push_back({"SEEDS-SPEC 4.2.4 rule 5: face mill or whole top -> planar_face",
-                         fmt::format("planar_face {:g} along X x {:g}, {:g} deep ({})", f.length, f.width, f.depth,
+                         fmt::format("planar_face {:g} along ({:g}, {:g}) x {:g}, {:g} deep ({})", f.length, d.x + 0.0,
+                                     d.y + 0.0, f.width, f.depth,
                                      out.stock_top ? "the stock's top" : "the swept band"),
                          lines});
   for (std::size_t k = 0; k < f.operations.size(); ++k) {

@@ -212,15 +212,49 @@ ms::machining_operation* milling_op(meta::Model& m, Writer& w, const Operation& 
     side->allowance_bottom = op.allowance_bottom;
     o = side;
   }
+  const auto rotation = op.rotation < 0 ? ms::rot_direction::cw : ms::rot_direction::ccw;
+  const auto cutmode = op.climb ? mill::cutmode_type::climb : mill::cutmode_type::conventional;
+  const auto stepover = op.stepover_left ? mill::left_or_right::left : mill::left_or_right::right;
+  // Strokes a radial depth apart: ISO 14649-11 gives their stepover as the
+  // share of the diameter two strokes have in common (plane milling has no
+  // radial depth of its own).
+  std::optional<double> overlap;
+  if (const double diameter = 2 * tools.radius(op.tool); op.feed_direction && op.radial && *op.radial < diameter)
+    overlap = 1 - *op.radial / diameter;
+  auto feed_direction = [&]() -> ms::direction* {
+    return op.feed_direction ? w.direction("FEED DIRECTION", op.feed_direction->x, op.feed_direction->y, 0) : nullptr;
+  };
   if (op.strategy == "contour_parallel") {
     auto& s = m.create<mill::contour_parallel>();
     s.allow_multiple_passes = true;
-    s.rotation_direction = op.rotation < 0 ? ms::rot_direction::cw : ms::rot_direction::ccw;
-    s.cutmode = op.climb ? mill::cutmode_type::climb : mill::cutmode_type::conventional;
+    s.rotation_direction = rotation;
+    s.cutmode = cutmode;
     o->its_machining_strategy = &s;
   } else if (op.strategy == "bidirectional_milling") {
+    auto* along = feed_direction();
     auto& s = m.create<mill::bidirectional_milling>();
     s.allow_multiple_passes = true;
+    s.overlap = overlap;
+    s.feed_direction = along;
+    if (along) s.stepover_direction = stepover;
+    o->its_machining_strategy = &s;
+  } else if (op.strategy == "unidirectional_milling") {
+    auto* along = feed_direction();
+    auto& s = m.create<mill::unidirectional_milling>();
+    s.allow_multiple_passes = true;
+    s.overlap = overlap;
+    s.feed_direction = along;
+    s.cutmode = cutmode;
+    o->its_machining_strategy = &s;
+  } else if (op.strategy == "contour_bidirectional") {
+    auto* along = feed_direction();
+    auto& s = m.create<mill::contour_bidirectional>();
+    s.allow_multiple_passes = true;
+    s.overlap = overlap;
+    s.feed_direction = along;
+    if (along) s.stepover_direction = stepover;
+    s.rotation_direction = rotation;
+    s.spiral_cutmode = cutmode;
     o->its_machining_strategy = &s;
   }
   if (op.approach == "plunge_helix") {
@@ -238,13 +272,19 @@ ms::machining_operation* milling_op(meta::Model& m, Writer& w, const Operation& 
   return o;
 }
 
-ms::machining_operation* freeform_op(meta::Model& m, Writer& w, const Operation& op, const Tools& tools) {
+// The cutter locations in the feature's frame (ISO 14649-10 4.8), as the
+// posters read a workingstep's toolpath.
+ms::machining_operation* freeform_op(meta::Model& m, Writer& w, const Operation& op, const Tools& tools,
+                                     const Feature& f) {
   auto& o = common<mill::freeform_operation>(m, w, op, tools);
   auto& list = m.create<ms::toolpath_list>();
   for (const auto& path : op.toolpaths) {
     auto& line = m.create<ms::polyline>();
     line.name = "CL DATA";
-    for (const Vec3& p : path) line.points.push_back(w.point("", p.x, p.y, p.z));
+    for (const Vec3& p : path) {
+      const double dx = p.x - f.origin.x, dy = p.y - f.origin.y, ux = f.ref_direction.x, uy = f.ref_direction.y;
+      line.points.push_back(w.point("", dx * ux + dy * uy, dy * ux - dx * uy, p.z - f.origin.z));
+    }
     auto& cl = m.create<ms::cutter_location_trajectory>();
     cl.its_priority = true;
     cl.its_type = ms::toolpath_type::contact;
@@ -257,7 +297,8 @@ ms::machining_operation* freeform_op(meta::Model& m, Writer& w, const Operation&
 
 }  // namespace
 
-void write_model(const Recognised& r, const Tools& tools, const ImportOptions& options, ImportResult& result) {
+void write_model(const Recognised& r, const Tools& tools, const ImportOptions& options, ImportResult& result,
+                 std::vector<std::uint32_t>* operation_ids) {
   result.header.schemas = {"MACHINING_SCHEMA", "MILLING_SCHEMA", "MILLING_MACHINE_TOOL_SCHEMA"};
   result.model = std::make_unique<meta::Model>();
   meta::Model& m = *result.model;
@@ -438,9 +479,10 @@ void write_model(const Recognised& r, const Tools& tools, const ImportOptions& o
   std::vector<ms::executable*> steps;
   for (const Operation& op : r.operations) {
     ms::machining_operation* o = nullptr;
-    if (op.entity == "freeform_operation") o = freeform_op(m, w, op, tools);
+    if (op.entity == "freeform_operation") o = freeform_op(m, w, op, tools, r.features[op.feature]);
     else if (op.entity.starts_with("bottom_and_side") || op.entity.starts_with("plane_")) o = milling_op(m, w, op, tools);
     else o = drilling_type(m, w, op, tools);
+    if (operation_ids) operation_ids->push_back(o->id());
     features[op.feature]->its_operations.push_back(o);
     auto& step = m.create<ms::machining_workingstep>();
     step.its_id = "WS " + op.id;

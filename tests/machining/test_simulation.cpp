@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "projects.h"
 #include "stepnc/machining/simulation.h"
 #include "stepnc/machining/generate.h"
@@ -65,4 +67,31 @@ TEST_CASE("simulation: the shaft is turned to its profile, groove and face") {
   for (const auto& d : result.diagnostics) INFO(d.to_string());
   REQUIRE(result.ok());
   check(simulate_turning(project, result.program));
+}
+
+TEST_CASE("height map: a straight move reaches every cell whose centre lies within the radius, at its lowest z") {
+  HeightMap map({0, 0, 0}, {10, 10, 5}, 1);
+  REQUIRE(map.nx() == 10);
+  REQUIRE(map.ny() == 10);
+  map.cut(Vec3{2, 5, 3}, Vec3{8, 5, 3}, 1.5);
+  // Row y 5.5: the end discs reach x 2 - 1.414 .. 8 + 1.414.
+  CHECK(map.at(0, 5) == 5);
+  CHECK(map.at(1, 5) == 3);
+  CHECK(map.at(8, 5) == 3);
+  CHECK(map.at(9, 5) == 5);
+  // Row y 3.5 lies exactly r from the move: the band only, x 2..8.
+  CHECK(map.at(1, 3) == 5);
+  CHECK(map.at(2, 3) == 3);
+  CHECK(map.at(7, 3) == 3);
+  CHECK(map.at(8, 3) == 5);
+  CHECK(map.at(5, 7) == 5);
+  // A descending move: cell (5.5, 2.5) is under the tool for t in
+  // [0.439, 0.728]; the lowest z is at the later end.
+  map.cut(Vec3{2, 2, 4}, Vec3{8, 2, 1}, 1);
+  CHECK(map.at(5, 2) == Approx(4 - 3 * (3.5 + std::sqrt(0.75)) / 6));
+  // Nothing is cut below the map's bottom.
+  map.cut(Vec3{5, 8, -2}, Vec3{5, 8, -2}, 0.75);  // the four cells about (5, 8)
+  CHECK(map.at(5, 8) == 0);
+  CHECK(map.at(4, 7) == 0);
+  CHECK(map.at(6, 8) == 5);
 }

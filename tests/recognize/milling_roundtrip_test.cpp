@@ -242,10 +242,12 @@ struct Trip {
   std::size_t open_pockets_posted = 0;  // with `open`: what the posters' adapter reads of the import
 };
 
-// The sample posted and its post imported; `want` is the sample's summary.
+// The sample posted and its post imported; `want` is the sample's
+// summary, `stock` the --stock the import was given.
 struct PostedImport {
   std::string want;
   Imported imported;
+  std::string stock;
 };
 
 PostedImport post_and_import(const std::string& sample, const std::string& dialect) {
@@ -261,13 +263,16 @@ PostedImport post_and_import(const std::string& sample, const std::string& diale
     stock = fmt::format("block:{}:{}:{}@{},{},{}", w.block_max.x - w.block_min.x, w.block_max.y - w.block_min.y,
                         w.block_max.z - w.block_min.z, w.block_min.x, w.block_min.y, w.block_min.z);
   return {summary(read.file->model),
-          import(posted.text, posted.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc", stock)};
+          import(posted.text, posted.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc", stock), stock};
 }
 
 Trip trip(const std::string& sample, const std::string& dialect, bool open = false) {
   const PostedImport p = post_and_import(sample, dialect);
   if (!p.imported.result.ok()) return {"", "", "import failed: " + p.imported.result.errors.front()};
-  return {p.want, summary(*p.imported.result.model), "", open ? posted_open_pockets(*p.imported.result.model) : 0};
+  const std::string got = summary(*p.imported.result.model);
+  // The rules that decided, when the trip does not close.
+  if (!same_within_hundredth(p.want, got)) UNSCOPED_INFO(recognize::explain_text(p.imported.result));
+  return {p.want, got, "", open ? posted_open_pockets(*p.imported.result.model) : 0};
 }
 
 // Every decision of an import, "rule: outcome" a line.
@@ -324,9 +329,11 @@ TEST_CASE("a step and an open pocket opening to other sides of the stock", "[rec
   const std::string tools = "tool,kind,diameter,length\n1,endmill,10,0\n";
   const auto open = import(program, tools, "rs274ngc", "block:100:50:20@0,0,0");
   REQUIRE(open.result.ok());
+  // Rule R1: the posters would mill the step along its wall and the U
+  // with a lap, not with these strokes: both stay freeform operations.
   CHECK(same_within_hundredth(
-      "bottom_and_side_finish_milling on step wall from (80.00, 50.00) along (0, -1) length 50.00 floor Z15.00\n"
-      "bottom_and_side_finish_milling on open_pocket U at (40.00, 30.00) open towards (0, 1) width 20.00 r5.00 "
+      "freeform_operation on step wall from (80.00, 50.00) along (0, -1) length 50.00 floor Z15.00\n"
+      "freeform_operation on open_pocket U at (40.00, 30.00) open towards (0, 1) width 20.00 r5.00 "
       "floor Z12.00\n",
       summary(*open.result.model)));
   const auto closed = import(program, tools, "rs274ngc");
@@ -388,7 +395,8 @@ TEST_CASE("an island the tool crosses at an upper layer is not read: a region wi
 // inside a 100 x 50 x 20 block is a slot with radiused ends; a band of two
 // strokes 6 mm apart (16 wide) across the block is wider than the tool, so
 // not a cut along a line (S2): rule O7 reads it as a through channel, an
-// open pocket with a general profile.
+// open pocket with a general profile, whose operation stays freeform (rule
+// R1: the posters would not clear it with these two strokes).
 TEST_CASE("a stroke inside the stock is a radiused slot; a band wider than the tool is not an open slot", "[recognize][milling]") {
   const std::string program =
       "G21 G90 G17\nT1 M6\nS3000 M3\nG0 Z50\nG0 X20 Y20\nG0 Z22\nG1 Z15 F300\nG1 X60 F600\nG0 Z50\n"
@@ -396,10 +404,11 @@ TEST_CASE("a stroke inside the stock is a radiused slot; a band wider than the t
   const auto imported =
       import(program, "tool,kind,diameter,length\n1,endmill,10,0\n", "rs274ngc", "block:100:50:20@0,0,0");
   REQUIRE(imported.result.ok());
+  INFO(summary(*imported.result.model));
   CHECK(same_within_hundredth(
       "bottom_and_side_finish_milling on slot from (20.00, 20.00) along (1, 0) length 40.00 width 10.00 ends "
         "radiused_slot_end_type radiused_slot_end_type floor Z15.00\n"
-        "bottom_and_side_finish_milling on open_pocket polyline (91.00, 50.00) (75.00, 50.00) open towards (0, -1) "
+        "freeform_operation on open_pocket polyline (91.00, 50.00) (75.00, 50.00) open towards (0, -1) "
         "r- floor Z16.00\n",
       summary(*imported.result.model)));
   CHECK(all_of<ms::open_slot_end_type>(*imported.result.model).empty());
@@ -439,7 +448,8 @@ TEST_CASE("slots_outside_profile's post comes back by rules P1, S1 and S2", "[re
 // front face to the back. Both are open pockets with a general_profile
 // whose ends the posters run out of the block: the corner's profile is
 // its wall along Y (run out along -X), the channel's its width on the
-// back face (run out along -Y).
+// back face (run out along -Y). Rule R1 keeps both operations freeform:
+// the posters would clear these areas with other passes.
 TEST_CASE("a corner and a through channel are open pockets with general profiles", "[recognize][milling]") {
   const std::string tools = "tool,kind,diameter,length\n1,endmill,10,0\n";
   const std::string corner =
@@ -457,16 +467,17 @@ TEST_CASE("a corner and a through channel are open pockets with general profiles
   };
   for (const Case& c :
        {Case{corner,
-             "bottom_and_side_finish_milling on open_pocket polyline (30.00, 20.00) (30.00, 50.00) open towards (-1, 0) "
+             "freeform_operation on open_pocket polyline (30.00, 20.00) (30.00, 50.00) open towards (-1, 0) "
              "r- floor Z15.00\n",
              "two adjacent sides (a corner)"},
         Case{channel,
-             "bottom_and_side_finish_milling on open_pocket polyline (60.00, 50.00) (40.00, 50.00) open towards (0, -1) "
+             "freeform_operation on open_pocket polyline (60.00, 50.00) (40.00, 50.00) open towards (0, -1) "
              "r- floor Z15.00\n",
              "two opposite sides (a through channel)"}}) {
     INFO(c.shape);
     const auto open = import(c.program, tools, "rs274ngc", "block:100:50:20@0,0,0");
     REQUIRE(open.result.ok());
+    INFO(summary(*open.result.model));
     CHECK(same_within_hundredth(c.summary, summary(*open.result.model)));
     const std::string decisions = decisions_of(open);
     CHECK(decisions.find("rule O7 (ours)") != std::string::npos);
@@ -512,18 +523,19 @@ TEST_CASE("the open pockets imported from the open-profile samples are read by t
 // Every other milling sample: which round-trip today (asserted, so a
 // regression shows) and which not (recognize/README.md says why).
 TEST_CASE("round trips of every milling sample through both dialects", "[recognize][milling][posters]") {
-  // Not yet: facing_toolpath and nested_setup_functions come back
-  // with plane_finish_milling where the sample has a freeform_operation
-  // with an explicit zig-zag: the face rule reads what the toolpath does.
-  // open_pocket_step round-trips through rules O1 and O2, open_profiles
-  // through O6 (the trapezoid's polyline and orthogonal radius) and O4 (the
-  // partial circle), open_vee_rounded_u through O5 (the vee) and O3 (the
-  // rounded U), l_pocket_island through rule I1 (its boss included),
-  // slots_outside_profile through rules P1, S1 and S2.
+  // Every sample round-trips: open_pocket_step through rules O1 and O2,
+  // open_profiles through O6 (the trapezoid's polyline and orthogonal
+  // radius) and O4 (the partial circle), open_vee_rounded_u through O5 (the
+  // vee) and O3 (the rounded U), l_pocket_island through rule I1 (its boss
+  // included), slots_outside_profile through rules P1, S1 and S2;
+  // facing_toolpath and nested_setup_functions through rule R1 (their
+  // faces' explicit zig-zags are not what the posters write for a planar
+  // face, so they stay freeform operations with the program's toolpath).
   const std::vector<std::string> round_trips = {
       "milling/example1.stp",          "milling/hole_milling.stp",      "milling/l_pocket_island.stp",
       "milling/open_pocket_step.stp",  "milling/open_profiles.stp",     "milling/open_vee_rounded_u.stp",
-      "milling/seed004_fig10.stp",     "milling/slots_outside_profile.stp"};
+      "milling/seed004_fig10.stp",     "milling/slots_outside_profile.stp", "milling/facing_toolpath.stp",
+      "milling/nested_setup_functions.stp"};
   for (const std::string sample :
        {"milling/example1.stp", "milling/hole_milling.stp", "milling/l_pocket_island.stp", "milling/open_pocket_step.stp",
         "milling/open_profiles.stp", "milling/open_vee_rounded_u.stp", "milling/facing_toolpath.stp",
@@ -533,5 +545,34 @@ TEST_CASE("round trips of every milling sample through both dialects", "[recogni
       WARN(sample << " as " << dialect << ": " << (difference.empty() ? "round-trips" : difference));
       const bool expected = std::find(round_trips.begin(), round_trips.end(), sample) != round_trips.end();
       CHECK(difference.empty() == expected);
+    }
+}
+
+// Issue 13 (re-post): the import of a post posts again (its retract planes
+// lie above their features' tops and under the security plane, its
+// freeform toolpaths in their features' frames), and the second import
+// gives the same features and operations as the first.
+// Not yet for open_profiles and open_vee_rounded_u: their first import is
+// within 0.01 mm (the vee's angle 60.01 degrees), but the second drifts past
+// it (60.02 degrees; the trapezoid's polyline gains its run-on end), and the
+// Fanuc re-post of the vee comes back a freeform general profile
+// (recognize/README.md, "Not done").
+TEST_CASE("post, import, post and import again gives the same features and operations", "[recognize][milling][posters]") {
+  for (const std::string sample :
+       {"milling/example1.stp", "milling/hole_milling.stp", "milling/l_pocket_island.stp", "milling/open_pocket_step.stp",
+        "milling/facing_toolpath.stp", "milling/nested_setup_functions.stp", "milling/seed004_fig10.stp",
+        "milling/slots_outside_profile.stp"})
+    for (const std::string dialect : {"rs274ngc", "fanuc"}) {
+      INFO(sample << " as " << dialect);
+      const PostedImport first = post_and_import(sample, dialect);
+      REQUIRE(first.imported.result.ok());
+      const Posted second_post = post(*first.imported.result.model, dialect);
+      const auto second = import(second_post.text, second_post.tools_csv, dialect == "fanuc" ? "fanuc-mill" : "rs274ngc",
+                                 first.stock);
+      REQUIRE(second.result.ok());
+      const std::string got = summary(*second.result.model);
+      INFO("first import:\n" << summary(*first.imported.result.model) << "second import:\n" << got);
+      CHECK(same_within_hundredth(summary(*first.imported.result.model), got));
+      CHECK(same_within_hundredth(first.want, got));
     }
 }

@@ -127,8 +127,13 @@ TEST_CASE("the printed Fig. 10 (layers omitted) gives the same features; the rou
   REQUIRE(imported.result.ok());
   std::vector<std::string> operations;
   for (const auto& step : imported.result.steps) operations.push_back(step.operation);
+  // Rule R1: the printed finishing omits layers 2-6, so the walls between
+  // them stay uncut where the posters' finishing would cut them: it stays
+  // a freeform operation with the printed motion.
   CHECK(operations == std::vector<std::string>{"drilling", "reaming", "bottom_and_side_rough_milling",
-                                               "bottom_and_side_finish_milling"});
+                                               "freeform_operation"});
+  CHECK_THAT(recognize::explain_text(imported.result),
+             Catch::Contains("bottom_and_side_finish_milling as the posters write it cuts otherwise"));
   const auto pockets = all_of<ms::closed_pocket>(*imported.result.model);
   REQUIRE(pockets.size() == 1);
   const auto* rough = dynamic_cast<const mill::bottom_and_side_rough_milling*>(pockets[0]->its_operations[0]);
@@ -168,18 +173,19 @@ TEST_CASE("posting the imported Fig. 10 cuts what the program cut, where both cu
     }
     const auto again = gcode::interpret_text(posted.text, *gcode::controller(dialect == "fanuc" ? "fanuc-mill" : "rs274ngc"), options);
     REQUIRE(again.ok());
-    HeightMap before(0, 0, 100, 120, 0, -50), after(0, 0, 100, 120, 0, -50);
-    before.cut(original, original_radius);
-    after.cut(again, radius);
+    machining::HeightMap before({0, 0, -50}, {100, 120, 0}, 0.5), after({0, 0, -50}, {100, 120, 0}, 0.5);
+    cut(before, original, original_radius);
+    cut(after, again, radius);
     std::size_t both = 0, differ = 0;
-    for (std::size_t i = 0; i < before.h.size(); ++i) {
-      if (before.h[i] >= 0 || after.h[i] >= 0) continue;
-      ++both;
-      if (std::abs(before.h[i] - after.h[i]) > 0.01) {
-        ++differ;
-        if (differ < 5) WARN("cell " << i % before.nx << "," << i / before.nx << ": " << before.h[i] << " vs " << after.h[i]);
+    for (int j = 0; j < before.ny(); ++j)
+      for (int i = 0; i < before.nx(); ++i) {
+        if (before.at(i, j) >= 0 || after.at(i, j) >= 0) continue;
+        ++both;
+        if (std::abs(before.at(i, j) - after.at(i, j)) > 0.01) {
+          ++differ;
+          if (differ < 5) WARN("cell " << i << "," << j << ": " << before.at(i, j) << " vs " << after.at(i, j));
+        }
       }
-    }
     CHECK(both > 15000);  // the pocket (about 3914 mm2 / 0.25) and the hole
     CHECK(differ == 0);
   }

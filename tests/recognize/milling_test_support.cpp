@@ -44,47 +44,24 @@ Imported import(const std::string& program, const std::string& tools_csv, const 
   return out;
 }
 
-HeightMap::HeightMap(double x0_, double y0_, double x1, double y1, double top_, double floor_, double cell_)
-    : x0(x0_), y0(y0_), cell(cell_), top(top_), floor(floor_), nx(static_cast<int>((x1 - x0_) / cell_)),
-      ny(static_cast<int>((y1 - y0_) / cell_)), h(static_cast<std::size_t>(nx * ny), top_) {}
-
-void HeightMap::cut(const gcode::Result& motion, const std::map<int, double>& radius) {
+void cut(machining::HeightMap& map, const gcode::Result& motion, const std::map<int, double>& radius) {
   machining::Vec3 at{0, 0, 0};
   for (const gcode::Call& call : motion.calls) {
     if (call.kind != gcode::CallKind::rapid && call.kind != gcode::CallKind::linear && call.kind != gcode::CallKind::arc)
       continue;
     machining::Move move;
+    move.kind = call.kind == gcode::CallKind::arc ? machining::Move::Kind::arc : machining::Move::Kind::feed;
     move.from = at;
     move.to = {call.v[0], call.v[1], call.kind == gcode::CallKind::arc ? call.v[5] : call.v[2]};
     at = move.to;
     if (call.kind == gcode::CallKind::rapid) continue;
     const auto r = radius.find(call.state.tool);
     REQUIRE(r != radius.end());
-    std::vector<machining::Vec3> points;
     if (call.kind == gcode::CallKind::arc) {
-      move.kind = machining::Move::Kind::arc;
       move.centre = {call.v[2], call.v[3], 0};
       move.rotation = static_cast<int>(std::lround(call.v[4]));
-      points = machining::arc_points(move, cell / 2);
-    } else {
-      const double len = std::hypot(move.to.x - move.from.x, move.to.y - move.from.y, move.to.z - move.from.z);
-      const int n = std::max(1, static_cast<int>(std::ceil(len / (cell / 2))));
-      for (int i = 0; i <= n; ++i) {
-        const double t = static_cast<double>(i) / n;
-        points.push_back({move.from.x + (move.to.x - move.from.x) * t, move.from.y + (move.to.y - move.from.y) * t,
-                          move.from.z + (move.to.z - move.from.z) * t});
-      }
     }
-    for (const auto& p : points) {
-      const double rr = r->second;
-      for (int j = std::max(0, static_cast<int>((p.y - rr - y0) / cell)); j < std::min(ny, static_cast<int>((p.y + rr - y0) / cell) + 2); ++j)
-        for (int i = std::max(0, static_cast<int>((p.x - rr - x0) / cell)); i < std::min(nx, static_cast<int>((p.x + rr - x0) / cell) + 2); ++i) {
-          const double cx = x0 + (i + 0.5) * cell, cy = y0 + (j + 0.5) * cell;
-          if ((cx - p.x) * (cx - p.x) + (cy - p.y) * (cy - p.y) > rr * rr) continue;
-          double& cellz = h[static_cast<std::size_t>(j * nx + i)];
-          cellz = std::max(floor, std::min(cellz, p.z));
-        }
-    }
+    map.cut(move, r->second);
   }
 }
 

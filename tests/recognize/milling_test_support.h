@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // What the milling import tests share: importing a file of samples/, the
-// instances of one entity in a model, a height map of a program's feed
-// moves, and posting a project to G-code.
+// instances of one entity in a model, cutting a height map with a program's
+// feed moves, and posting a project to G-code.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "stepnc/gcode/interpreter.h"
+#include "stepnc/machining/simulation.h"
 #include "stepnc/recognize/import.h"
 #include "stepnc/tooling/tool_list.h"
 
@@ -30,15 +32,9 @@ std::vector<const T*> all_of(const stepnc::meta::Model& model) {
   return out;
 }
 
-// The lowest Z a flat cylindrical tool reached over each 0.5 mm cell of
-// [x0, x1] x [y0, y1], clipped to [floor, top]; feed moves only.
-struct HeightMap {
-  double x0, y0, cell, top, floor;
-  int nx, ny;
-  std::vector<double> h;
-  HeightMap(double x0, double y0, double x1, double y1, double top, double floor, double cell = 0.5);
-  void cut(const stepnc::gcode::Result& motion, const std::map<int, double>& radius);
-};
+// Cuts `map` with the feed moves of an interpreted program, each tool by
+// its radius (a flat cylindrical tool).
+void cut(stepnc::machining::HeightMap& map, const stepnc::gcode::Result& motion, const std::map<int, double>& radius);
 
 // A project posted in `dialect` (the posters' name), with its tool list as CSV.
 struct Posted {

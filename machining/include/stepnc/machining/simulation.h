@@ -6,11 +6,14 @@
 /// their width behind the reference corner).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "stepnc/machining/description.h"
+#include "stepnc/machining/motion.h"
 #include "stepnc/machining/program.h"
 
 namespace stepnc::machining {
@@ -23,6 +26,63 @@ struct SimulationReport {
   std::size_t cells_checked = 0;      ///< height-map cells or profile bins compared with the features
 
   std::string text() const;  ///< the problems, one per line ("" when clean)
+};
+
+/// The lowest z a flat-bottomed cylindrical tool reached over a grid of
+/// square cells in XY (2.5D): the one milling sweep behind the milling
+/// check (simulate_milling), the importer's rule R1 (a typed operation only
+/// where the posters' motion cuts what the program cut) and the import
+/// tests. A cell counts as reached when its centre lies within the tool's
+/// radius of the tool axis.
+class HeightMap {
+ public:
+  /// Cells of `cell` mm over [lo.x, hi.x] x [lo.y, hi.y] (at least one
+  /// each way), all at hi.z; nothing is cut below lo.z.
+  HeightMap(Vec3 lo, Vec3 hi, double cell);
+
+  int nx() const { return nx_; }          ///< cells along x
+  int ny() const { return ny_; }          ///< cells along y
+  double cell() const { return cell_; }   ///< cell size, mm
+  double top() const { return top_; }     ///< the height of an uncut cell
+  double bottom() const { return bottom_; }  ///< nothing is cut below it
+  /// The centre of cell (i, j).
+  Vec2 centre(int i, int j) const { return {lo_.x + (i + 0.5) * cell_, lo_.y + (j + 0.5) * cell_}; }
+  /// The height of cell (i, j).
+  double at(int i, int j) const { return h_[index(i, j)]; }
+  /// The height of cell (i, j), to change.
+  double& at(int i, int j) { return h_[index(i, j)]; }
+
+  /// Calls f(i, j) for every cell whose centre lies within r of p (in XY).
+  template <class F>
+  void disc(Vec3 p, double r, F&& f) const {
+    const int j0 = std::max(0, static_cast<int>(std::floor((p.y - r - lo_.y) / cell_)));
+    const int j1 = std::min(ny_ - 1, static_cast<int>(std::ceil((p.y + r - lo_.y) / cell_)));
+    const int i0 = std::max(0, static_cast<int>(std::floor((p.x - r - lo_.x) / cell_)));
+    const int i1 = std::min(nx_ - 1, static_cast<int>(std::ceil((p.x + r - lo_.x) / cell_)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vec2 c = centre(i, j);
+        if ((c.x - p.x) * (c.x - p.x) + (c.y - p.y) * (c.y - p.y) <= r * r) f(i, j);
+      }
+  }
+
+  /// The tool of `radius` moving straight from a to b: every cell it
+  /// reaches keeps the lowest z the tool's bottom had over it (exact for
+  /// the straight sweep, z varying linearly along the move).
+  void cut(Vec3 a, Vec3 b, double radius);
+  /// A feed or arc move of an expanded program (arcs as chords a quarter
+  /// cell long); other moves cut nothing.
+  void cut(const Move& move, double radius);
+
+ private:
+  std::size_t index(int i, int j) const {
+    return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+  }
+  Vec3 lo_;
+  double cell_;
+  int nx_, ny_;
+  double top_, bottom_;
+  std::vector<double> h_;
 };
 
 /// Checks, for the final state after the whole program:
