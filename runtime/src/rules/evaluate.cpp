@@ -24,7 +24,8 @@
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/meta/value.h"
-#include "stepnc/query/usedin.h"
+
+#include "references.h"
 
 namespace stepnc::rules {
 namespace {
@@ -422,7 +423,7 @@ class Interpreter {
  private:
   const meta::Model& model_;
   SlotPool pool_;
-  std::unique_ptr<query::ReferenceIndex> references_;
+  std::unique_ptr<detail::References> references_;
   // Shared with the values that hold them: an assignment copies on write.
   std::map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
   int depth_ = 0;
@@ -494,8 +495,8 @@ class Interpreter {
     return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
-  const query::ReferenceIndex& references() {
-    if (!references_) references_ = std::make_unique<query::ReferenceIndex>(model_);
+  const detail::References& references() {
+    if (!references_) references_ = std::make_unique<detail::References>(model_);
     return *references_;
   }
 
