@@ -352,7 +352,7 @@ class Interpreter {
           }
           break;
         case K::Usedin:
-          if (!detail::same_under(o.output, read_used_in(subject, o.name), trace.self, &self)) return false;
+          if (!used_in_is(o.output, *input, o.name, trace.self, &self)) return false;
           break;
         case K::Rolesof:
           if (!detail::same_under(o.output, read_roles_of(subject), trace.self, &self)) return false;
@@ -976,25 +976,57 @@ class Interpreter {
     return observe(detail::Observation::Kind::Usedin, target.instance, r, [&] { return read_used_in(target, r); });
   }
 
-  Value read_used_in(const Value& target, std::string_view r) {
-    Elements users;
+  // Each instance USEDIN(target, r) gives, once, in order, to `found`
+  // (which returns false to stop); false when `r` names no role.
+  template <class Found>
+  bool each_user(const meta::Instance& target, std::string_view r, Found found) {
     std::string_view entity_part, attribute_part;
     if (!r.empty()) {
       const auto dot = r.rfind('.');
-      if (dot == std::string_view::npos) return Value::of_elements({});
+      if (dot == std::string_view::npos) return false;
       attribute_part = r.substr(dot + 1);
       entity_part = r.substr(0, dot);
       if (const auto d = entity_part.find('.'); d != std::string_view::npos) entity_part = entity_part.substr(d + 1);
     }
-    for (const auto& use : references().uses(*target.instance)) {
+    const meta::Instance* last = nullptr;
+    for (const auto& use : references().uses(target)) {
       if (!r.empty() && (!meta::equal_names(use.attribute->name, attribute_part) ||
                          !meta::equal_names(use.attribute->owner->name, entity_part)))
         continue;
-      if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
+      if (use.user == last) continue;
+      last = use.user;
+      if (!found(use.user)) break;
     }
+    return true;
+  }
+
+  Value read_used_in(const Value& target, std::string_view r) {
+    Elements users;
+    if (!each_user(*target.instance, r, [&](meta::Instance* user) {
+          users.push_back(Value::of_instance(user));
+          return true;
+        }))
+      return Value::of_elements({});
     Value result = Value::of_elements(std::move(users));
     result.shape = unbounded(AggregateShape::Kind::Bag);
     return result;
+  }
+
+  // Whether USEDIN(target, r) is `recorded` as detail::same_under sees it,
+  // without building it: a replay reads USEDIN a few times per instance.
+  bool used_in_is(const Value& recorded, const meta::Instance& target, std::string_view r, const meta::Instance* traced,
+                  const meta::Instance* self) {
+    if (recorded.kind != Value::Kind::Aggregate || recorded.type || recorded.integer != 1) return false;
+    const Elements& expected = *recorded.elements();
+    std::size_t matched = 0;
+    bool same = true;
+    if (!each_user(target, r, [&](meta::Instance* user) {
+          same = matched < expected.size() && detail::same_under(expected[matched], Value::of_instance(user), traced, self);
+          ++matched;
+          return same;
+        }))
+      return recorded.shape == 0 && expected.empty();
+    return same && matched == expected.size() && recorded.shape == unbounded(AggregateShape::Kind::Bag);
   }
 
   Value roles_of(const Value& target) {
@@ -1357,6 +1389,9 @@ class Checker {
 
   std::vector<Violation> run() {
     fuse_global_rules();
+    // Room for a violation per instance up to the limit: pages that are
+    // never written cost nothing, and a million are not copied as they grow.
+    violations_.reserve(std::min(limit_, model_.size()));
     std::vector<meta::Instance*> order;
     for (meta::Instance* instance : model_.in_id_order(order)) {
       if (full()) break;
@@ -1364,6 +1399,7 @@ class Checker {
     }
     check_unique();
     check_global_rules();
+    if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
     return std::move(violations_);
   }
 

@@ -66,38 +66,39 @@ References::References(const meta::Model& model) {
 
   // Each entity's attributes that can refer, found once.
   std::unordered_map<const meta::EntityInfo*, std::vector<const meta::AttributeInfo*>> referring;
-  struct Pending {
-    std::uint32_t row;
-    Use use;
+  auto attributes_of = [&](const meta::EntityInfo& entity) -> const std::vector<const meta::AttributeInfo*>& {
+    auto [it, fresh] = referring.try_emplace(&entity);
+    if (fresh)
+      for (const meta::AttributeInfo& a : entity.attributes)
+        if (a.stored() && a.type && can_refer(*a.type)) it->second.push_back(&a);
+    return it->second;
   };
-  std::vector<Pending> pending;
-  const meta::EntityInfo* last = nullptr;
-  const std::vector<const meta::AttributeInfo*>* attributes = nullptr;
-  for (meta::Instance* user : instances) {
-    const meta::EntityInfo* entity = &user->entity_info();
-    if (entity != last) {
-      auto [it, fresh] = referring.try_emplace(entity);
-      if (fresh)
-        for (const meta::AttributeInfo& a : entity->attributes)
-          if (a.stored() && a.type && can_refer(*a.type)) it->second.push_back(&a);
-      last = entity;
-      attributes = &it->second;
-    }
-    for (const meta::AttributeInfo* attribute : *attributes)
-      if (auto value = meta::get(*user, *attribute)) {
-        auto found = [&](meta::Instance* target) {
-          const std::size_t r = row_in(*target, rows);
-          if (r < rows) pending.push_back({static_cast<std::uint32_t>(r), Use{user, attribute}});  // else not of the model
-        };
-        collect(*value, found);
+  // Two walks over the referring attributes: the first counts the uses of
+  // each target, the second places them (users in id order within a row).
+  auto walk = [&](auto&& use) {
+    const meta::EntityInfo* last = nullptr;
+    const std::vector<const meta::AttributeInfo*>* attributes = nullptr;
+    for (meta::Instance* user : instances) {
+      const meta::EntityInfo* entity = &user->entity_info();
+      if (entity != last) {
+        attributes = &attributes_of(*entity);
+        last = entity;
       }
-  }
-  // Counted by row, then placed: users stay in id order within a row.
+      for (const meta::AttributeInfo* attribute : *attributes)
+        if (auto value = meta::get(*user, *attribute)) {
+          auto found = [&](meta::Instance* target) {
+            const std::size_t r = row_in(*target, rows);
+            if (r < rows) use(r, Use{user, attribute});  // else not of the model
+          };
+          collect(*value, found);
+        }
+    }
+  };
   first_.assign(rows + 2, 0);
-  for (const Pending& p : pending) ++first_[p.row + 2];
+  walk([&](std::size_t r, const Use&) { ++first_[r + 2]; });
   for (std::size_t r = 2; r < first_.size(); ++r) first_[r] += first_[r - 1];
-  uses_.resize(pending.size());
-  for (const Pending& p : pending) uses_[first_[p.row + 1]++] = p.use;
+  uses_.resize(first_.back());
+  walk([&](std::size_t r, const Use& use) { uses_[first_[r + 1]++] = use; });
   first_.pop_back();
 }
 
