@@ -335,6 +335,7 @@ class Interpreter {
   /// evaluated while it was recorded gives the same result for `self`.
   bool replays(const detail::Trace& trace, meta::Instance& self) {
     using K = detail::Observation::Kind;
+    steps_ = 0;  // a derived attribute read here counts its own loops
     for (const detail::Observation& o : trace.observations) {
       if (o.kind == K::Population) continue;  // recorded only when neither is in it (same entity)
       meta::Instance* input = detail::replayed_input(o, trace.self, &self);
