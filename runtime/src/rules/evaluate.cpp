@@ -24,7 +24,10 @@
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/meta/value.h"
-#include "stepnc/query/usedin.h"
+
+#include "references.h"
+#include "trace.h"
+#include "value.h"
 
 namespace stepnc::rules {
 namespace {
@@ -34,110 +37,17 @@ using meta::Builtin;
 using meta::Node;
 using meta::NodeKind;
 using meta::Operator;
+using detail::Elements;
+using detail::Partial;
+using detail::Truth;
+using detail::Value;
+using detail::truth_of;
 
 // A rule the evaluator cannot finish (a `?` is not one: it is a value).
 struct Unevaluable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class Truth : std::uint8_t { False, True, Unknown };
-
-struct Value;
-using Elements = std::vector<Value>;
-
-// An entity value made by a constructor (`direction([1.0, 0.0])`), or by
-// `||` of several: its entities and attribute values.
-struct Partial {
-  std::vector<const meta::EntityInfo*> entities;
-  std::vector<std::pair<std::string_view, std::shared_ptr<Value>>> attributes;
-};
-
-// 80 bytes, and only one counted pointer to copy: text views the
-// constant tables or the model (neither changes during a check), or
-// `heap`, which owns it, the elements or the partial value.
-struct Value {
-  enum class Kind : std::uint8_t { Indeterminate, Integer, Real, Logical, String, Binary, Enumeration, Instance, Partial, Aggregate };
-  Kind kind = Kind::Indeterminate;
-  Truth logical = Truth::Unknown;
-  std::int64_t integer = 0;  // Integer; Aggregate: the lower index
-  double real = 0;
-  std::string_view text;  // String, Binary (bits), Enumeration (item)
-  const meta::TypeInfo* type = nullptr;  // the named type the value was declared with, if any
-  meta::Instance* instance = nullptr;
-  std::shared_ptr<void> heap;  // Aggregate: Elements; Partial: Partial; String, Binary: its std::string when owned
-  std::int64_t shape = 0;      // Aggregate: its declared type when known (AggregateShape, packed)
-
-  Elements* elements() const { return static_cast<Elements*>(heap.get()); }
-  Partial* partial() const { return static_cast<Partial*>(heap.get()); }
-
-  bool indeterminate() const { return kind == Kind::Indeterminate; }
-  bool number() const { return kind == Kind::Integer || kind == Kind::Real; }
-  double as_real() const { return kind == Kind::Integer ? static_cast<double>(integer) : real; }
-  bool entity() const { return kind == Kind::Instance || kind == Kind::Partial; }
-
-  static Value of_integer(std::int64_t v) {
-    Value r;
-    r.kind = Kind::Integer;
-    r.integer = v;
-    return r;
-  }
-  static Value of_real(double v) {
-    Value r;
-    r.kind = Kind::Real;
-    r.real = v;
-    return r;
-  }
-  static Value of_truth(Truth t) {
-    Value r;
-    r.kind = Kind::Logical;
-    r.logical = t;
-    return r;
-  }
-  static Value of_bool(bool b) { return of_truth(b ? Truth::True : Truth::False); }
-  // A string that lives as long as the check (constant tables, the model).
-  static Value of_view(std::string_view s, Kind kind = Kind::String) {
-    Value r;
-    r.kind = kind;
-    r.text = s;
-    return r;
-  }
-  static Value of_string(std::string s) {
-    auto owned = std::make_shared<std::string>(std::move(s));
-    Value r = of_view(*owned);
-    r.heap = std::move(owned);
-    return r;
-  }
-  static Value of_instance(meta::Instance* i) {
-    Value r;
-    if (i) {
-      r.kind = Kind::Instance;
-      r.instance = i;
-    }
-    return r;
-  }
-  static Value of_shared(std::shared_ptr<Elements> e, std::int64_t lower = 1) {
-    Value r;
-    r.kind = Kind::Aggregate;
-    r.integer = lower;
-    r.heap = std::move(e);
-    return r;
-  }
-  static Value of_elements(Elements e, std::int64_t lower = 1) {
-    return of_shared(std::make_shared<Elements>(std::move(e)), lower);
-  }
-  AggregateShape::Kind aggregate_kind() const { return AggregateShape::unpack(shape).kind; }
-  static Value of_partial(std::shared_ptr<Partial> p) {
-    Value r;
-    r.kind = Kind::Partial;
-    r.heap = std::move(p);
-    return r;
-  }
-};
-
-Truth truth_of(const Value& v) {
-  if (v.kind == Value::Kind::Logical) return v.logical;
-  return Truth::Unknown;
-}
 // The shape of a stored aggregate type (its bounds from the metaclass).
 std::int64_t shape_of(const meta::TypeInfo& resolved) {
   AggregateShape s;
@@ -417,16 +327,84 @@ class Interpreter {
   /// Drops the kept FUNCTION results: called before each instance is checked.
   void forget_results() { results_.clear(); }
 
+  /// Records what the evaluations read into `trace` from now on (null: stops).
+  void record(detail::Trace* trace) { trace_ = trace; }
+
+  /// Whether `trace`'s reads, made for `self` instead of the traced
+  /// instance, give what they gave (detail::same_under): then every rule
+  /// evaluated while it was recorded gives the same result for `self`.
+  bool replays(const detail::Trace& trace, meta::Instance& self) {
+    using K = detail::Observation::Kind;
+    steps_ = 0;  // a derived attribute read here counts its own loops
+    for (const detail::Observation& o : trace.observations) {
+      if (o.kind == K::Population) continue;  // recorded only when neither is in it (same entity)
+      meta::Instance* input = detail::replayed_input(o, trace.self, &self);
+      if (!input) return false;
+      const Value subject = Value::of_instance(input);
+      switch (o.kind) {
+        case K::Entity:
+          if (&input->entity_info() != o.entity) return false;
+          break;
+        case K::Attribute:
+          try {
+            if (!detail::same_under(o.output, read_attribute(subject, o.name), trace.self, &self)) return false;
+          } catch (const Unevaluable&) {
+            return false;
+          }
+          break;
+        case K::Usedin:
+          if (!used_in_is(o.output, *input, o.name, trace.self, &self)) return false;
+          break;
+        case K::Rolesof:
+          if (!detail::same_under(o.output, read_roles_of(subject), trace.self, &self)) return false;
+          break;
+        case K::Population: break;
+      }
+    }
+    return true;
+  }
+
   Value attribute_of(meta::Instance& instance, std::string_view name) { return attribute(Value::of_instance(&instance), name); }
 
  private:
   const meta::Model& model_;
   SlotPool pool_;
-  std::unique_ptr<query::ReferenceIndex> references_;
+  std::unique_ptr<detail::References> references_;
   // Shared with the values that hold them: an assignment copies on write.
   std::map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
   int depth_ = 0;
   std::uint64_t steps_ = 0;
+  // Where reads of the model are recorded (Checker::check_instance), and
+  // whether a read is under way (what it reads is its own business).
+  detail::Trace* trace_ = nullptr;
+  int inside_read_ = 0;
+
+  bool recording() const { return trace_ && !inside_read_; }
+
+  // A read of the model, recorded when a trace is: `read` computes it.
+  template <class Read>
+  Value observe(detail::Observation::Kind kind, meta::Instance* input, std::string_view name, Read read) {
+    if (!recording()) return read();
+    ++inside_read_;
+    Value v;
+    try {
+      v = read();
+    } catch (...) {
+      --inside_read_;
+      trace_->complete = false;  // a read that throws is not replayed
+      throw;
+    }
+    --inside_read_;
+    trace_->add({kind, input, name, nullptr, v});
+    return v;
+  }
+
+  // An instance's entity, as rules see it (TYPEOF, `\entity`, IN TYPEOF).
+  const meta::EntityInfo& entity_of(meta::Instance& instance) {
+    const meta::EntityInfo& entity = instance.entity_info();
+    if (recording()) trace_->add({detail::Observation::Kind::Entity, &instance, {}, &entity, {}});
+    return entity;
+  }
 
   // Where an attribute name leads, per concrete entity. Names come from
   // the constant tables, so their address identifies them.
@@ -494,8 +472,8 @@ class Interpreter {
     return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
-  const query::ReferenceIndex& references() {
-    if (!references_) references_ = std::make_unique<query::ReferenceIndex>(model_);
+  const detail::References& references() {
+    if (!references_) references_ = std::make_unique<detail::References>(model_);
     return *references_;
   }
 
@@ -526,6 +504,11 @@ class Interpreter {
   }
 
   Value attribute(const Value& base, std::string_view name) {
+    if (base.kind != Value::Kind::Instance) return read_attribute(base, name);
+    return observe(detail::Observation::Kind::Attribute, base.instance, name, [&] { return read_attribute(base, name); });
+  }
+
+  Value read_attribute(const Value& base, std::string_view name) {
     if (base.kind == Value::Kind::Partial) {
       for (const auto& [n, v] : base.partial()->attributes)
         if (meta::equal_names(n, name)) return *v;
@@ -562,6 +545,12 @@ class Interpreter {
   }
 
   Value population(const meta::EntityInfo& entity) {
+    if (recording()) {
+      // An extent holding the traced instance holds any other it would be
+      // replayed on too: not replayable.
+      if (trace_->self->entity_info().is_a(entity)) trace_->complete = false;
+      trace_->add({detail::Observation::Kind::Population, nullptr, {}, &entity, {}});
+    }
     auto [it, fresh] = populations_.try_emplace(&entity);
     if (fresh) {
       it->second = std::make_shared<Elements>();
@@ -635,7 +624,7 @@ class Interpreter {
       }
       case NodeKind::Group: {
         Value base = operand(0);
-        if (base.kind == Value::Kind::Instance && !is_a(*base.instance, *n.entity)) return {};
+        if (base.kind == Value::Kind::Instance && !entity_of(*base.instance).is_a(*n.entity)) return {};
         return base;
       }
       case NodeKind::Index:
@@ -647,7 +636,8 @@ class Interpreter {
       case NodeKind::Call: {
         std::vector<Value> arguments = pool_.take(0);
         for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(operand(i));
-        const std::optional<CallKey> key = call_key(*n.algorithm, arguments);
+        // Not while a trace is recorded: a kept result would skip the reads it made.
+        const std::optional<CallKey> key = trace_ ? std::nullopt : call_key(*n.algorithm, arguments);
         if (key)
           for (const auto& [kept, value] : results_)
             if (kept == *key) {
@@ -792,14 +782,14 @@ class Interpreter {
       if (name_node.kind == NodeKind::String) {  // a constant name: no copy of it
         Value subject = eval(nodes, nodes[n.first + 1].first, frame);
         if (subject.kind == Value::Kind::Instance)
-          return Value::of_bool(has_type_name(subject.instance->entity_info(), name_node.text));
+          return Value::of_bool(has_type_name(entity_of(*subject.instance), name_node.text));
         if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
         return Value::of_truth(member(Value::of_view(name_node.text), type_of(subject)));
       }
       Value name = eval(nodes, n.first, frame);
       Value subject = eval(nodes, nodes[n.first + 1].first, frame);
       if (name.kind == Value::Kind::String && subject.kind == Value::Kind::Instance)
-        return Value::of_bool(has_type_name(subject.instance->entity_info(), name.text));
+        return Value::of_bool(has_type_name(entity_of(*subject.instance), name.text));
       if (subject.indeterminate()) return Value::of_truth(Truth::Unknown);
       return Value::of_truth(member(name, type_of(subject)));
     }
@@ -953,7 +943,7 @@ class Interpreter {
     using K = Value::Kind;
     switch (v.kind) {
       case K::Indeterminate: return {};
-      case K::Instance: typeof_names(v.instance->entity_info(), names); break;
+      case K::Instance: typeof_names(entity_of(*v.instance), names); break;
       case K::Partial:
         for (const meta::EntityInfo* e : v.partial()->entities)
           if (!e->upcasts.empty()) {
@@ -984,28 +974,68 @@ class Interpreter {
   // USEDIN(T, R) and ROLESOF(V) (ISO 10303-11 15.26, 15.20).
   Value used_in(const Value& target, std::string_view r) {
     if (target.kind != Value::Kind::Instance) return {};
-    Elements users;
+    return observe(detail::Observation::Kind::Usedin, target.instance, r, [&] { return read_used_in(target, r); });
+  }
+
+  // Each instance USEDIN(target, r) gives, once, in order, to `found`
+  // (which returns false to stop); false when `r` names no role.
+  template <class Found>
+  bool each_user(const meta::Instance& target, std::string_view r, Found found) {
     std::string_view entity_part, attribute_part;
     if (!r.empty()) {
       const auto dot = r.rfind('.');
-      if (dot == std::string_view::npos) return Value::of_elements({});
+      if (dot == std::string_view::npos) return false;
       attribute_part = r.substr(dot + 1);
       entity_part = r.substr(0, dot);
       if (const auto d = entity_part.find('.'); d != std::string_view::npos) entity_part = entity_part.substr(d + 1);
     }
-    for (const auto& use : references().uses(*target.instance)) {
+    const meta::Instance* last = nullptr;
+    for (const auto& use : references().uses(target)) {
       if (!r.empty() && (!meta::equal_names(use.attribute->name, attribute_part) ||
                          !meta::equal_names(use.attribute->owner->name, entity_part)))
         continue;
-      if (users.empty() || users.back().instance != use.user) users.push_back(Value::of_instance(use.user));
+      if (use.user == last) continue;
+      last = use.user;
+      if (!found(use.user)) break;
     }
+    return true;
+  }
+
+  Value read_used_in(const Value& target, std::string_view r) {
+    Elements users;
+    if (!each_user(*target.instance, r, [&](meta::Instance* user) {
+          users.push_back(Value::of_instance(user));
+          return true;
+        }))
+      return Value::of_elements({});
     Value result = Value::of_elements(std::move(users));
     result.shape = unbounded(AggregateShape::Kind::Bag);
     return result;
   }
 
+  // Whether USEDIN(target, r) is `recorded` as detail::same_under sees it,
+  // without building it: a replay reads USEDIN a few times per instance.
+  bool used_in_is(const Value& recorded, const meta::Instance& target, std::string_view r, const meta::Instance* traced,
+                  const meta::Instance* self) {
+    if (recorded.kind != Value::Kind::Aggregate || recorded.type || recorded.integer != 1) return false;
+    const Elements& expected = *recorded.elements();
+    std::size_t matched = 0;
+    bool same = true;
+    if (!each_user(target, r, [&](meta::Instance* user) {
+          same = matched < expected.size() && detail::same_under(expected[matched], Value::of_instance(user), traced, self);
+          ++matched;
+          return same;
+        }))
+      return recorded.shape == 0 && expected.empty();
+    return same && matched == expected.size() && recorded.shape == unbounded(AggregateShape::Kind::Bag);
+  }
+
   Value roles_of(const Value& target) {
     if (target.kind != Value::Kind::Instance) return {};
+    return observe(detail::Observation::Kind::Rolesof, target.instance, {}, [&] { return read_roles_of(target); });
+  }
+
+  Value read_roles_of(const Value& target) {
     Elements roles;
     for (const auto& use : references().uses(*target.instance)) {
       Value role = Value::of_string(upper(use.attribute->owner->schema->name) + "." + upper(use.attribute->owner->name) +
@@ -1107,6 +1137,7 @@ class Interpreter {
       case Builtin::Usedin: {
         if (n.count > 1 && nodes[n.first + 1].kind == NodeKind::String) return used_in(arg(0), nodes[n.first + 1].text);
         Value target = arg(0), role = arg(1);
+        if (role.heap && trace_) trace_->complete = false;  // a role made here: the trace could not keep its name
         return role.kind == Value::Kind::String ? used_in(target, role.text) : Value{};
       }
       case Builtin::Rolesof: return roles_of(arg(0));
@@ -1354,10 +1385,14 @@ class Interpreter {
 
 class Checker {
  public:
-  Checker(const meta::Model& model, std::size_t limit) : model_(model), interpreter_(model), limit_(limit) {}
+  Checker(const meta::Model& model, const CheckOptions& options)
+      : model_(model), interpreter_(model), limit_(options.limit), reuse_(options.reuse) {}
 
   std::vector<Violation> run() {
     fuse_global_rules();
+    // Room for a violation per instance up to the limit: pages that are
+    // never written cost nothing, and a million are not copied as they grow.
+    violations_.reserve(std::min(limit_, model_.size()));
     std::vector<meta::Instance*> order;
     for (meta::Instance* instance : model_.in_id_order(order)) {
       if (full()) break;
@@ -1365,6 +1400,7 @@ class Checker {
     }
     check_unique();
     check_global_rules();
+    if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
     return std::move(violations_);
   }
 
@@ -1442,24 +1478,6 @@ class Checker {
     }
   }
 
-  void check_fused(meta::Instance& instance) {
-    const auto it = fused_for_.find(&instance.entity_info());
-    if (it == fused_for_.end()) return;
-    for (const std::size_t f : it->second) {
-      FusedRule& fused = fused_[f];
-      if (fused.unevaluable) continue;  // decided (a TRUE is not: a later element may not be evaluable)
-      const meta::DomainRuleInfo& where = fused.rule->where[fused.where];
-      try {
-        if (interpreter_.predicate(where.expression.nodes, fused.query, fused.frame, Value::of_instance(&instance)) ==
-            Truth::True)
-          fused.holds_for_some = true;
-      } catch (const Unevaluable& reason) {
-        fused.unevaluable = true;
-        fused.reason = reason.what();
-      }
-    }
-  }
-
   // The result of domain rule `where` of `rule` when it was fused.
   std::optional<Truth> fused_result(const meta::AlgorithmInfo& rule, std::size_t where) const {
     for (const FusedRule& fused : fused_)
@@ -1510,19 +1528,143 @@ class Checker {
     report(std::move(violation));
   }
 
+  // What a rule gave for one instance: its truth, or why it could not be evaluated.
+  struct Outcome {
+    Truth truth = Truth::Unknown;
+    bool unevaluable = false;
+    std::string reason;
+  };
+
+  // What checking an instance of one concrete entity takes, found at its
+  // first instance: its WHERE rules (every entity it is), the attributes
+  // whose values have type rules, the fused global rules over it; and the
+  // traces of instances checked so far, to replay on the next ones.
+  struct Plan {
+    struct Where {
+      const meta::EntityInfo* owner;
+      const meta::DomainRuleInfo* rule;
+    };
+    std::vector<Where> where;
+    std::vector<const meta::AttributeInfo*> typed;
+    const std::vector<std::size_t>* fused = nullptr;
+    // Outcomes: the WHERE rules', then the fused rules' predicates.
+    struct Kept {
+      detail::Trace trace;
+      std::vector<Outcome> outcomes;
+    };
+    std::vector<Kept> kept;  // the latest replayed first
+    std::size_t recorded = 0, replayed = 0;
+    bool reuse = true;
+  };
+  std::unordered_map<const meta::EntityInfo*, Plan> plans_;
+  const meta::EntityInfo* last_entity_ = nullptr;
+  Plan* last_plan_ = nullptr;
+  bool reuse_ = true;
+  static constexpr std::size_t max_kept = 8;       // traces per entity
+  static constexpr std::size_t give_up_after = 64;  // recordings without as many replays: stop recording
+
+  Plan& plan_of(const meta::EntityInfo& entity) {
+    if (&entity == last_entity_) return *last_plan_;
+    auto [it, fresh] = plans_.try_emplace(&entity);
+    Plan& plan = it->second;
+    if (fresh) {
+      for (const meta::Upcast& up : entity.upcasts) {
+        note_schema(up.entity->schema);
+        for (const meta::DomainRuleInfo& rule : up.entity->where) plan.where.push_back({up.entity, &rule});
+      }
+      for (const meta::AttributeInfo& attribute : entity.attributes)
+        if (attribute.stored() && attribute.type && has_type_rules(*attribute.type)) plan.typed.push_back(&attribute);
+      if (const auto f = fused_for_.find(&entity); f != fused_for_.end() && !f->second.empty()) plan.fused = &f->second;
+      plan.reuse = reuse_ && (!plan.where.empty() || plan.fused);
+    }
+    last_entity_ = &entity;
+    last_plan_ = &plan;
+    return plan;
+  }
+
+  // Every rule of `instance` whose SELF (or QUERY element) it is, in order.
+  void evaluate_rules(const Plan& plan, meta::Instance& instance, std::vector<Outcome>& outcomes) {
+    outcomes.clear();
+    for (const Plan::Where& where : plan.where) {
+      Outcome& o = outcomes.emplace_back();
+      try {
+        o.truth = truth_of(interpreter_.evaluate(*where.rule, Value::of_instance(&instance)));
+      } catch (const Unevaluable& reason) {
+        o.unevaluable = true;
+        o.reason = reason.what();
+      } catch (const std::out_of_range&) {
+        o.unevaluable = true;
+        o.reason = "a variable outside its frame";
+      }
+    }
+    if (plan.fused)
+      for (const std::size_t f : *plan.fused) {
+        const FusedRule& fused = fused_[f];
+        const meta::DomainRuleInfo& where = fused.rule->where[fused.where];
+        Outcome& o = outcomes.emplace_back();
+        try {
+          o.truth = interpreter_.predicate(where.expression.nodes, fused.query, fused.frame, Value::of_instance(&instance));
+        } catch (const Unevaluable& reason) {
+          o.unevaluable = true;
+          o.reason = reason.what();
+        }
+      }
+  }
+
+  // The outcomes of `instance`'s rules: replayed from the trace of an
+  // earlier instance of its entity when its reads hold for this one
+  // (detail::Trace), else evaluated and traced.
+  const std::vector<Outcome>& outcomes_of(Plan& plan, meta::Instance& instance) {
+    if (plan.reuse)
+      for (std::size_t k = 0; k < plan.kept.size(); ++k)
+        if (interpreter_.replays(plan.kept[k].trace, instance)) {
+          ++plan.replayed;
+          if (k) std::swap(plan.kept[k], plan.kept[0]);
+          return plan.kept[0].outcomes;
+        }
+    detail::Trace trace;
+    trace.self = &instance;
+    if (plan.reuse) interpreter_.record(&trace);
+    evaluate_rules(plan, instance, outcomes_);
+    interpreter_.record(nullptr);
+    if (plan.reuse && trace.complete) {
+      if (plan.kept.size() == max_kept) plan.kept.pop_back();
+      plan.kept.insert(plan.kept.begin(), Plan::Kept{std::move(trace), outcomes_});
+      if (++plan.recorded >= give_up_after && plan.replayed < plan.recorded) plan.reuse = false;
+    }
+    return outcomes_;
+  }
+  std::vector<Outcome> outcomes_;
+
   void check_instance(meta::Instance& instance) {
     interpreter_.forget_results();
-    const meta::EntityInfo& info = instance.entity_info();
-    for (const meta::Upcast& up : info.upcasts) {
-      note_schema(up.entity->schema);
-      for (const meta::DomainRuleInfo& rule : up.entity->where)
-        judge(rule, Value::of_instance(&instance), violation(Violation::Kind::Where, instance.id(), up.entity->name));
+    Plan& plan = plan_of(instance.entity_info());
+    const std::vector<Outcome>& outcomes = plan.where.empty() && !plan.fused ? outcomes_ : outcomes_of(plan, instance);
+    std::size_t i = 0;
+    for (const Plan::Where& where : plan.where) {
+      const Outcome& o = outcomes[i++];
+      if (!o.unevaluable && o.truth != Truth::False) continue;
+      Violation v = violation(o.unevaluable ? Violation::Kind::Unevaluated : Violation::Kind::Where, instance.id(),
+                              where.owner->name);
+      v.message = o.reason;
+      v.label = where.rule->label;
+      v.text = where.rule->text;
+      report(std::move(v));
     }
-    for (const meta::AttributeInfo& attribute : info.attributes) {
-      if (!attribute.stored()) continue;
-      if (auto ref = meta::get(instance, attribute)) check_value(instance, attribute, *ref);
-    }
-    check_fused(instance);
+    for (const meta::AttributeInfo* attribute : plan.typed)
+      if (auto ref = meta::get(instance, *attribute)) check_value(instance, *attribute, *ref);
+    if (plan.fused)
+      for (const std::size_t f : *plan.fused) {
+        const Outcome& o = outcomes[i++];
+        FusedRule& fused = fused_[f];
+        if (fused.unevaluable) continue;  // decided (a TRUE is not: a later element may not be evaluable)
+        if (o.unevaluable) {
+          fused.unevaluable = true;
+          fused.reason = o.reason;
+        } else if (o.truth == Truth::True) {
+          fused.holds_for_some = true;
+        }
+      }
   }
 
   static bool has_type_rules(const meta::TypeInfo& type, int depth = 0) {
@@ -1714,7 +1856,13 @@ std::string Violation::to_string() const {
   return rule;
 }
 
-std::vector<Violation> check(const meta::Model& model, std::size_t limit) { return Checker(model, limit).run(); }
+std::vector<Violation> check(const meta::Model& model, const CheckOptions& options) { return Checker(model, options).run(); }
+
+std::vector<Violation> check(const meta::Model& model, std::size_t limit) {
+  CheckOptions options;
+  options.limit = limit;
+  return check(model, options);
+}
 
 bool Validation::valid() const {
   return structure.empty() && std::all_of(rules.begin(), rules.end(), [](const Violation& v) {

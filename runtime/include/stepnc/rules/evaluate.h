@@ -54,6 +54,22 @@ struct Violation {
   std::string to_string() const;
 };
 
+/// How check() works.
+struct CheckOptions {
+  /// Evaluation stops at the `limit`-th violated rule; rules that could not
+  /// be evaluated are listed up to `limit` too.
+  std::size_t limit = 1000;
+  /// Replay the rules of an instance from an earlier instance of the same
+  /// entity when everything they read of the model is the same, SELF
+  /// aside (what each rule reads is traced): the same violations, without
+  /// interpreting rules and FUNCTIONs again for each of a million points.
+  /// Off: every rule is interpreted on every instance (for comparison).
+  bool reuse = true;
+};
+
+/// Every violation, in instance order (global rules last), as `options` say.
+std::vector<Violation> check(const meta::Model& model, const CheckOptions& options);
+
 /// Every violation, in instance order (global rules last): evaluation
 /// stops at the `limit`-th violated rule; rules that could not be
 /// evaluated are listed up to `limit` too.
