@@ -8,8 +8,8 @@
 
 namespace stepnc::rules::fuzz {
 
-// Builds a model of one of the schemas (ISO 14649 with its reference
-// functions, or the rules tests' schemas) from `data`: which entities, the
+// Builds a model of the reference schema (ISO 14649 with its FUNCTIONs)
+// from `data`: which entities, the
 // value of every stored attribute, which instance each reference names
 // (cycles included), through reflection only. Then evaluates every rule,
 // every derived attribute and FUNCTIONs on instances of the model. Checks
