@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -163,6 +164,13 @@ std::int64_t unbounded(AggregateShape::Kind kind) {
   s.lower = 0;
   s.upper = -1;
   return s.pack();
+}
+
+// -v; the negative of the least INTEGER is past 64 bits, so a REAL.
+Value negative(const Value& v) {
+  if (v.kind == Value::Kind::Integer && v.integer != std::numeric_limits<std::int64_t>::min()) return Value::of_integer(-v.integer);
+  if (v.number()) return Value::of_real(-v.as_real());
+  return {};
 }
 
 Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
@@ -815,11 +823,7 @@ class Interpreter {
       case NodeKind::Unary: {
         Value v = operand(0);
         if (n.op == Operator::Not) return Value::of_truth(negate(truth_of(v)));
-        if (n.op == Operator::Minus) {
-          if (v.kind == Value::Kind::Integer) return Value::of_integer(-v.integer);
-          if (v.kind == Value::Kind::Real) return Value::of_real(-v.real);
-          return {};
-        }
+        if (n.op == Operator::Minus) return negative(v);
         return v;
       }
       case NodeKind::Operation: return operation(nodes, n, frame);
@@ -986,25 +990,37 @@ class Interpreter {
     if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(std::string(a.text) + std::string(b.text));
     if (!a.number() || !b.number()) return {};
     const bool integers = a.kind == K::Integer && b.kind == K::Integer;
+    // EXPRESS INTEGERs have no bound (ISO 10303-11 8.1.3): a result past
+    // 64 bits is kept as the nearest REAL, as a mixed operation would be.
+    std::int64_t exact = 0;
     switch (n.op) {
-      case Operator::Add: return integers ? Value::of_integer(a.integer + b.integer) : Value::of_real(a.as_real() + b.as_real());
+      case Operator::Add:
+        if (integers && !__builtin_add_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() + b.as_real());
       case Operator::Subtract:
-        return integers ? Value::of_integer(a.integer - b.integer) : Value::of_real(a.as_real() - b.as_real());
+        if (integers && !__builtin_sub_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() - b.as_real());
       case Operator::Multiply:
-        return integers ? Value::of_integer(a.integer * b.integer) : Value::of_real(a.as_real() * b.as_real());
+        if (integers && !__builtin_mul_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() * b.as_real());
       case Operator::Divide:
         if (b.as_real() == 0) return {};
         return Value::of_real(a.as_real() / b.as_real());
       case Operator::IntegerDivide:
       case Operator::Modulo: {
         if (!integers || b.integer == 0) return {};
+        if (b.integer == -1) return n.op == Operator::Modulo ? Value::of_integer(0) : negative(a);  // (no INT64_MIN / -1)
         if (n.op == Operator::IntegerDivide) return Value::of_integer(a.integer / b.integer);
         std::int64_t m = a.integer % b.integer;
         if (m != 0 && ((m < 0) != (b.integer < 0))) m += b.integer;  // the sign of the divisor
         return Value::of_integer(m);
       }
       case Operator::Power:
-        if (integers && b.integer >= 0) return Value::of_integer(static_cast<std::int64_t>(std::pow(a.integer, b.integer)));
+        if (integers && b.integer >= 0) {
+          const double power = std::pow(a.integer, b.integer);
+          if (std::abs(power) < 9.2e18) return Value::of_integer(static_cast<std::int64_t>(power));
+          return Value::of_real(power);
+        }
         return Value::of_real(std::pow(a.as_real(), b.as_real()));
       default: return {};
     }
