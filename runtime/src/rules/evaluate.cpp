@@ -404,11 +404,11 @@ Truth aggregate_subset(const Elements& sub, const Elements& super, bool set) {
 }
 
 // Value comparison `=` of aggregates (12.2.1.7) and instance comparison
-// `:=:` (12.2.2): LISTs and ARRAYs element by element in order (an ARRAY's
-// position counts, not its index), BAGs and SETs by occurrences in any order; instance
-// comparison wants the same kind of aggregate too. Elements compare as
-// `equal` does: entity instances by identity, so here the two coincide
-// (entity value comparison, 12.2.1.5, is not implemented).
+// `:=:` (12.2.2): LISTs and ARRAYs element by element in order (an
+// ARRAY's position counts, not its index), BAGs and SETs by occurrences in
+// any order; instance comparison wants the same kind of aggregate too.
+// Elements compare as `equal` does: entity instances by identity, so here
+// the two coincide (entity value comparison, 12.2.1.5, is not implemented).
 Truth aggregate_equal(const Value& a, AggregateKind a_kind, const Value& b, AggregateKind b_kind, bool instance) {
   using K = AggregateKind;
   if (instance && a_kind != K::None && b_kind != K::None && a_kind != b_kind) return Truth::False;
