@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -73,6 +74,13 @@ std::int64_t unbounded(AggregateShape::Kind kind) {
   s.lower = 0;
   s.upper = -1;
   return s.pack();
+}
+
+// -v; the negative of the least INTEGER is past 64 bits, so a REAL.
+Value negative(const Value& v) {
+  if (v.kind == Value::Kind::Integer && v.integer != std::numeric_limits<std::int64_t>::min()) return Value::of_integer(-v.integer);
+  if (v.number()) return Value::of_real(-v.as_real());
+  return {};
 }
 
 Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
@@ -155,6 +163,8 @@ Value from_ref(const meta::ValueRef& ref) {
 // ---------------------------------------------------------------- equality and order
 
 Truth equal(const Value& a, const Value& b);
+Truth aggregate_equal(const Value& a, AggregateShape::Kind a_kind, const Value& b, AggregateShape::Kind b_kind,
+                      bool instance);
 
 Truth equal_elements(const Elements& a, const Elements& b) {
   if (a.size() != b.size()) return Truth::False;
@@ -183,7 +193,8 @@ Truth equal(const Value& a, const Value& b) {
     case K::Enumeration: return meta::equal_names(a.text, b.text) ? Truth::True : Truth::False;
     case K::Instance: return a.instance == b.instance ? Truth::True : Truth::False;
     case K::Partial: return a.partial() == b.partial() ? Truth::True : Truth::False;
-    case K::Aggregate: return equal_elements(*a.elements(), *b.elements());
+    case K::Aggregate:
+      return aggregate_equal(a, AggregateShape::unpack(a.shape).kind, b, AggregateShape::unpack(b.shape).kind, false);
     default: return Truth::Unknown;
   }
 }
@@ -213,6 +224,125 @@ std::optional<int> compare(const Value& a, const Value& b) {
     return (x > y) - (x < y);
   }
   return std::nullopt;
+}
+
+// ---------------------------------------------------------------- aggregate operators
+// ISO 10303-11 12.2.1.7, 12.2.2 and 12.6, one helper per operator, over the
+// operands' elements and their declared kinds (None: an aggregate
+// initializer, which takes the other operand's kind).
+
+using AggregateKind = AggregateShape::Kind;
+
+AggregateKind kind_of(std::int64_t shape) { return AggregateShape::unpack(shape).kind; }
+
+// Where `v` is in `list`: its position, or none with FALSE, or UNKNOWN
+// when only an indeterminate comparison could have matched.
+std::pair<std::ptrdiff_t, Truth> find_element(const Elements& list, const Value& v) {
+  Truth result = Truth::False;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const Truth t = equal(list[i], v);
+    if (t == Truth::True) return {static_cast<std::ptrdiff_t>(i), Truth::True};
+    if (t == Truth::Unknown) result = Truth::Unknown;
+  }
+  return {-1, result};
+}
+
+bool contains(const Elements& list, const Value& v) { return find_element(list, v).second == Truth::True; }
+
+// Removes one occurrence of `v` from `pool` (see find_element for the result).
+Truth take_one(Elements& pool, const Value& v) {
+  const auto [at, found] = find_element(pool, v);
+  if (found == Truth::True) pool.erase(pool.begin() + at);
+  return found;
+}
+
+// Union (12.6.3), of the aggregate operand's kind (the left one's when both
+// are): a SET gains only the elements it does not hold, a BAG or a LIST
+// every one; an element on the left goes first.
+Elements aggregate_union(const Elements& left, const Elements& right, bool element_first, bool set) {
+  if (element_first) {
+    Elements result = right;
+    if (!set || !contains(result, left.front())) result.insert(result.begin(), left.front());
+    return result;
+  }
+  Elements result = left;
+  for (const Value& e : right)
+    if (!set || !contains(result, e)) result.push_back(e);
+  return result;
+}
+
+// Difference (12.6.4): each element of the right operand removes one
+// occurrence of it from a BAG, and removes it from a SET.
+Elements aggregate_difference(const Elements& left, const Elements& right, bool set) {
+  Elements result = left;
+  if (set) {
+    std::erase_if(result, [&](const Value& e) { return contains(right, e); });
+    return result;
+  }
+  for (const Value& e : right) take_one(result, e);
+  return result;
+}
+
+// Intersection (12.6.2): of two BAGs, each element as many times as the
+// operand holding it fewer times has it; when either operand is a SET, a
+// SET of the elements both hold.
+Elements aggregate_intersection(const Elements& left, const Elements& right, bool set) {
+  Elements result;
+  if (set) {
+    for (const Value& e : left)
+      if (contains(right, e) && !contains(result, e)) result.push_back(e);
+    return result;
+  }
+  Elements pool = right;
+  for (const Value& e : left)
+    if (take_one(pool, e) == Truth::True) result.push_back(e);
+  return result;
+}
+
+// Subset `<=` (12.6.5; superset `>=`, 12.6.6, is it with the operands
+// swapped): every element of `sub` is in `super`, as many times when both
+// are BAGs, once when either is a SET.
+Truth aggregate_subset(const Elements& sub, const Elements& super, bool set) {
+  Truth result = Truth::True;
+  Elements pool = set ? Elements{} : super;
+  for (const Value& e : sub) {
+    const Truth t = set ? find_element(super, e).second : take_one(pool, e);
+    if (t == Truth::False) return Truth::False;
+    if (t == Truth::Unknown) result = Truth::Unknown;
+  }
+  return result;
+}
+
+// Value comparison `=` of aggregates (12.2.1.7) and instance comparison
+// `:=:` (12.2.2): LISTs and ARRAYs element by element in order (an
+// ARRAY's position counts, not its index), BAGs and SETs by occurrences in
+// any order; instance comparison wants the same kind of aggregate too.
+// Elements compare as `equal` does: entity instances by identity, so here
+// the two coincide (entity value comparison, 12.2.1.5, is not implemented).
+Truth aggregate_equal(const Value& a, AggregateKind a_kind, const Value& b, AggregateKind b_kind, bool instance) {
+  using K = AggregateKind;
+  if (instance && a_kind != K::None && b_kind != K::None && a_kind != b_kind) return Truth::False;
+  const Elements& x = *a.elements();
+  const Elements& y = *b.elements();
+  if (x.size() != y.size()) return Truth::False;
+  const bool unordered = a_kind == K::Bag || a_kind == K::Set || b_kind == K::Bag || b_kind == K::Set;
+  if (!unordered) return equal_elements(x, y);
+  return aggregate_subset(x, y, false);  // as many elements, each as often
+}
+
+// The comparison operators on two aggregates (12.2.1.7, 12.2.2, 12.6.5,
+// 12.6.6); `<` and `>` are not defined on aggregates.
+Truth aggregate_comparison(Operator op, const Value& a, AggregateKind a_kind, const Value& b, AggregateKind b_kind) {
+  const bool set = a_kind == AggregateKind::Set || b_kind == AggregateKind::Set;
+  switch (op) {
+    case Operator::Equal: return aggregate_equal(a, a_kind, b, b_kind, false);
+    case Operator::NotEqual: return negate(aggregate_equal(a, a_kind, b, b_kind, false));
+    case Operator::InstanceEqual: return aggregate_equal(a, a_kind, b, b_kind, true);
+    case Operator::InstanceNotEqual: return negate(aggregate_equal(a, a_kind, b, b_kind, true));
+    case Operator::LessEqual: return aggregate_subset(*a.elements(), *b.elements(), set);
+    case Operator::GreaterEqual: return aggregate_subset(*b.elements(), *a.elements(), set);
+    default: return Truth::Unknown;
+  }
 }
 
 // LIKE (ISO 10303-11 12.2.5): @ letter, ^ upper-case letter, ? any
@@ -372,7 +502,20 @@ class Interpreter {
   std::unique_ptr<detail::References> references_;
   // Shared with the values that hold them: an assignment copies on write.
   std::map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
-  int depth_ = 0;
+  int depth_ = 0;  // nested calls and derivations
+
+  // One more level of nesting for the scope, at most max_depth; undone when
+  // the scope ends, by a RETURN or by an Unevaluable thrown through it.
+  struct Nesting {
+    int& depth;
+    Nesting(int& depth_of, std::string_view what, std::string_view name) : depth(depth_of) {
+      if (depth >= max_depth) throw Unevaluable(fmt::format("{} nested deeper than {} in '{}'", what, max_depth, name));
+      ++depth;
+    }
+    Nesting(const Nesting&) = delete;
+    Nesting& operator=(const Nesting&) = delete;
+    ~Nesting() { --depth; }
+  };
   std::uint64_t steps_ = 0;
   // Where reads of the model are recorded (Checker::check_instance), and
   // whether a read is under way (what it reads is its own business).
@@ -524,6 +667,8 @@ class Interpreter {
         return {};
       case meta::AttributeKind::Derived: {
         if (!a->derivation) throw Unevaluable(fmt::format("derived attribute '{}' has no derivation", a->name));
+        // Derivations through cyclic references (an oriented edge of itself) nest without end.
+        const Nesting nesting(depth_, "derived attributes", a->name);
         Frame frame(pool_, a->derivation->frame);
         frame.self = base;
         const Node* nodes = a->derivation->expression.nodes;
@@ -668,11 +813,7 @@ class Interpreter {
       case NodeKind::Unary: {
         Value v = operand(0);
         if (n.op == Operator::Not) return Value::of_truth(negate(truth_of(v)));
-        if (n.op == Operator::Minus) {
-          if (v.kind == Value::Kind::Integer) return Value::of_integer(-v.integer);
-          if (v.kind == Value::Kind::Real) return Value::of_real(-v.real);
-          return {};
-        }
+        if (n.op == Operator::Minus) return negative(v);
         return v;
       }
       case NodeKind::Operation: return operation(nodes, n, frame);
@@ -824,7 +965,11 @@ class Interpreter {
       case Operator::NotEqual:
       case Operator::Equal:
       case Operator::InstanceNotEqual:
-      case Operator::InstanceEqual: return Value::of_truth(relate(n.op, a, b));
+      case Operator::InstanceEqual:
+        if (a.kind == K::Aggregate && b.kind == K::Aggregate)
+          return Value::of_truth(aggregate_comparison(n.op, a, kind_of(declared(nodes, n.first, a)), b,
+                                                      kind_of(declared(nodes, n.first + 1, b))));
+        return Value::of_truth(relate(n.op, a, b));
       default: break;
     }
     if (a.indeterminate() || b.indeterminate()) return {};
@@ -835,66 +980,67 @@ class Interpreter {
     if (n.op == Operator::Add && a.kind == K::String && b.kind == K::String) return Value::of_string(std::string(a.text) + std::string(b.text));
     if (!a.number() || !b.number()) return {};
     const bool integers = a.kind == K::Integer && b.kind == K::Integer;
+    // EXPRESS INTEGERs have no bound (ISO 10303-11 8.1.3): a result past
+    // 64 bits is kept as the nearest REAL, as a mixed operation would be.
+    std::int64_t exact = 0;
     switch (n.op) {
-      case Operator::Add: return integers ? Value::of_integer(a.integer + b.integer) : Value::of_real(a.as_real() + b.as_real());
+      case Operator::Add:
+        if (integers && !__builtin_add_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() + b.as_real());
       case Operator::Subtract:
-        return integers ? Value::of_integer(a.integer - b.integer) : Value::of_real(a.as_real() - b.as_real());
+        if (integers && !__builtin_sub_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() - b.as_real());
       case Operator::Multiply:
-        return integers ? Value::of_integer(a.integer * b.integer) : Value::of_real(a.as_real() * b.as_real());
+        if (integers && !__builtin_mul_overflow(a.integer, b.integer, &exact)) return Value::of_integer(exact);
+        return Value::of_real(a.as_real() * b.as_real());
       case Operator::Divide:
         if (b.as_real() == 0) return {};
         return Value::of_real(a.as_real() / b.as_real());
       case Operator::IntegerDivide:
       case Operator::Modulo: {
         if (!integers || b.integer == 0) return {};
+        if (b.integer == -1) return n.op == Operator::Modulo ? Value::of_integer(0) : negative(a);  // (no INT64_MIN / -1)
         if (n.op == Operator::IntegerDivide) return Value::of_integer(a.integer / b.integer);
         std::int64_t m = a.integer % b.integer;
         if (m != 0 && ((m < 0) != (b.integer < 0))) m += b.integer;  // the sign of the divisor
         return Value::of_integer(m);
       }
       case Operator::Power:
-        if (integers && b.integer >= 0) return Value::of_integer(static_cast<std::int64_t>(std::pow(a.integer, b.integer)));
+        if (integers && b.integer >= 0) {
+          const double power = std::pow(a.integer, b.integer);
+          if (std::abs(power) < 9.2e18) return Value::of_integer(static_cast<std::int64_t>(power));
+          return Value::of_real(power);
+        }
         return Value::of_real(std::pow(a.as_real(), b.as_real()));
       default: return {};
     }
   }
 
-  // Union, difference and intersection (ISO 10303-11 12.6.2-12.6.4), of the
-  // kind of the left aggregate (or of the right when the left is an
-  // element; an intersection with a SET is a SET): a SET keeps each
-  // element once. `a_shape`, `b_shape`: the operands' declared shapes.
+  // Union, difference and intersection (ISO 10303-11 12.6.2-12.6.4): the
+  // result has the kind of the left aggregate (of the right when the left
+  // is an element; an intersection with a SET is a SET). `a_shape`,
+  // `b_shape`: the operands' declared shapes.
   static Value aggregate_operation(Operator op, const Value& a, const Value& b, std::int64_t a_shape,
                                    std::int64_t b_shape) {
     using K = Value::Kind;
-    using Kind = AggregateShape::Kind;
-    const Kind left = AggregateShape::unpack(a_shape).kind, right_kind = AggregateShape::unpack(b_shape).kind;
-    Kind kind = a.kind == K::Aggregate ? left : right_kind;
-    if (op == Operator::Multiply && (left == Kind::Set || right_kind == Kind::Set)) kind = Kind::Set;
-    const bool set = kind == Kind::Set;
-    Elements result = a.kind == K::Aggregate ? *a.elements() : Elements{a};
-    auto contains = [](const Elements& list, const Value& v) {
-      return std::any_of(list.begin(), list.end(), [&](const Value& e) { return equal(e, v) == Truth::True; });
-    };
-    const Elements single = b.kind == K::Aggregate ? Elements{} : Elements{b};
-    const Elements& right = b.kind == K::Aggregate ? *b.elements() : single;
+    const AggregateKind left = kind_of(a_shape), right_kind = kind_of(b_shape);
+    AggregateKind kind = a.kind == K::Aggregate ? left : right_kind;
+    if (op == Operator::Multiply && (left == AggregateKind::Set || right_kind == AggregateKind::Set))
+      kind = AggregateKind::Set;
+    const bool set = kind == AggregateKind::Set;
+    const Elements single_a = a.kind == K::Aggregate ? Elements{} : Elements{a};
+    const Elements single_b = b.kind == K::Aggregate ? Elements{} : Elements{b};
+    const Elements& left_elements = a.kind == K::Aggregate ? *a.elements() : single_a;
+    const Elements& right_elements = b.kind == K::Aggregate ? *b.elements() : single_b;
+    Elements result;
     switch (op) {
-      case Operator::Add:
-        if (a.kind != K::Aggregate) {
-          result = right;
-          if (!set || !contains(result, a)) result.insert(result.begin(), a);
-        } else if (set) {
-          for (const Value& e : right)
-            if (!contains(result, e)) result.push_back(e);
-        } else {
-          result.insert(result.end(), right.begin(), right.end());
-        }
-        break;
-      case Operator::Subtract: std::erase_if(result, [&](const Value& e) { return contains(right, e); }); break;
-      case Operator::Multiply: std::erase_if(result, [&](const Value& e) { return !contains(right, e); }); break;
+      case Operator::Add: result = aggregate_union(left_elements, right_elements, a.kind != K::Aggregate, set); break;
+      case Operator::Subtract: result = aggregate_difference(left_elements, right_elements, set); break;
+      case Operator::Multiply: result = aggregate_intersection(left_elements, right_elements, set); break;
       default: return {};
     }
     Value value = Value::of_elements(std::move(result));
-    if (kind != Kind::None && kind != Kind::Array) value.shape = unbounded(kind);
+    if (kind != AggregateKind::None && kind != AggregateKind::Array) value.shape = unbounded(kind);
     return value;
   }
 
@@ -1182,13 +1328,11 @@ class Interpreter {
   // ------------------------------------------------------------ algorithms
 
   Value invoke(const meta::AlgorithmInfo& algorithm, std::vector<Value>& arguments) {
-    if (depth_ >= max_depth) throw Unevaluable(fmt::format("calls nested deeper than {} in '{}'", max_depth, algorithm.name));
-    ++depth_;
+    const Nesting nesting(depth_, "calls", algorithm.name);
     Frame frame(pool_, std::max<std::size_t>(algorithm.frame, arguments.size()));
     // Moved: a caller reads back only VAR parameters, which are copied back below.
     for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters; ++i) frame.slots[i] = std::move(arguments[i]);
     execute(algorithm.body.nodes, algorithm.body.root, frame);
-    --depth_;
     for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters && i < 32; ++i)
       if (algorithm.var_parameters & (1u << i)) arguments[i] = frame.slots[i];
     return std::move(frame.result);  // a member: not moved implicitly
@@ -1825,6 +1969,23 @@ std::string express_text(const Value& v) {
 
 Value parse_argument(const meta::Model& model, std::string_view text) {
   if (text == "?") return {};
+  if (text.size() >= 2 && text.front() == '[' && text.back() == ']') {  // an aggregate: [e1,e2,...]
+    Elements elements;
+    const std::string_view inside = text.substr(1, text.size() - 2);
+    int nesting = 0;
+    bool quoted = false;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= inside.size(); ++i) {
+      const char c = i < inside.size() ? inside[i] : ',';
+      if (c == '\'') quoted = !quoted;
+      if (quoted) continue;
+      nesting += c == '[' ? 1 : c == ']' ? -1 : 0;
+      if (c != ',' || nesting != 0) continue;
+      if (i > start) elements.push_back(parse_argument(model, inside.substr(start, i - start)));
+      start = i + 1;
+    }
+    return Value::of_elements(std::move(elements));
+  }
   if (text.starts_with("#")) {
     const auto id = static_cast<std::uint32_t>(std::strtoul(std::string(text.substr(1)).c_str(), nullptr, 10));
     for (meta::Instance* i : model.instances())

@@ -119,8 +119,9 @@ std::vector<std::string> list_rules(const meta::SchemaInfo& schema);
 std::string derive_text(meta::Instance& instance, const meta::AttributeInfo& attribute);
 
 /// Calls FUNCTION `function` with `arguments` (instances of `model` or
-/// EXPRESS literals as text: `1`, `2.5`, `'text'`, `.T.`, `#12`) and returns
-/// its result as EXPRESS text; for tests and `stepnc dump`.
+/// EXPRESS literals as text: `1`, `2.5`, `'text'`, `.T.`, `#12`, and
+/// aggregates of them, `[#1,#2]`) and returns its result as EXPRESS text;
+/// for tests and `stepnc dump`.
 std::string call_text(const meta::Model& model, const meta::AlgorithmInfo& function,
                       const std::vector<std::string>& arguments);
 
