@@ -323,7 +323,13 @@ class DocumentBuilder final : public RecordHandler {
   }
 
   bool on_record(const RecordView& record, StreamContext&) override {
-    doc_.release_text_before(parallel_ ? parallel_->needed_from(record.offset) : record.offset);
+    if (!parallel_) {
+      doc_.release_text_before(record.offset);
+    } else if (record.offset >= next_release_) {
+      // The records in flight are still read by the other threads.
+      doc_.release_text_before(parallel_->needed_from(record.offset));
+      next_release_ = record.offset + kReleaseStep;
+    }
     if (record.text.size() > 0xFFFFFFFFu) return report(record.offset, "record longer than 4 GiB", record.id);
     if (options_.validate_parameters && !parallel_) {
       if (auto error = tree_.parse(record.text, record.offset)) return report(error->offset, error->message, record.id);
@@ -427,6 +433,7 @@ class DocumentBuilder final : public RecordHandler {
   detail::RoundTripLayout* layout_;
   std::string line_;  // a record's round-trip text (with layout_)
   std::unique_ptr<detail::ParallelRecords> parallel_;  // jobs > 1
+  std::uint64_t next_release_ = 0;  // parallel: when to give text back next
   bool abandoned_ = false;
 };
 
