@@ -136,6 +136,26 @@ TEST_CASE("round_trip_file writes what read_file and write_file write, and nothi
     CHECK(stepnc_test::read_file(output) == expected);
   }
 
+  // A value instance reference (`@70`, named in the REFERENCE section):
+  // the parallel read gives up, the sequential one reads it cleanly, and
+  // the output is written anew from its document.
+  std::string valued = text;
+  valued.replace(valued.find("DATA;\n"), 6, "REFERENCE;\n@70 = <other.stp#length>;\nENDSEC;\nDATA;\n");
+  valued.replace(valued.find("#1000000=X(#1);"), 15, "#1000000=X(#1,@70);");
+  stepnc_test::write_text(input, valued);
+  const ReadResult valued_read = read_file(input);
+  REQUIRE(valued_read.ok());
+  for (const unsigned jobs : {1u, 2u}) {
+    ReadOptions options;
+    options.jobs = jobs;
+    const fs::path output = directory / fmt::format("out{}.stp", jobs);
+    const RoundTripResult result = round_trip_file(input, output, options);
+    REQUIRE(result.read.ok());
+    CHECK_FALSE(result.write_error);
+    CHECK(stepnc_test::read_file(output) == to_text(*valued_read.document));
+    CHECK(stepnc_test::read_file(output).find("X(#1,@70)") != std::string::npos);
+  }
+
   // An error near the end: the diagnostics of read_file, the old output kept
   // and no temporary file left.
   std::string bad = text;
