@@ -218,6 +218,38 @@ void Document::release_text_before(std::uint64_t offset) const {
   released_before_ = end;
 }
 
+namespace {
+// Maps in the pages of [begin, begin + kReleaseStep) of a mapped text at
+// once, ahead of a reader going through it in order: one system call per
+// step instead of a page fault every few pages (MADV_POPULATE_READ, Linux
+// 5.14; where it is missing or refused the pages fault in as they are read).
+void populate_ahead(const char* text, std::size_t size, std::uint64_t begin) {
+#if defined(MADV_POPULATE_READ)
+  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  begin = begin / page * page;
+  const std::uint64_t end = std::min<std::uint64_t>(begin + kReleaseStep, size);
+  if (begin < end) ::madvise(const_cast<char*>(text) + begin, end - begin, MADV_POPULATE_READ);
+#else
+  (void)text, (void)size, (void)begin;
+#endif
+}
+
+// The record index of a large file (24 bytes a record, 24 MB for the
+// benchmark file) on transparent huge pages where the system offers them
+// on request: a fault per 2 MiB instead of one per 4 KiB page (some 6,000
+// for that file).
+void back_with_huge_pages(void* data, std::size_t bytes) {
+#if defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHugePage - 1) / kHugePage * kHugePage;
+  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) / kHugePage * kHugePage;
+  if (begin < end) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+  (void)data, (void)bytes;
+#endif
+}
+}  // namespace
+
 const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
 
 std::string_view Document::entity_name(const RecordEntry& r) const {
@@ -267,6 +299,7 @@ class DocumentBuilder final : public RecordHandler {
     // regrows (untouched capacity costs address space, not memory).
     const std::size_t expected = doc_.size_ / 48;
     doc_.records_.reserve(expected);
+    back_with_huge_pages(doc_.records_.data(), doc_.records_.capacity() * sizeof(RecordEntry));
     doc_.ids_ = std::make_unique<Document::IdTable>(expected);
     if (const unsigned jobs = parallel_jobs(); jobs > 1) {
       // Batches small enough that every thread gets some of a small file,
@@ -323,6 +356,11 @@ class DocumentBuilder final : public RecordHandler {
   }
 
   bool on_record(const RecordView& record, StreamContext&) override {
+    if (doc_.is_mapped() && record.offset + record.text.size() + kReleaseStep > populated_to_) {
+      // A step ahead of the scanner stays mapped in.
+      populate_ahead(doc_.bytes_.get(), doc_.size_, populated_to_);
+      populated_to_ += kReleaseStep;
+    }
     if (!parallel_) {
       doc_.release_text_before(record.offset);
     } else if (record.offset >= next_release_) {
@@ -434,6 +472,7 @@ class DocumentBuilder final : public RecordHandler {
   std::string line_;  // a record's round-trip text (with layout_)
   std::unique_ptr<detail::ParallelRecords> parallel_;  // jobs > 1
   std::uint64_t next_release_ = 0;  // parallel: when to give text back next
+  std::uint64_t populated_to_ = 0;  // mapped text: mapped in ahead up to here (see populate_ahead)
   bool abandoned_ = false;
 };
 
