@@ -2,7 +2,8 @@
 // stepnc format FILE [-o OUT]: read and write back, losslessly (the Part 21
 // layer's round trip: values keep their spelling, unknown entities and all
 // sections are kept; layout becomes canonical, comments are dropped). The
-// records are formatted on --jobs threads (the same bytes for any number).
+// records are parsed and formatted on --jobs threads (the same bytes for
+// any number), and written to a file while the rest is still being read.
 #include <fmt/format.h>
 
 #include "command.h"
@@ -18,11 +19,13 @@ struct FormatOptions {
 };
 
 int run_format(const FormatOptions& options) {
-  const p21::ReadResult read = p21::read_file(options.file);
-  print_diagnostics(read.diagnostics, options.file);
-  if (!read.ok()) return exit_invalid_input;
-  if (auto error = p21::write_file(*read.document, options.output, read_jobs())) {
-    fmt::print(stderr, "stepnc: {}\n", *error);
+  p21::ReadOptions read_options;
+  read_options.jobs = read_jobs();
+  const p21::RoundTripResult result = p21::round_trip_file(options.file, options.output, read_options);
+  print_diagnostics(result.read.diagnostics, options.file);
+  if (!result.read.ok()) return exit_invalid_input;
+  if (result.write_error) {
+    fmt::print(stderr, "stepnc: {}\n", *result.write_error);
     return exit_failure;
   }
   note_written(options.output);

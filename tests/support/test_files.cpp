@@ -59,4 +59,20 @@ std::size_t replay_files(std::initializer_list<std::filesystem::path> roots,
   return replayed;
 }
 
+std::size_t check_reads_agree_for_any_jobs(const ReadFingerprint& read) {
+  const std::filesystem::path tests = STEPNC_TEST_DATA_DIR;
+  return replay_files({tests / "cli" / "fuzz" / "corpus", tests / "p21" / "fuzz" / "corpus", tests / "p21" / "malformed",
+                       tests / "p21" / "data", std::filesystem::path(STEPNC_SOURCE_DIR) / "samples"},
+                      [&](std::string_view bytes) {
+                        for (const bool strict : {true, false}) {
+                          const std::string expected = read(bytes, 1, strict);
+                          for (const unsigned jobs : {2u, 3u}) {
+                            INFO("jobs " << jobs << (strict ? ", strict" : ", lenient") << "\n"
+                                         << bytes.substr(0, 400));
+                            CHECK(read(bytes, jobs, strict) == expected);
+                          }
+                        }
+                      });
+}
+
 }  // namespace stepnc_test

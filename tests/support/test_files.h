@@ -32,4 +32,14 @@ std::vector<std::filesystem::path> sample_part21_files();
 std::size_t replay_files(std::initializer_list<std::filesystem::path> roots,
                          const std::function<void(std::string_view bytes)>& body);
 
+// A read of `bytes` on `jobs` threads, strict or lenient, spelled out as
+// text (diagnostics and everything read).
+using ReadFingerprint = std::function<std::string(std::string_view bytes, unsigned jobs, bool strict)>;
+
+// Checks that reads on 2 and 3 threads give what the read on 1 gives, strict
+// and lenient, for every corpus, fuzz and sample file of the Part 21 and
+// typed layers (tests/cli/fuzz/corpus, tests/p21/{fuzz/corpus, malformed,
+// data}, samples/); returns how many files were replayed.
+std::size_t check_reads_agree_for_any_jobs(const ReadFingerprint& read);
+
 }  // namespace stepnc_test

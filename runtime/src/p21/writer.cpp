@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lexical.h"
+#include "round_trip.h"
 #include "stepnc/p21/text_codec.h"
 
 namespace stepnc::p21 {
@@ -407,34 +408,48 @@ void append_normalised(std::string_view text, std::string& out) {
   }
 }
 
+void detail::RoundTripLayout::header(const Header& header) {
+  writer_.begin_file();
+  for (const HeaderEntity& entity : header.entities) writer_.raw_record(entity.text);
+  writer_.end_header();
+}
+
+void detail::RoundTripLayout::section(const Section& section) {
+  if (in_data_) writer_.end_data();
+  in_data_ = section.kind == SectionKind::data;
+  if (section.after_end && !ended_) {
+    writer_.end_file();
+    ended_ = true;
+  }
+  if (in_data_) {
+    writer_.begin_data(section.text);
+  } else {
+    writer_.section(section.kind, section.text);
+  }
+}
+
+void detail::RoundTripLayout::finish() {
+  if (in_data_) writer_.end_data();
+  in_data_ = false;
+  if (!ended_) writer_.end_file();
+  ended_ = true;
+}
+
 void write_document(const Document& document, Writer& writer, unsigned jobs) {
-  writer.begin_file();
-  for (const HeaderEntity& entity : document.header().entities) writer.raw_record(entity.text);
-  writer.end_header();
+  detail::RoundTripLayout layout(writer);
+  layout.header(document.header());
   const std::span<const RecordEntry> records = document.records();
-  bool ended = false;
   for (const Section& section : document.sections()) {
-    if (section.after_end && !ended) {
-      writer.end_file();
-      ended = true;
-    }
-    if (section.kind != SectionKind::data) {
-      writer.section(section.kind, section.text);
-      continue;
-    }
-    writer.begin_data(section.text);
+    layout.section(section);
+    if (section.kind != SectionKind::data) continue;
     const std::span<const RecordEntry> data = records.subspan(section.first_record, section.record_count);
     write_in_parts(writer, data.size(), jobs, [&](std::size_t first, std::size_t last, Writer& part) {
       std::string line;
-      for (const RecordEntry& record : data.subspan(first, last - first)) {
-        line.clear();
-        append_normalised(document.text(record), line);
-        part.raw_record(line);
-      }
+      for (const RecordEntry& record : data.subspan(first, last - first))
+        detail::write_normalised_record(document.text(record), line, part);
     });
-    writer.end_data();
   }
-  if (!ended) writer.end_file();
+  layout.finish();
 }
 
 std::string to_text(const Document& document, unsigned jobs) {

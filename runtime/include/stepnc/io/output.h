@@ -22,6 +22,7 @@
 /// write_together() stages every file before any is published.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -59,6 +60,7 @@ class OutputFile {
  private:
   std::optional<std::string> fail(std::string_view what, int error_number);
   void close_descriptor();
+  void start_writeback();
 
   std::filesystem::path given_;   // as the caller named it, for messages
   std::filesystem::path target_;  // the file replaced, symbolic links followed
@@ -67,6 +69,8 @@ class OutputFile {
   bool direct_ = false;
   bool owns_descriptor_ = false;  // false for standard output
   bool prepared_ = false;
+  std::uint64_t written_ = 0;  // bytes written so far
+  std::uint64_t written_back_ = 0;  // of which the write-back was started
   std::optional<std::string> error_;
 };
 

@@ -49,6 +49,12 @@ struct ReadOptions {
   /// that parses every record anyway (the typed reader) may turn this off
   /// and use Document::parse() itself.
   bool validate_parameters = true;
+  /// Threads that parse the records' parameters (with validate_parameters)
+  /// while one scans the file: 0 takes the core count for files of 1 MiB
+  /// and more (one thread below); 1 is the sequential read. The document
+  /// and the diagnostics are the same whatever the number: a file with an
+  /// error is read again on one thread, which reports it.
+  unsigned jobs = 0;
 };
 
 /// A header entity such as FILE_NAME(...); all of them are kept, known or not.

@@ -182,4 +182,20 @@ std::string to_text(const Document& document, unsigned jobs = 1);
 std::optional<std::string> write_file(const Document& document, const std::filesystem::path& path,
                                       unsigned jobs = 1);
 
+/// A read and its round trip (round_trip_file).
+struct RoundTripResult {
+  ReadResult read;  ///< as read_file() gives it
+  std::optional<std::string> write_error;  ///< why the output could not be written
+};
+/// read_file() of `input` and, when the read has no errors, write_file() of
+/// the document to `output`, in one pass: records are written in their
+/// round-trip form as they are read, on `options.jobs` threads, while later
+/// ones are still being parsed. Output to a replaced file (output.h) is
+/// published only when the read has no errors: the part written before an
+/// error is discarded. Output written in place (standard output, a FIFO)
+/// starts after the read. The bytes and the diagnostics are those of
+/// read_file() and write_file().
+RoundTripResult round_trip_file(const std::filesystem::path& input, const std::filesystem::path& output,
+                                const ReadOptions& options = {});
+
 }  // namespace stepnc::p21
