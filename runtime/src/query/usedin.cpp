@@ -2,32 +2,12 @@
 #include "stepnc/query/usedin.h"
 
 #include <algorithm>
-#include <functional>
 
 #include "stepnc/meta/registry.h"
 #include "stepnc/meta/value.h"
 
 namespace stepnc::query {
 namespace {
-
-void collect(const meta::ValueRef& value, const std::function<void(const meta::Instance*)>& found) {
-  switch (value.kind()) {
-    case meta::TypeKind::Entity:
-      if (const meta::Instance* target = value.instance()) found(target);
-      break;
-    case meta::TypeKind::Select:
-      if (const meta::Instance* target = value.select().instance()) found(target);
-      break;
-    case meta::TypeKind::Array:
-    case meta::TypeKind::List:
-    case meta::TypeKind::Bag:
-    case meta::TypeKind::Set:
-      for (std::size_t i = 0, n = value.size(); i < n; ++i) collect(value.element(i), found);
-      break;
-    default:
-      break;
-  }
-}
 
 // "schema.entity.attribute" or "entity.attribute" against an attribute.
 bool matches_role(const meta::AttributeInfo& attribute, std::string_view role) {
@@ -55,7 +35,8 @@ ReferenceIndex::ReferenceIndex(const meta::Model& model) {
     for (const meta::AttributeInfo& attribute : user->entity_info().attributes) {
       if (!attribute.stored()) continue;
       if (auto value = meta::get(*user, attribute)) {
-        collect(*value, [&](const meta::Instance* target) { uses_.push_back(Use{target, user, &attribute}); });
+        meta::for_each_reference(*value,
+                                 [&](const meta::Instance* target) { uses_.push_back(Use{target, user, &attribute}); });
       }
     }
   }

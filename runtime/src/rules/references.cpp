@@ -26,25 +26,6 @@ bool can_refer(const meta::TypeInfo& type, int depth = 0) {
   }
 }
 
-template <class Found>
-void collect(const meta::ValueRef& value, Found& found) {
-  switch (value.kind()) {
-    case meta::TypeKind::Entity:
-      if (meta::Instance* target = value.instance()) found(target);
-      break;
-    case meta::TypeKind::Select:
-      if (meta::Instance* target = value.select().instance()) found(target);
-      break;
-    case meta::TypeKind::Array:
-    case meta::TypeKind::List:
-    case meta::TypeKind::Bag:
-    case meta::TypeKind::Set:
-      for (std::size_t i = 0, n = value.size(); i < n; ++i) collect(value.element(i), found);
-      break;
-    default: break;
-  }
-}
-
 }  // namespace
 
 References::References(const meta::Model& model) {
@@ -90,7 +71,7 @@ References::References(const meta::Model& model) {
             const std::size_t r = row_in(*target, rows);
             if (r < rows) use(r, Use{user, attribute});  // else not of the model
           };
-          collect(*value, found);
+          meta::for_each_reference(*value, found);
         }
     }
   };

@@ -74,4 +74,27 @@ ValueRef emplace(Instance& instance, const AttributeInfo& attribute) noexcept;
 /// select empty. Other storages are left unchanged (they always hold a value).
 void reset(Instance& instance, const AttributeInfo& attribute) noexcept;
 
+/// Calls `found(Instance*)` for every instance a value refers to: an
+/// entity reference, a select holding an instance, and the elements of
+/// aggregates, nested ones included (what USEDIN and INVERSE count).
+template <class Found>
+void for_each_reference(const ValueRef& value, Found&& found) {
+  switch (value.kind()) {
+    case TypeKind::Entity:
+      if (Instance* target = value.instance()) found(target);
+      break;
+    case TypeKind::Select:
+      if (Instance* target = value.select().instance()) found(target);
+      break;
+    case TypeKind::Array:
+    case TypeKind::List:
+    case TypeKind::Bag:
+    case TypeKind::Set:
+      for (std::size_t i = 0, n = value.size(); i < n; ++i) for_each_reference(value.element(i), found);
+      break;
+    default:
+      break;
+  }
+}
+
 }  // namespace stepnc::meta
