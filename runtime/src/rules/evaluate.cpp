@@ -757,8 +757,8 @@ class Interpreter {
   }
 
   // A local's bound expressions (the operands of its Variable node where it
-  // is initialised), evaluated once as ISO 10303-11 9.5.3.3 and 8.2.1 say:
-  // an ARRAY [low:u] is indexed low..u, and HIBOUND/LOBOUND report them.
+  // is initialised), evaluated once there: an ARRAY [low:u] is indexed
+  // low..u (ISO 10303-11 8.2.1), and HIBOUND/LOBOUND report them.
   // Bounds that do not fit the packed shape (a negative one) still give
   // the ARRAY's lower index; HIBOUND/LOBOUND are then `?`.
   void evaluate_bounds(const Node* nodes, const Node& variable, Frame& frame) {
