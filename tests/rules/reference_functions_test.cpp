@@ -180,18 +180,16 @@ TEST_CASE("every FUNCTION of the reference schema, called and its result asserte
   CHECK(called.size() == 37);
 }
 
-// ARRAY locals whose bounds are not constants (`res : ARRAY [low:u] OF ...`
-// in list_to_array and make_array_of_array) keep index 1 as their first:
-// expressc packs only constant bounds into a variable's shape
-// (meta::AggregateShape), so `res[low + i - 1] := lis[i]` with low 0
-// writes the wrong element. The B-spline `weights` and `control_points`
-// derive through them. Correct results asserted here; this test fails
-// until the declared bound expressions are evaluated ([!shouldfail]).
-TEST_CASE("list_to_array and make_array_of_array with bounds from parameters", "[rules][reference][!shouldfail]") {
+// ARRAY locals whose bounds are not constants (`res : ARRAY [low:u] OF
+// ...` in list_to_array and make_array_of_array) are indexed from `low`:
+// expressc emits their bound expressions and the evaluator evaluates them
+// when the local is initialised, so `res[low + i - 1] := lis[i]` with low
+// 0 writes element i. The B-spline `weights` derive through them.
+TEST_CASE("list_to_array and make_array_of_array with bounds from parameters", "[rules][reference]") {
   auto file = read_model();
   using stepnc::rules::call_text;
   CHECK(call_text(file->model, f::list_to_array, {"[#1,#2]", "0", "1"}) == "[#1,#2]");
   CHECK(call_text(file->model, f::make_array_of_array, {"[[1,2],[3,4]]", "0", "1", "0", "1"}) == "[[1,2],[3,4]]");
-  // #14's weights (0, 1) become [1, 0] indexed from 1: weights[0] is `?`.
+  // #14's weights (0, 1) indexed from 0: weights[0] is 0, not positive.
   CHECK(call_text(file->model, f::curve_weights_positive, {"#14"}) == "FALSE");
 }

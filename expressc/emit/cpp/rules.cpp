@@ -569,13 +569,16 @@ class RuleEmitter {
     std::vector<std::function<void(uint32_t)>> steps;
     for (const ast::ConstantDecl& constant : body->constants) {
       const uint32_t slot = bind(constant.name.text);
-      steps.push_back([this, slot, &constant](uint32_t at) { initialise(at, slot, *constant.value); });
+      steps.push_back([this, slot, &constant](uint32_t at) { initialise(at, slot, constant.value.get(), nullptr); });
     }
     for (const ast::LocalVariable& local : body->locals)
       for (const ast::Name& variable : local.names) {
         const uint32_t slot = bind(variable.text, shape_of(local.type));
-        if (local.initializer)
-          steps.push_back([this, slot, &local](uint32_t at) { initialise(at, slot, *local.initializer); });
+        const ast::TypeSpec* bounds = evaluated_bounds(local.type);
+        if (local.initializer || bounds)
+          steps.push_back([this, slot, &local, bounds](uint32_t at) {
+            initialise(at, slot, local.initializer.get(), bounds);
+          });
       }
     for (const auto& s : body->statements)
       steps.push_back([this, &s](uint32_t at) { statement(*s, at); });
@@ -611,14 +614,32 @@ class RuleEmitter {
     (algorithm.rule ? out_.rules : out_.functions).push_back("&meta_algorithms::" + name);
   }
 
-  void initialise(uint32_t at, uint32_t slot, const ast::Expression& value) {
+  // An aggregate type whose bounds are expressions, not constants
+  // (`ARRAY [low:u]` from parameters): the evaluator evaluates them when
+  // the local is initialised (ISO 10303-11 8.2.1: an ARRAY is indexed
+  // low..high). Null when the packed shape already holds the bounds.
+  const ast::TypeSpec* evaluated_bounds(const ast::TypeSpec& type) const {
+    using K = ast::TypeSpec::Kind;
+    const bool aggregate = type.kind == K::Array || type.kind == K::List || type.kind == K::Bag || type.kind == K::Set;
+    if (!aggregate || !type.has_bounds || !type.lower || !type.upper) return nullptr;
+    if (shape_of(type) & 8) return nullptr;  // constant bounds (meta::AggregateShape bit 3)
+    return &type;
+  }
+
+  // `slot := value` (`?` without one); `bounds`: the local's declared bound
+  // expressions, as the operands of the target Variable node.
+  void initialise(uint32_t at, uint32_t slot, const ast::Expression* value, const ast::TypeSpec* bounds) {
     node(at, "Assign");
     const uint32_t first = reserve(2);
     nodes_[at].first = first;
     nodes_[at].count = 2;
     node(first, "Variable").slot = slot;
     if (slot < slot_shapes_.size() && slot_shapes_[slot]) nodes_[first].integer = std::to_string(slot_shapes_[slot]);
-    expression(value, first + 1);
+    if (value)
+      expression(*value, first + 1);
+    else
+      node(first + 1, "Indeterminate");
+    if (bounds) operands(first, {bounds->lower.get(), bounds->upper.get()});
   }
 
   // ---------------------------------------------------------------- printing

@@ -402,6 +402,13 @@ struct Frame {
   std::vector<Value> slots;
   Value self;
   Value result;
+  // Locals whose declared bounds are expressions (`ARRAY [low:u]`), as
+  // evaluated when each was initialised: its packed shape and lower index.
+  struct EvaluatedShape {
+    std::uint32_t slot;
+    std::int64_t shape, lower;
+  };
+  std::vector<EvaluatedShape> shapes;
 };
 
 enum class Flow : std::uint8_t { Next, Return, Escape, Skip };
@@ -728,8 +735,53 @@ class Interpreter {
       if (once.size() != v.elements()->size()) v.heap = std::make_shared<Elements>(std::move(once));
     }
     if (s.kind == AggregateShape::Kind::Array && s.bounded) v.integer = s.lower;
+    // An ARRAY declared without constant bounds (a result `ARRAY OF
+    // GENERIC`) keeps the bounds the value carries.
+    if (s.kind == AggregateShape::Kind::Array && !s.bounded && v.aggregate_kind() == AggregateShape::Kind::Array) return v;
     v.shape = shape;
     return v;
+  }
+
+  // `v` assigned to `variable`: shaped by its declaration, or by the
+  // bounds evaluated for it (evaluate_bounds).
+  static Value shaped(Value v, const Node& variable, const Frame& frame) {
+    for (const Frame::EvaluatedShape& evaluated : frame.shapes)
+      if (evaluated.slot == variable.slot) {
+        if (v.kind != Value::Kind::Aggregate) return v;
+        v = shaped(std::move(v), evaluated.shape);
+        if (v.aggregate_kind() == AggregateShape::Kind::Array) v.integer = evaluated.lower;
+        v.shape = evaluated.shape;
+        return v;
+      }
+    return shaped(std::move(v), variable.integer);
+  }
+
+  // A local's bound expressions (the operands of its Variable node where it
+  // is initialised), evaluated once there: an ARRAY [low:u] is indexed
+  // low..u (ISO 10303-11 8.2.1), and HIBOUND/LOBOUND report them.
+  // Bounds that do not fit the packed shape (a negative one) still give
+  // the ARRAY's lower index; HIBOUND/LOBOUND are then `?`.
+  void evaluate_bounds(const Node* nodes, const Node& variable, Frame& frame) {
+    const Value low = eval(nodes, variable.first, frame);
+    const Value high = eval(nodes, variable.first + 1, frame);
+    AggregateShape s = AggregateShape::unpack(variable.integer);
+    Frame::EvaluatedShape evaluated{variable.slot, 0, low.kind == Value::Kind::Integer ? low.integer : 1};
+    const bool open = high.indeterminate();
+    const auto fits = [](const Value& b, std::int64_t limit) {
+      return b.kind == Value::Kind::Integer && b.integer >= 0 && b.integer < limit;
+    };
+    if (fits(low, std::int64_t{1} << 23) && (open || fits(high, std::int64_t{1} << 30))) {
+      s.bounded = true;
+      s.lower = low.integer;
+      s.upper = open ? -1 : high.integer;
+    }
+    evaluated.shape = s.pack();
+    for (Frame::EvaluatedShape& kept : frame.shapes)
+      if (kept.slot == variable.slot) {
+        kept = evaluated;
+        return;
+      }
+    frame.shapes.push_back(evaluated);
   }
 
   // A variable's value where it is, anything else evaluated into `scratch`:
@@ -1411,7 +1463,7 @@ class Interpreter {
     }
     Value sum_value = Value::of_shared(std::move(elements));
     if (kind != AggregateShape::Kind::None && kind != AggregateShape::Kind::Array) sum_value.shape = unbounded(kind);
-    slot = shaped(std::move(sum_value), target.integer);
+    slot = shaped(std::move(sum_value), target, frame);
     return true;
   }
 
@@ -1426,9 +1478,11 @@ class Interpreter {
         frame.result = n.count ? shaped(eval(nodes, n.first, frame), n.integer) : Value{};
         return Flow::Return;
       case NodeKind::Assign: {
+        const Node& variable = nodes[n.first];
+        if (variable.kind == NodeKind::Variable && variable.count == 2) evaluate_bounds(nodes, variable, frame);
         if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);
-        if (nodes[n.first].kind == NodeKind::Variable) value = shaped(std::move(value), nodes[n.first].integer);
+        if (variable.kind == NodeKind::Variable) value = shaped(std::move(value), variable, frame);
         Value* target = place(nodes, n.first, frame);
         if (!target) throw Unevaluable("an assignment to something that holds no value");
         *target = std::move(value);

@@ -32,7 +32,7 @@ enum class NodeKind : std::uint8_t {
   Logical,          ///< `integer`: 0 FALSE, 1 TRUE, 2 UNKNOWN
   Indeterminate,    ///< `?`
   Self,             ///< SELF
-  Variable,         ///< the frame's `slot`
+  Variable,         ///< the frame's `slot`; where a LOCAL with bound expressions is initialised, operands 0, 1: its bounds
   EnumerationItem,  ///< `text` of `type` (null when the item is ambiguous)
   Population,       ///< every instance of `entity` (an entity name in a RULE)
   Attribute,        ///< operand 0 `.text`
