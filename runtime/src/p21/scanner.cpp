@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <system_error>
 
@@ -64,7 +63,7 @@ bool Scanner::refill(std::size_t keep_from) {
   if (got == 0) {
     at_eof_ = true;
     if (std::ferror(file_))
-      report(Diagnostic{Severity::error, file_name_, {}, 0,
+      report(Diagnostic{Severity::error, file_name_, {}, std::nullopt,
                         "read error: " + std::error_code(errno, std::generic_category()).message()});
   }
   return got > 0;
@@ -89,7 +88,7 @@ bool Scanner::report(Diagnostic diagnostic) {
   return more && !(is_error && options_.strict);
 }
 
-bool Scanner::fail_at(std::uint64_t offset, std::string message, std::uint64_t id) {
+bool Scanner::fail_at(std::uint64_t offset, std::string message, std::optional<std::uint64_t> id) {
   return report(Diagnostic{Severity::error, file_name_, location(offset), id, std::move(message)});
 }
 
@@ -152,9 +151,10 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
     if (p >= end) {
       // A chunk boundary, or the real end of the file.
       const std::uint64_t error_offset = absolute(problem != nullptr ? problem : start);
-      const std::uint64_t id = leading_instance_id(std::string_view(start, static_cast<std::size_t>(end - start)));
+      const std::optional<std::uint64_t> id =
+          leading_instance_id(std::string_view(start, static_cast<std::size_t>(end - start)));
       std::string message = problem != nullptr ? problem_message
-                            : id != 0          ? "unexpected end of file: instance not terminated by ';'"
+                            : id               ? "unexpected end of file: instance not terminated by ';'"
                                                : "unexpected end of file: statement not terminated by ';'";
       if (expected_first_ != nullptr && problem == nullptr) {
         Statement partial{StatementKind::other, std::string_view(start, 1), {}, error_offset};
@@ -171,11 +171,11 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
   }
 }
 
-// The n of a statement starting `#n`, or 0.
-std::uint64_t Scanner::leading_instance_id(std::string_view text) {
-  std::uint64_t id = 0;
-  if (text.size() > 1 && text.front() == '#') std::from_chars(text.data() + 1, text.data() + text.size(), id);
-  return id;
+// The n of a statement starting `#n` (n may be 0), or nothing.
+std::optional<std::uint64_t> Scanner::leading_instance_id(std::string_view text) {
+  if (text.size() < 2 || text.front() != '#') return std::nullopt;
+  const char* p = text.data() + 1;
+  return parse_id(p, text.data() + text.size());
 }
 
 // Sets kind and keyword. Returns false (after reporting) if the statement
@@ -410,8 +410,9 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
 
   const char* p = begin + 1;
   const char* digits = p;
-  const std::uint64_t id = parse_id(p, end);
-  if (id == 0) return fail_at(offset_of(digits), bad_id_message(digits, p));
+  const std::optional<std::uint64_t> parsed = parse_id(p, end);
+  if (!parsed) return fail_at(offset_of(digits), bad_id_message(digits, p));
+  const std::uint64_t id = *parsed;
   const char* unterminated = nullptr;
   p = skip_space(p, end, &unterminated);
   if (*p != '=') return fail_at(offset_of(p), "expected '=' after the instance id", id);
@@ -439,7 +440,7 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
 // Keywords are capital letters, digits and low lines (ISO 10303-21 6.3).
 // Lower case is read, as real files have it, but is an error in a strict
 // read and a warning otherwise; the writer puts it back in capitals.
-bool Scanner::check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id) {
+bool Scanner::check_keyword_case(std::string_view keyword, std::uint64_t offset, std::optional<std::uint64_t> id) {
   if (std::none_of(keyword.begin(), keyword.end(), [](char c) { return c >= 'a' && c <= 'z'; })) return true;
   return report(Diagnostic{options_.strict ? Severity::error : Severity::warning, file_name_, location(offset), id,
                            fmt::format("keyword '{}' is not in capitals (ISO 10303-21 6.3); read as {}", keyword,
@@ -504,7 +505,7 @@ Diagnostics stream_file(const std::filesystem::path& path, const ReadOptions& op
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     Diagnostics diagnostics(options.error_limit);
-    diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0,
+    diagnostics.add(Diagnostic{Severity::error, path.string(), {}, std::nullopt,
                                "cannot open file: " + std::error_code(errno, std::generic_category()).message()});
     return diagnostics;
   }

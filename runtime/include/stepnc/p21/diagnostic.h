@@ -28,7 +28,7 @@ struct Diagnostic {
   Severity severity = Severity::error;  ///< error or warning
   std::string file;  ///< the file name given to the reader
   SourceLocation location;  ///< line and column
-  std::uint64_t instance_id = 0;  ///< 0: not tied to an instance
+  std::optional<std::uint64_t> instance_id;  ///< empty: not tied to an instance (#0 is a valid id)
   std::string message;  ///< what is wrong
 
   /// "file:line:col: error: `#id`: message" (parts that are unknown are left out).
