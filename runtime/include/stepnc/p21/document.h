@@ -159,7 +159,7 @@ class Document {
   /// is built on first use; not thread-safe on that first call).
   SourceLocation location(std::uint64_t offset) const;
   /// A Diagnostic for a ParseError, with this file's name and line:col.
-  Diagnostic diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id = std::nullopt,
+  Diagnostic diagnostic(const ParseError& error, std::uint64_t instance_id = 0,
                         Severity severity = Severity::error) const;
 
  private:

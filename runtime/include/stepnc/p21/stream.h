@@ -60,7 +60,7 @@ class StreamContext {
   virtual bool report(Diagnostic diagnostic) = 0;
 
   /// A Diagnostic for a ParseError in this file, with line and column.
-  Diagnostic diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id = std::nullopt,
+  Diagnostic diagnostic(const ParseError& error, std::uint64_t instance_id = 0,
                         Severity severity = Severity::error) const {
     return Diagnostic{severity, file_name(), location(error.offset), instance_id, error.message};
   }
