@@ -144,6 +144,38 @@ TEST_CASE("stepnc format rewrites losslessly and never leaves partial output", "
   for (const auto& p : {out, again, truncated}) fs::remove(p);
 }
 
+// ISO 10303-21:2016 5.4: #0 is an instance name; every command takes it.
+TEST_CASE("stepnc format, validate, query and dump take instance #0", "[cli]") {
+  const fs::path input = fs::path(STEPNC_TEST_DATA_DIR) / "p21" / "data" / "zero_id.stp";
+  std::ifstream in(input, std::ios::binary);
+  const std::string original((std::istreambuf_iterator<char>(in)), {});
+  REQUIRE(original.find("#0=CARTESIAN_POINT(") != std::string::npos);
+  const fs::path out = fs::temp_directory_path() / "stepnc-cli-zero-id.stp";
+  fs::remove(out);
+  for (const char* jobs : {"1", "2"}) {
+    INFO("jobs " << jobs);
+    REQUIRE(stepnc("format " + input.string() + " -o " + out.string() + " --jobs " + jobs).exit_code == 0);
+    std::ifstream written(out, std::ios::binary);
+    CHECK(std::string((std::istreambuf_iterator<char>(written)), {}) == original);  // byte for byte
+  }
+  fs::remove(out);
+  // --no-rules: the file's lone geometry breaks representation_item.wr1 (no representation uses it).
+  const Run valid = stepnc("validate --no-rules " + input.string());
+  CHECK(valid.exit_code == 0);
+  CHECK_THAT(valid.out, Catch::Contains("4 instances"));
+  for (const char* mode : {"--lazy", "--eager"}) {
+    INFO(mode);
+    const Run name = stepnc("query " + input.string() + " /#0/name " + mode);
+    CHECK(name.exit_code == 0);
+    CHECK(name.out == "'origin'\n");
+    const Run location = stepnc("query " + input.string() + " /#2/location/coordinates " + mode);
+    CHECK(location.out == "(0.,0.,0.)\n");
+    const Run dump = stepnc("dump " + input.string() + " '#0' " + mode);
+    CHECK(dump.exit_code == 0);
+    CHECK(dump.out == "#0=cartesian_point (machining_schema)\n  name: 'origin'\n  coordinates: (0.,0.,0.)\n");
+  }
+}
+
 TEST_CASE("stepnc post writes the program and its trace atomically", "[cli]") {
   const fs::path program = fs::temp_directory_path() / "stepnc-cli-example1.mpf";
   const fs::path trace = fs::temp_directory_path() / "stepnc-cli-example1.json";

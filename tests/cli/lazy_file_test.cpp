@@ -352,3 +352,28 @@ TEST_CASE("lazy read: an ABSTRACT entity or an id too large, reached by id, is t
   REQUIRE(file->diagnostics().items().size() == 2);
   CHECK(file->diagnostics().items()[1].to_string() == eager.diagnostics.items()[1].to_string());
 }
+
+// ISO 10303-21:2016 5.4: #0 is an instance name; the lazy index finds it
+// by id, in id order and out of it, and references to it are followed.
+TEST_CASE("lazy read: instance #0 is found by id and through references", "[exchange][lazy]") {
+  const fs::path dir = stepnc_test::scratch_directory("lazy-zero");
+  const fs::path in_order = fs::path(STEPNC_TEST_DATA_DIR) / "p21" / "data" / "zero_id.stp";
+  stepnc_test::write_text(dir / "unordered.stp", kHead + "#3=POLYLINE('path',(#0,#2));\n#2=CARTESIAN_POINT('two',(2.,0.,0.));\n"
+                                                         "#0=CARTESIAN_POINT('origin',(0.,0.,0.));\n" + kTail);
+  for (const fs::path& path : {in_order, dir / "unordered.stp"}) {
+    INFO(path.string());
+    auto file = open_valid(path);
+    CHECK(answer(query::evaluate("/#0/coordinates", *file, stepnc_test::registry())) == "(0.,0.,0.)\n");
+    const query::QueryResult points = query::evaluate("/#3/points[*]", *file, stepnc_test::registry());
+    REQUIRE(points.ok());
+    REQUIRE(points.nodes.size() == 2);
+    CHECK(points.nodes[0].to_string() == "#0");
+    REQUIRE(points.nodes[0].instance != nullptr);
+    CHECK(points.nodes[0].instance->id() == 0);
+    CHECK(file->find(0) == points.nodes[0].instance);
+    const query::QueryResult all = query::evaluate("/cartesian_point", *file, stepnc_test::registry());
+    REQUIRE(all.nodes.size() == (path == in_order ? 1u : 2u));
+    CHECK(all.nodes.front().instance->id() == 0);  // id order
+    CHECK(file->diagnostics().items().empty());
+  }
+}

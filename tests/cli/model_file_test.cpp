@@ -7,6 +7,7 @@
 #include "machining_schema.h"
 #include "stepnc/exchange/model_file.h"
 #include "support.h"
+#include "test_files.h"
 
 using stepnc::exchange::read_model_text;
 using stepnc_test::registry;
@@ -312,4 +313,59 @@ TEST_CASE("constant references and value instances are read but refused by the t
   CHECK(diagnostics.find("constants.stp:12:24: error: #2: attribute 'coordinates' of cartesian_point: @7 is a value "
                          "instance of another file (ISO 10303-21:2016 10); the typed read does not resolve external "
                          "references") != std::string::npos);
+}
+
+// ISO 10303-21:2016 5.4 makes #0 an instance name like any other: it is
+// created, referred to (before and after its definition) and written back.
+TEST_CASE("instance #0 reads into the typed model and writes back byte for byte", "[exchange]") {
+  const std::string text =
+      stepnc_test::read_file(std::filesystem::path(STEPNC_TEST_DATA_DIR) / "p21" / "data" / "zero_id.stp");
+  // The same records with #0 last: every reference to it is a forward one.
+  std::string forward = text;
+  const std::string zero = "#0=CARTESIAN_POINT('origin',(0.,0.,0.));\n";
+  REQUIRE(forward.find(zero) != std::string::npos);
+  forward.erase(forward.find(zero), zero.size());
+  forward.insert(forward.find("ENDSEC;\nEND-ISO"), zero);
+  for (const std::string& input : {text, forward}) {
+    for (const bool strict : {true, false}) {
+      for (const unsigned jobs : {1u, 2u}) {
+        stepnc::exchange::ModelReadOptions options;
+        options.strict = strict;
+        options.jobs = jobs;
+        auto result = read_model_text(input, "zero_id.stp", registry(), options);
+        INFO(result.diagnostics.to_string());
+        REQUIRE(result.ok());
+        CHECK(result.diagnostics.items().empty());
+        const stepnc::meta::Model& model = result.file->model;
+        REQUIRE(model.size() == 4);
+        std::vector<stepnc::meta::Instance*> storage;
+        const auto by_id = model.in_id_order(storage);
+        auto* origin = stepnc::meta::instance_cast<machining_schema::cartesian_point>(by_id[0]);
+        REQUIRE(origin != nullptr);
+        CHECK(origin->id() == 0);
+        CHECK(origin->name == "origin");
+        auto* placement = stepnc::meta::instance_cast<machining_schema::axis2_placement_3d>(by_id[2]);
+        REQUIRE(placement != nullptr);
+        CHECK(placement->location == origin);
+        auto* path = stepnc::meta::instance_cast<machining_schema::polyline>(by_id[3]);
+        REQUIRE(path != nullptr);
+        CHECK(path->points == std::vector<machining_schema::cartesian_point*>{origin, origin});
+        // The typed writer writes in id order: the file as it is on disk.
+        CHECK(stepnc::exchange::to_text(*result.file) == text);
+      }
+    }
+  }
+}
+
+TEST_CASE("a model built in code may hold #0; without an id the next one is taken", "[exchange]") {
+  stepnc::meta::Model model;
+  auto& zero = model.create<machining_schema::cartesian_point>(0);
+  auto& next = model.create<machining_schema::cartesian_point>();
+  CHECK(zero.id() == 0);
+  CHECK(next.id() == 1);
+  std::vector<stepnc::meta::Instance*> storage;
+  const auto ordered = model.in_id_order(storage);
+  CHECK(storage.empty());  // created in id order: the list itself
+  REQUIRE(ordered.size() == 2);
+  CHECK(ordered[0] == &zero);
 }

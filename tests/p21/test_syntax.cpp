@@ -344,3 +344,42 @@ TEST_CASE("constant references and value instances (ISO 10303-21:2016 6.4, 10.1)
         "t.stp:8:6: error: #1: a constant name is written in capitals and digits (ISO 10303-21:2016 6.4): '#Dummy'");
   CHECK(first_error("#1=A(@);") == "t.stp:8:7: error: #1: expected a value instance id or a constant name after '@'");
 }
+
+// ISO 10303-21:2016 5.4: ENTITY_INSTANCE_NAME = "#" DIGIT { DIGIT }, so #0
+// is a name and a reference like any other. Leading zeros are dropped (#007
+// is #7), as the reader has always done.
+TEST_CASE("instance #0 is defined, referenced, reported and written back", "[p21][syntax]") {
+  for (const bool strict : {true, false}) {
+    for (const unsigned jobs : {1u, 2u}) {
+      ReadOptions options;
+      options.strict = strict;
+      options.jobs = jobs;
+      const std::string text = p21_test::wrap("#1=B(#0,(#0,#7));#0=A('zero');#007=C(#00);");
+      ReadResult result = read_text(text, "t.stp", options);
+      INFO(result.diagnostics.to_string());
+      REQUIRE(result.ok());
+      CHECK(result.diagnostics.items().empty());  // no "missing instance #0"
+      const Document& doc = *result.document;
+      ParamTree tree;
+      CHECK(parse_simple(doc, 0, tree).entity() == "A");
+      CHECK(tree.id() == 0);
+      const std::vector<Value> b = attributes(parse_simple(doc, 1, tree));
+      CHECK(b[0].reference() == 0);
+      CHECK(b[1].children().at(0)->reference() == 0);
+      CHECK(attributes(parse_simple(doc, 7, tree))[0].reference() == 0);
+      // Records are written back as spelled, leading zeros included.
+      CHECK(to_text(doc).find("#1=B(#0,(#0,#7));\n#0=A('zero');\n#007=C(#00);\n") != std::string::npos);
+    }
+  }
+
+  // A problem in #0 is reported at its place (a Diagnostic's instance_id 0
+  // means "no instance", so it carries no #id label), and so is a
+  // reference to a missing #0.
+  ReadResult bad = read_data("#0=A(1.2.3);", false);
+  CHECK(bad.diagnostics.to_string() == "t.stp:8:9: error: expected ')', found '.'\n");
+  ReadResult missing = read_data("#1=A(#0);");
+  CHECK_FALSE(missing.ok());
+  CHECK(missing.diagnostics.to_string() == "t.stp:8:6: error: #1: reference to missing instance #0\n");
+  ReadResult twice = read_data("#0=A();#00=A();", false);
+  CHECK(twice.diagnostics.to_string() == "t.stp:8:8: error: duplicate instance id (first defined at line 8)\n");
+}

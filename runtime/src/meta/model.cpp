@@ -89,14 +89,15 @@ void* Model::allocate(std::size_t size, std::size_t alignment) {
   return p;
 }
 
-void Model::adopt(Instance& instance, std::uint32_t id) {
-  instance.id_ = id != 0 ? id : last_id_ + 1;
-  in_id_order_ = in_id_order_ && instance.id_ > last_id_;
+void Model::adopt(Instance& instance, std::optional<std::uint32_t> id) {
+  instance.id_ = id ? *id : last_id_ + 1;
+  // last_id_ starts at 0, which is also a valid id: the first instance is always in order.
+  in_id_order_ = in_id_order_ && (instances_.empty() || instance.id_ > last_id_);
   last_id_ = std::max(last_id_, instance.id_);
   instances_.push_back(&instance);
 }
 
-Instance* Model::create(const EntityInfo& entity, std::uint32_t id) {
+Instance* Model::create(const EntityInfo& entity, std::optional<std::uint32_t> id) {
   if (entity.create == nullptr) return nullptr;
   return entity.create(*this, id);
 }

@@ -424,8 +424,8 @@ class DocumentBuilder final : public RecordHandler {
     for (std::size_t at = 0; at < text.size(); ++at) {
       if ((text[at] != '#' && text[at] != '@') || (at > 0 && text[at - 1] != '\n')) continue;
       const char* p = text.data() + at + 1;
-      if (const std::uint64_t id = detail::parse_id(p, text.data() + text.size()))
-        (text[at] == '#' ? external_ids_ : external_values_).push_back(id);
+      if (const std::optional<std::uint64_t> id = detail::parse_id(p, text.data() + text.size()))
+        (text[at] == '#' ? external_ids_ : external_values_).push_back(*id);
     }
     std::sort(external_ids_.begin(), external_ids_.end());
     std::sort(external_values_.begin(), external_values_.end());

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string_view>
 
 #if defined(__SSE2__)
@@ -124,8 +125,11 @@ inline std::size_t count_newlines(const char* p, const char* end) {
 }
 
 // Parses the digits of an instance id at p (advancing p past all digits).
-// Returns 0 (never a valid id) when there are none or the value overflows.
-inline std::uint64_t parse_id(const char*& cursor, const char* end) {
+// ISO 10303-21:2016 5.4 defines an instance name as "#" DIGIT { DIGIT }, so
+// #0 is a name like any other. Leading zeros are accepted and dropped
+// (#007 names #7), as the reader has always done. Empty when there are no
+// digits or the value overflows 64 bits.
+inline std::optional<std::uint64_t> parse_id(const char*& cursor, const char* end) {
   std::uint64_t id = 0;
   const char* const start = cursor;
   const char* p = cursor;  // a local copy: `cursor` may be a member (see RecordParser::keyword)
@@ -136,17 +140,15 @@ inline std::uint64_t parse_id(const char*& cursor, const char* end) {
     const char* first = start;
     while (first < p && *first == '0') ++first;
     const std::string_view digits(first, static_cast<std::size_t>(p - first));
-    if (digits.size() > 20 || (digits.size() == 20 && digits > "18446744073709551615")) return 0;
+    if (digits.size() > 20 || (digits.size() == 20 && digits > "18446744073709551615")) return std::nullopt;
   }
-  return p == start ? 0 : id;
+  if (p == start) return std::nullopt;
+  return id;
 }
 
-// Why parse_id() returned 0 for the digits in [digits, after).
+// Why parse_id() found no id in the digits [digits, after).
 inline const char* bad_id_message(const char* digits, const char* after) {
-  if (digits == after) return "expected an instance id (a positive integer) after '#'";
-  for (const char* p = digits; p < after; ++p)
-    if (*p != '0') return "instance id too large";
-  return "instance id 0 is not allowed (ids start at 1)";
+  return digits == after ? "expected an instance id (digits) after '#'" : "instance id too large";
 }
 
 // Skips whitespace and /* comments */ starting at p. Returns the first

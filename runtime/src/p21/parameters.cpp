@@ -78,8 +78,9 @@ class RecordParser {
     if (*p_ == '#') {
       ++p_;
       const char* digits = p_;
-      tree_.id_ = detail::parse_id(p_, end_);
-      if (tree_.id_ == 0) return fail(digits, detail::bad_id_message(digits, p_));
+      const std::optional<std::uint64_t> id = detail::parse_id(p_, end_);
+      if (!id) return fail(digits, detail::bad_id_message(digits, p_));
+      tree_.id_ = *id;
       skip();
       if (!expect('=')) return error_;
       skip();
@@ -270,15 +271,15 @@ class RecordParser {
     const std::uint32_t index = add_node(kind, p_);
     ++p_;
     const char* digits = p_;
-    const std::uint64_t id = detail::parse_id(p_, end_);
-    if (id == 0) {
+    const std::optional<std::uint64_t> id = detail::parse_id(p_, end_);
+    if (!id) {
       if (kind == ParamKind::value_reference && digits == p_)
         fail(digits, "expected a value instance id or a constant name after '@'");
       else
         fail(digits, detail::bad_id_message(digits, p_));
       return false;
     }
-    tree_.nodes_[index].value.reference = id;
+    tree_.nodes_[index].value.reference = *id;
     close_node(index);
     return true;
   }
@@ -471,7 +472,7 @@ class RecordParser {
 std::optional<ParseError> ParamTree::parse(std::string_view record_text, std::uint64_t base_offset) {
   source_ = record_text;
   base_offset_ = base_offset;
-  id_ = 0;
+  id_.reset();
   complex_ = false;
   nodes_.clear();
   parts_.clear();

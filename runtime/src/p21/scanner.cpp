@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <system_error>
 
@@ -152,16 +151,17 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
     if (p >= end) {
       // A chunk boundary, or the real end of the file.
       const std::uint64_t error_offset = absolute(problem != nullptr ? problem : start);
-      const std::uint64_t id = leading_instance_id(std::string_view(start, static_cast<std::size_t>(end - start)));
+      const std::optional<std::uint64_t> id =
+          leading_instance_id(std::string_view(start, static_cast<std::size_t>(end - start)));
       std::string message = problem != nullptr ? problem_message
-                            : id != 0          ? "unexpected end of file: instance not terminated by ';'"
+                            : id               ? "unexpected end of file: instance not terminated by ';'"
                                                : "unexpected end of file: statement not terminated by ';'";
       if (expected_first_ != nullptr && problem == nullptr) {
         Statement partial{StatementKind::other, std::string_view(start, 1), {}, error_offset};
         message = fmt::format("expected {}, found {}", expected_first_, describe(partial));
       }
       if (refill(keep(start))) continue;
-      fail_at(error_offset, std::move(message), id);
+      fail_at(error_offset, std::move(message), id.value_or(0));  // Diagnostic: 0 is "no instance"
       return false;
     }
     pos_ = keep(p + 1);
@@ -171,11 +171,11 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
   }
 }
 
-// The n of a statement starting `#n`, or 0.
-std::uint64_t Scanner::leading_instance_id(std::string_view text) {
-  std::uint64_t id = 0;
-  if (text.size() > 1 && text.front() == '#') std::from_chars(text.data() + 1, text.data() + text.size(), id);
-  return id;
+// The n of a statement starting `#n` (n may be 0), or nothing.
+std::optional<std::uint64_t> Scanner::leading_instance_id(std::string_view text) {
+  if (text.size() < 2 || text.front() != '#') return std::nullopt;
+  const char* p = text.data() + 1;
+  return parse_id(p, text.data() + text.size());
 }
 
 // Sets kind and keyword. Returns false (after reporting) if the statement
@@ -410,8 +410,9 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
 
   const char* p = begin + 1;
   const char* digits = p;
-  const std::uint64_t id = parse_id(p, end);
-  if (id == 0) return fail_at(offset_of(digits), bad_id_message(digits, p));
+  const std::optional<std::uint64_t> parsed = parse_id(p, end);
+  if (!parsed) return fail_at(offset_of(digits), bad_id_message(digits, p));
+  const std::uint64_t id = *parsed;
   const char* unterminated = nullptr;
   p = skip_space(p, end, &unterminated);
   if (*p != '=') return fail_at(offset_of(p), "expected '=' after the instance id", id);

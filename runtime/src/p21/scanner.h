@@ -72,7 +72,7 @@ class Scanner final : public StreamContext {
   bool check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id = 0);
   static std::string upper_case(std::string_view keyword);
   std::string describe(const Statement& statement) const;
-  static std::uint64_t leading_instance_id(std::string_view text);
+  static std::optional<std::uint64_t> leading_instance_id(std::string_view text);
 
   // Input window.
   std::FILE* file_ = nullptr;

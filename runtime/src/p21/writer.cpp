@@ -142,7 +142,6 @@ void Writer::end_file() { put("END-ISO-10303-21;\n"); }
 
 void Writer::begin_record(std::uint64_t id) {
   if (depth_ != 0) fail("instance begun inside another instance");
-  if (id == 0) fail("instance id 0 is not allowed");
   char* p = put_id(room(kMaxIdLength + 1), id);
   *p++ = '=';
   commit(p);
@@ -267,7 +266,6 @@ void Writer::derived() {
 }
 
 void Writer::reference(std::uint64_t id) {
-  if (id == 0) fail("reference to instance id 0");
   commit(put_id(begin_value(kMaxIdLength), id));
 }
 

@@ -231,7 +231,7 @@ struct EntityInfo {
   std::span<const AttributeInfo> inverses{};    ///< INVERSE attributes declared here
 
   /// Concrete (instantiable) classes only.
-  Instance* (*create)(Model& model, std::uint32_t id) = nullptr;
+  Instance* (*create)(Model& model, std::optional<std::uint32_t> id) = nullptr;
   std::span<const Upcast> upcasts{};  ///< every ancestor and itself
   std::span<const DomainRuleInfo> where{};   ///< WHERE rules declared here
   std::span<const UniqueRuleInfo> unique{};  ///< UNIQUE clauses declared here
@@ -314,7 +314,7 @@ void* upcast_to(void* object) noexcept {
 }
 
 template <class Object>
-Instance* create_in(Model& model, std::uint32_t id);  ///< defined in model.h
+Instance* create_in(Model& model, std::optional<std::uint32_t> id);  ///< defined in model.h
 
 /// AggregateOps for a `Container` type (std::vector, InlineVector).
 template <class Container>

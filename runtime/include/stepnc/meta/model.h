@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -35,9 +36,10 @@ class Model {
   ~Model();
 
   /// Creates an instance of a generated entity class. Without an id, the
-  /// next free one (one more than the largest so far) is used.
+  /// next free one (one more than the largest so far) is used; #0 is an id
+  /// like any other (ISO 10303-21:2016 5.4).
   template <class T>
-  T& create(std::uint32_t id = 0) {
+  T& create(std::optional<std::uint32_t> id = std::nullopt) {
     static_assert(!T::meta_entity_is_abstract, "an ABSTRACT entity cannot be instantiated");
     T* object = new (allocate(sizeof(T), alignof(T))) T();
     adopt(*object, id);
@@ -46,7 +48,7 @@ class Model {
 
   /// Creates an instance of the entity by its table (the reader's path);
   /// null when the entity is abstract.
-  Instance* create(const EntityInfo& entity, std::uint32_t id = 0);
+  Instance* create(const EntityInfo& entity, std::optional<std::uint32_t> id = std::nullopt);
 
   /// Makes room for `count` instances in all (a reader knows how many it
   /// will create), so the instance list is allocated once, at its size.
@@ -65,7 +67,7 @@ class Model {
 
   /// Raw arena storage; used by meta::create_in. Exposed for generated code only.
   void* allocate(std::size_t size, std::size_t alignment);
-  void adopt(Instance& instance, std::uint32_t id);  ///< registers a new instance under `id` (0: the next free one)
+  void adopt(Instance& instance, std::optional<std::uint32_t> id);  ///< registers a new instance under `id` (empty: the next free one)
 
  private:
   struct FreeBytes {
@@ -85,7 +87,7 @@ class Model {
 };
 
 template <class Object>
-Instance* create_in(Model& model, std::uint32_t id) {
+Instance* create_in(Model& model, std::optional<std::uint32_t> id) {
   return &model.create<Object>(id);
 }
 

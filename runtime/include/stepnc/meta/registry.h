@@ -5,7 +5,7 @@
 ///
 ///   meta::Registry registry = meta::Registry::of_set(machining_schema::meta_schema);
 ///   const meta::EntityInfo* e = registry.find_entity("CLOSED_POCKET");
-///   meta::Instance* pocket = e->create(model, 0);
+///   meta::Instance* pocket = model.create(*e);  // the next free id
 #pragma once
 
 #include <initializer_list>

@@ -186,7 +186,7 @@ class ParamTree {
   /// `record_text`, used for error offsets. On error the tree is left empty.
   std::optional<ParseError> parse(std::string_view record_text, std::uint64_t base_offset = 0);
 
-  std::uint64_t id() const { return id_; }  ///< 0 for header entities
+  std::optional<std::uint64_t> id() const { return id_; }  ///< empty for header entities (#0 is a valid id)
   bool is_complex() const { return complex_; }  ///< `#id=(A(...)B(...))` form
   std::span<const EntityPart> parts() const { return parts_; }  ///< the entities of the record, one unless complex
   std::span<const ParamNode> nodes() const { return nodes_; }  ///< every node, in pre-order
@@ -205,7 +205,7 @@ class ParamTree {
   friend class RecordParser;
   std::string_view source_;
   std::uint64_t base_offset_ = 0;
-  std::uint64_t id_ = 0;
+  std::optional<std::uint64_t> id_;
   bool complex_ = false;
   std::vector<ParamNode> nodes_;
   std::vector<EntityPart> parts_;
