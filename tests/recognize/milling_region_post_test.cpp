@@ -8,7 +8,9 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "machining_schema.h"
 #include "milling_schema.h"
@@ -61,6 +63,36 @@ TEST_CASE("3-axis motion imported as a region posts back to the program's feed m
   REQUIRE(original.ok());
   const auto want = feed_moves(original);
   REQUIRE(want.size() == 200);
+
+  // The adapter reads the region as the file gives it: its extent bounds
+  // the cutter locations, its depth reaches the lowest one.
+  const auto described = machining::describe_project(*imported.result.model);
+  REQUIRE(described.ok());
+  REQUIRE(described.project.features.size() == 1);
+  const machining::Feature& region = described.project.features.front();
+  const auto* shape = std::get_if<machining::Region>(&region.shape);
+  REQUIRE(shape);
+  REQUIRE(shape->extent.size() >= 4);
+  double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300, lo_z = 1e300;
+  for (const FeedMove& m : want) {
+    lo_x = std::min(lo_x, m.x), hi_x = std::max(hi_x, m.x);
+    lo_y = std::min(lo_y, m.y), hi_y = std::max(hi_y, m.y);
+    lo_z = std::min(lo_z, m.z);
+  }
+  for (const machining::Vec2 v : shape->extent) {
+    const machining::Vec3 g = region.placement.to_global(v);
+    CHECK((std::abs(g.x - lo_x) < 1e-6 || std::abs(g.x - hi_x) < 1e-6));
+    CHECK((std::abs(g.y - lo_y) < 1e-6 || std::abs(g.y - hi_y) < 1e-6));
+  }
+  CHECK(region.placement.location.z - region.depth == Approx(lo_z).margin(1e-6));
+  // The milling check on the posted motion: a region's free floor is not
+  // asked to be reached, and the tool may cut its radius beyond the extent.
+  const auto generated = machining::generate(described.project);
+  REQUIRE(generated.ok());
+  const auto checked = machining::simulate_milling(described.project, generated.program);
+  INFO(checked.text());
+  CHECK(checked.problems.empty());
+  CHECK(checked.cells_checked > 0);
 
   for (const std::string dialect : {"rs274ngc", "fanuc"}) {
     INFO(dialect);
