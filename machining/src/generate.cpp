@@ -723,6 +723,11 @@ bool Generator::sizes_make_sense(const Job& job) {
   };
   if (f.depth < 0) return refuse(f.source, fmt::format("negative depth {:g}", f.depth));
   if (explicit_motion) return true;
+  // A region's surface is free: no generated pass knows where it lies.
+  if (std::holds_alternative<machining::Region>(f.shape))
+    return refuse(op.source, fmt::format("{} has no explicit toolpath: region '{}' (#{}) is machined only by "
+                                         "explicit toolpaths (a freeform_operation, or its_toolpath)",
+                                         to_string(op.kind), f.source.name, f.source.id));
   if (!turning() && job.tool->diameter <= eps)
     return refuse(job.tool->source, "milling and drilling tools need a positive diameter");
   if (op.axial_cutting_depth && *op.axial_cutting_depth <= eps)

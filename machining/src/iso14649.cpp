@@ -295,6 +295,8 @@ class Describer {
     } else if (auto* axial = as<ms::round_hole>(&f); axial && turning_) {
       // A hole on the spindle axis of a lathe part.
       out.shape = CentreHole{size(axial->diameter), -plane_z(axial->depth).value_or(0)};
+    } else if (auto* region = as<ms::region_projection>(&f)) {
+      region_projection(*region, out);
     } else if (!mf) {
       unsupported(f, f.its_id, "feature");
     } else if (auto p = placement(mf->feature_placement, f, f.its_id)) {
@@ -363,6 +365,38 @@ class Describer {
     } else {
       unsupported(f, f.its_id, "turning feature");
     }
+  }
+
+  // region_projection: its projection curve bounds the extent, its depth
+  // is the feature's. feature_placement is OPTIONAL for a region (ISO
+  // 14649-10 region): without one its frame is the workpiece's. Like every
+  // milling feature here it reaches down along -Z only.
+  void region_projection(const ms::region_projection& region, Feature& out) {
+    if (region.feature_placement) {
+      auto p = placement(region.feature_placement, region, region.its_id);
+      if (!p) return;
+      out.placement = *p;
+    }
+    out.toolpath_frame = out.placement;
+    out.depth = size(region.depth);
+    const auto* d = region.proj_dir;
+    const bool down = d && d->direction_ratios.size() == 3 && std::abs(d->direction_ratios[0]) < 1e-9 &&
+                      std::abs(d->direction_ratios[1]) < 1e-9 && d->direction_ratios[2] < 0;
+    if (!down) {
+      error(region, region.its_id, "region_projection's projection direction must be -Z (2.5D along the setup's Z axis)");
+      return;
+    }
+    const auto* curve = as<ms::polyline>(region.proj_curve);
+    if (!curve) {
+      error(region, region.its_id, "region_projection's projection curve must be a polyline");
+      return;
+    }
+    Region shape;
+    for (const ms::cartesian_point* p : curve->points) {
+      const Vec3 v = point(p);
+      shape.extent.push_back({v.x, v.y});
+    }
+    out.shape = std::move(shape);
   }
 
   // planar_face: local x along the course of travel; the removal boundary

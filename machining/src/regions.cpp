@@ -191,6 +191,15 @@ std::optional<MillingRegion> milling_region(const Feature& feature, double open_
     }
     return MillingRegion{std::move(area), {}};
   }
+  if (auto* region = std::get_if<Region>(&shape)) {
+    // The extent as the file gives it (the importer's bounds the tool axis).
+    auto area = polygons::make_area(region->extent);
+    if (area.empty()) {
+      problem = "the region's projection curve encloses no area";
+      return std::nullopt;
+    }
+    return MillingRegion{std::move(area), {}};
+  }
   problem = "not a milling feature";
   return std::nullopt;
 }

@@ -228,8 +228,11 @@ SimulationReport simulate_milling(const MachiningProject& project, const Program
         const bool through = std::holds_alternative<RoundHole>(f.shape) &&
                              std::get<RoundHole>(f.shape).bottom == HoleBottom::through;
         const double bottom = through ? w.block_min.z : f.placement.location.z - f.depth;
-        if (d <= margin) may_reach = std::min(may_reach, bottom);
-        if (d <= -(margin + a.side)) must_reach = std::min(must_reach, bottom + a.bottom);
+        // A region's floor is free (only its lowest point is known), and
+        // the importer's extent bounds the tool axis, not the cut.
+        const bool region = std::holds_alternative<Region>(f.shape);
+        if (d <= margin + (region ? largest_radius : 0)) may_reach = std::min(may_reach, bottom);
+        if (!region && d <= -(margin + a.side)) must_reach = std::min(must_reach, bottom + a.bottom);
       }
       const bool corner = std::any_of(unreachable.begin(), unreachable.end(), [&](const auto& u) {
         return std::hypot(c.x - u.first.x, c.y - u.first.y) < u.second;

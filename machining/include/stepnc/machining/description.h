@@ -204,6 +204,14 @@ struct RoundHole {
   HoleBottom bottom = HoleBottom::flat;  ///< bottom condition
 };
 
+/// A region of the part (ISO 14649-10 region_projection): the area its
+/// projection curve bounds, swept along -Z by the feature's depth. Its
+/// surface is free, so the posters machine it only by explicit toolpaths
+/// (an imported program's 3-axis motion, rules M3 and M6).
+struct Region {
+  std::vector<Vec2> extent;  ///< proj_curve's points in the feature's frame, as the file gives them
+};
+
 // -------------------------------------------------------- turning features --
 // Turning coordinates: z along the spindle axis (0 = finished front face,
 // part towards -z), x = radius. Profiles run from the front (largest z) back.
@@ -233,7 +241,7 @@ struct CentreHole {
 
 /// The shape of a feature, one alternative per supported feature kind.
 using FeatureShape = std::variant<PlanarFace, ClosedPocket, OpenPocket, Slot, Step, RoundHole,
-                                  TurningProfile, TurningFace, Groove, CentreHole, OutsideProfile>;
+                                  TurningProfile, TurningFace, Groove, CentreHole, OutsideProfile, Region>;
 
 /// A manufacturing feature: where it is and what shape it has.
 struct Feature {
