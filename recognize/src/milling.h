@@ -183,6 +183,14 @@ struct RoundedRectangle {
   double w = 0, h = 0, corner = 0, worst = 0;
 };
 RoundedRectangle fit_rounded_rectangle(const machining::polygons::Ring& ring);
+// The corner radius within `search` mm of `estimate` (1 um steps, at most
+// `most`) whose rounded rectangle of half sizes (hx, hy) about `centre`
+// the points stray least from, and that stray.
+struct CornerFit {
+  double radius = 0, worst = 0;
+};
+CornerFit best_corner_radius(const std::vector<Vec2>& points, Vec2 centre, double hx, double hy, double estimate,
+                             double most, double search = 0.1);
 // The lines of the operations of a feature (what its decisions cite).
 std::vector<std::uint32_t> first_lines(const Feature& f, const Recognised& out);
 

@@ -36,6 +36,21 @@ double rounded_rectangle_distance(Vec2 p, double hx, double hy, double r) {
   return std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0) - r;
 }
 
+CornerFit best_corner_radius(const std::vector<Vec2>& points, Vec2 centre, double hx, double hy, double estimate,
+                             double most, double search) {
+  auto misfit = [&](double r) {
+    double worst = 0;
+    for (const Vec2 p : points)
+      worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - centre.x, p.y - centre.y}, hx, hy, r)));
+    return worst;
+  };
+  CornerFit best{std::min(estimate, most), 0};
+  best.worst = misfit(best.radius);
+  for (double r = std::max(0.0, estimate - search); r <= std::min(estimate + search, most); r += 0.001)
+    if (const double m = misfit(r); m < best.worst) best = {r, m};
+  return best;
+}
+
 RoundedRectangle fit_rounded_rectangle(const polygons::Ring& ring) {
   const auto [x0, y0, x1, y1] = bounds({ring});
   RoundedRectangle out;
@@ -45,19 +60,12 @@ RoundedRectangle fit_rounded_rectangle(const polygons::Ring& ring) {
   // radius within 0.1 mm of it that fits the outline best.
   const double a = polygons::area(polygons::make_area(ring));
   const double estimate = std::sqrt(std::max(0.0, (out.w * out.h - a) / (4 - M_PI)));
-  auto misfit = [&](double r) {
-    double worst = 0;
-    for (const Vec2 p : ring)
-      worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - out.centre.x, p.y - out.centre.y}, out.w / 2,
-                                                                  out.h / 2, r)));
-    return worst;
-  };
   const double most = std::min(out.w, out.h) / 2;
-  out.corner = std::min(estimate, most), out.worst = misfit(out.corner);
-  for (double r = std::max(0.0, estimate - 0.1); r <= std::min(estimate + 0.1, most); r += 0.001)
-    if (const double m = misfit(r); m < out.worst) out.worst = m, out.corner = r;
+  const CornerFit best = best_corner_radius(ring, out.centre, out.w / 2, out.h / 2, estimate, most);
+  out.corner = best.radius, out.worst = best.worst;
   // Sharp corners: a box a few um off (G-code rounding) spoils the estimate.
-  if (const double m = misfit(0); m < out.worst) out.worst = m, out.corner = 0;
+  if (const double m = best_corner_radius(ring, out.centre, out.w / 2, out.h / 2, 0, most, 0).worst; m < out.worst)
+    out.worst = m, out.corner = 0;
   out.corner = dimension(out.corner);
   return out;
 }

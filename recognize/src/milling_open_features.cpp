@@ -449,16 +449,7 @@ bool square_u(const std::vector<Vec2>& kept, int side, const Opening& o, Reading
   const double across = side % 2 ? w : h;
   const Vec2 mouth{side % 2 ? centre.x : o.edge_at[side], side % 2 ? o.edge_at[side] : centre.y};
   const double estimate = std::sqrt(std::max(0.0, 2 * (w * h - polygons::area(o.inside)) / (4 - M_PI)));
-  auto misfit = [&](double radius) {
-    double worst = 0;
-    for (const Vec2 p : kept)
-      worst = std::max(worst, std::abs(rounded_rectangle_distance({p.x - mouth.x, p.y - mouth.y}, side % 2 ? w / 2 : w,
-                                                                  side % 2 ? h : h / 2, radius)));
-    return worst;
-  };
-  double corner = std::min(estimate, across / 2), worst = misfit(corner);
-  for (double radius = std::max(0.0, estimate - 0.1); radius <= std::min(estimate + 0.1, across / 2); radius += 0.001)
-    if (const double m = misfit(radius); m < worst) worst = m, corner = radius;
+  const auto [corner, worst] = best_corner_radius(kept, mouth, side % 2 ? w / 2 : w, side % 2 ? h : h / 2, estimate, across / 2);
   if (worst >= fit) return false;
   const Frame frame(side);
   const double along = side % 2 ? h : w;
