@@ -152,7 +152,7 @@ inline std::optional<std::uint64_t> parse_id(const char*& cursor, const char* en
   std::uint64_t id = 0;
   const char* const start = cursor;
   const char* p = cursor;  // a local copy: `cursor` may be a member (see RecordParser::keyword)
-  while (p < end && is_digit(*p)) id = id * 10 + static_cast<unsigned>(*p++ - '0');
+  for (unsigned digit; p < end && (digit = static_cast<unsigned char>(*p) - unsigned{'0'}) < 10; ++p) id = id * 10 + digit;
   cursor = p;
   // Up to 19 digits always fit in 64 bits; longer spellings are checked.
   if (p - start > 19) {
@@ -197,6 +197,17 @@ inline const char* skip_space(const char* p, const char* end, const char** unter
 // is at p[-1] ('' inside the token is an escaped apostrophe). Returns end
 // when the string is unterminated.
 inline const char* find_string_end(const char* p, const char* end) {
+#if defined(__SSE2__)
+  // Most strings are short (often empty): look at the first 16 bytes
+  // here rather than call memchr.
+  if (end - p >= 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    const unsigned quotes = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_set1_epi8('\''))));
+    // The first quote, unless it is doubled (or may be: at the 16th byte).
+    if (quotes != 0 && (quotes & (quotes >> 1) & 1u << __builtin_ctz(quotes)) == 0 && __builtin_ctz(quotes) < 15)
+      return p + __builtin_ctz(quotes);
+  }
+#endif
   for (;;) {
     p = static_cast<const char*>(std::memchr(p, '\'', static_cast<std::size_t>(end - p)));
     if (p == nullptr) return end;

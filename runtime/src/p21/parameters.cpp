@@ -179,7 +179,7 @@ class RecordParser {
   // Appends the decimal digits at the cursor to `value`.
   std::uint64_t accumulate_digits(std::uint64_t value) {
     const char* p = p_;
-    while (detail::is_digit(*p)) value = value * 10 + static_cast<unsigned>(*p++ - '0');
+    for (unsigned digit; (digit = static_cast<unsigned char>(*p) - unsigned{'0'}) < 10; ++p) value = value * 10 + digit;
     p_ = p;
     return value;
   }
