@@ -383,3 +383,23 @@ TEST_CASE("instance #0 is defined, referenced, reported and written back", "[p21
   ReadResult twice = read_data("#0=A();#00=A();", false);
   CHECK(twice.diagnostics.to_string() == "t.stp:8:8: error: duplicate instance id (first defined at line 8)\n");
 }
+
+// The end of a string is looked for in its first 16 bytes before memchr:
+// doubled apostrophes and the closing one at every offset around that.
+TEST_CASE("strings end at their closing apostrophe at every offset, '' inside", "[p21][syntax]") {
+  for (std::size_t before = 0; before <= 40; ++before) {
+    for (std::size_t after = 0; after <= 3; ++after) {
+      const std::string text = std::string(before, 'a') + "''" + std::string(after, 'b');
+      const std::string data = "#1=A('" + text + "','x;y',';');";
+      INFO(data);
+      ReadResult result = p21_test::read_data(data);
+      REQUIRE(result.ok());
+      ParamTree tree;
+      REQUIRE_FALSE(result.document->parse(result.document->records()[0], tree));
+      const auto attributes = tree.parts().front().attributes();
+      CHECK(attributes.at(0)->text() == std::string(before, 'a') + "'" + std::string(after, 'b'));
+      CHECK(attributes.at(1)->text() == "x;y");
+      CHECK(attributes.at(2)->text() == ";");
+    }
+  }
+}
