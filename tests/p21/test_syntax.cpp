@@ -403,3 +403,25 @@ TEST_CASE("strings end at their closing apostrophe at every offset, '' inside", 
     }
   }
 }
+
+// Consecutive records' entity names are compared word-wise (8 to 16
+// bytes): names of every length up to 20 that differ in one byte only.
+TEST_CASE("consecutive entity names differing in one byte are told apart", "[p21][syntax]") {
+  std::string data;
+  std::vector<std::string> names;
+  std::uint64_t id = 1;
+  for (std::size_t length = 1; length <= 20; ++length) {
+    for (std::size_t at = 0; at < length; ++at) {
+      std::string name(length, 'N');
+      names.push_back(name);
+      name[at] = 'M';
+      names.push_back(name);
+    }
+  }
+  for (const std::string& name : names) data += fmt::format("#{}={}();\n", id++, name);
+  ReadResult result = read_data(data);
+  REQUIRE(result.ok());
+  const auto records = result.document->records();
+  REQUIRE(records.size() == names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) CHECK(result.document->entity_name(records[i]) == names[i]);
+}
