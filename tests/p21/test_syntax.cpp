@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/writer.h"
 #include "test_helpers.h"
@@ -424,4 +426,36 @@ TEST_CASE("consecutive entity names differing in one byte are told apart", "[p21
   const auto records = result.document->records();
   REQUIRE(records.size() == names.size());
   for (std::size_t i = 0; i < names.size(); ++i) CHECK(result.document->entity_name(records[i]) == names[i]);
+}
+
+// Keywords' ends are found 16 bytes at a time (A-Z a-z 0-9 _ by ranges):
+// names of 1 to 40 bytes, enumeration items, and the bytes just outside
+// each range ending a name.
+TEST_CASE("keywords end at the first byte that is not A-Z, a-z, 0-9 or _, at any length", "[p21][syntax]") {
+  ReadOptions lenient;
+  lenient.strict = false;
+  const std::string alphabet = "AZ_09QazMm";
+  for (std::size_t length = 1; length <= 40; ++length) {
+    std::string name;
+    for (std::size_t i = 0; i < length; ++i) name += i == 0 ? 'E' : alphabet[i % alphabet.size()];
+    INFO(name);
+    ReadResult result = read_text(p21_test::wrap("#1=" + name + "(." + name + ".,1);"), "t.stp", lenient);
+    REQUIRE(result.ok());
+    CHECK(result.document->entity_name(result.document->records()[0]) == name);
+    ParamTree tree;
+    REQUIRE_FALSE(result.document->parse(result.document->records()[0], tree));
+    CHECK(tree.parts()[0].entity() == name);
+    CHECK(tree.parts()[0].attributes().at(0)->text() == name);
+    for (const char stop : {'@', '[', '`', '{', '/', ':', '-', '\x7F', '\x80', '\xC1', '\xFF'}) {
+      const std::string data = "#1=" + name + stop + "(1);";
+      ReadResult bad = read_text(p21_test::wrap(data), "t.stp", lenient);
+      INFO(data);
+      REQUIRE_FALSE(bad.ok());
+      const auto& items = bad.diagnostics.items();
+      const auto error = std::find_if(items.begin(), items.end(),
+                                      [](const Diagnostic& d) { return d.severity == Severity::error; });
+      REQUIRE(error != items.end());
+      CHECK(error->location.column == 4 + length);  // at the stop byte
+    }
+  }
 }

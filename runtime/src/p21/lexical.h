@@ -120,6 +120,31 @@ inline const char* find_normalise_stop(const char* p, const char* end) {
   return p;
 }
 
+// The end of the run of keyword characters (A-Z a-z 0-9 _) starting at p,
+// at most end. Entity names are 10-30 bytes: on x86-64 16 are classified
+// at once, with no branch per byte to mispredict at the name's end.
+inline const char* keyword_end(const char* p, const char* end) {
+#if defined(__SSE2__)
+  const __m128i letter_bias = _mm_set1_epi8(static_cast<char>(0x80 - 'a'));  // 'a'..'z' -> -128..-103
+  const __m128i letter_limit = _mm_set1_epi8(static_cast<char>(-128 + 26));
+  const __m128i digit_bias = _mm_set1_epi8(static_cast<char>(0x80 - '0'));  // '0'..'9' -> -128..-119
+  const __m128i digit_limit = _mm_set1_epi8(static_cast<char>(-128 + 10));
+  while (end - p >= 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    const __m128i folded = _mm_or_si128(bytes, _mm_set1_epi8(0x20));  // only A-Z and a-z fold to a-z
+    const __m128i keyword =
+        _mm_or_si128(_mm_or_si128(_mm_cmplt_epi8(_mm_add_epi8(folded, letter_bias), letter_limit),
+                                  _mm_cmplt_epi8(_mm_add_epi8(bytes, digit_bias), digit_limit)),
+                     _mm_cmpeq_epi8(bytes, _mm_set1_epi8('_')));
+    const unsigned others = ~static_cast<unsigned>(_mm_movemask_epi8(keyword)) & 0xFFFFu;
+    if (others != 0) return p + __builtin_ctz(others);
+    p += 16;
+  }
+#endif
+  while (p < end && is_keyword_char(*p)) ++p;
+  return p;
+}
+
 // The number of '\n' in [p, end). The streaming scanner counts every byte
 // it reads (for line:col), so on x86-64 this tests 16 bytes at a time.
 inline std::size_t count_newlines(const char* p, const char* end) {

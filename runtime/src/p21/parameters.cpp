@@ -168,10 +168,7 @@ class RecordParser {
   std::string_view keyword() {
     const char* start = p_;
     const char* p = p_;
-    if (detail::is_keyword_start(*p)) {
-      ++p;
-      while (detail::is_keyword_char(*p)) ++p;
-    }
+    if (detail::is_keyword_start(*p)) p = detail::keyword_end(p + 1, end_);
     p_ = p;
     return {start, static_cast<std::size_t>(p - start)};
   }

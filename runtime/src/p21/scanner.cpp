@@ -425,8 +425,7 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
   if (*p != '(') {
     const char* name = p;
     if (!is_keyword_start(*name)) return fail_at(offset_of(name), "expected an entity name or '(' after '='", id);
-    ++p;
-    while (p < end && is_keyword_char(*p)) ++p;
+    p = keyword_end(p + 1, end);
     record.entity_name = std::string_view(name, static_cast<std::size_t>(p - name));
     const std::size_t names_before = names_.size();
     record.entity = intern(record.entity_name);
