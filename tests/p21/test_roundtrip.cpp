@@ -65,6 +65,32 @@ TEST_CASE("write -> read -> write is byte-identical", "[p21][roundtrip]") {
   CHECK(crlf.find("#1=A('x',2.50);\n#2=B((#1,#1));\n") != std::string::npos);
 }
 
+// Records already in normal form are copied whole; the search for what
+// needs changing reads 16 bytes at a time with an overlapping last block,
+// so a space, a comment or a lower-case letter is placed at every offset
+// of records of 5 to 60 bytes.
+TEST_CASE("the round trip finds what to normalise at every offset of a record", "[p21][roundtrip]") {
+  for (std::size_t values = 1; values <= 24; ++values) {
+    std::string normal = "#1=A(";
+    for (std::size_t i = 0; i < values; ++i) normal += i == 0 ? "1" : ",1";
+    normal += ");";
+    INFO(normal);
+    CHECK(round_trip(p21_test::wrap(normal)).find("\n" + normal + "\n") != std::string::npos);
+    // After each byte from the '(' on: a space, a comment; a lower-case
+    // exponent in place of the last value.
+    for (std::size_t at = 5; at < normal.size(); ++at) {
+      for (const std::string insert : {" ", "\n", "/*x*/"}) {
+        const std::string spaced = normal.substr(0, at) + insert + normal.substr(at);
+        INFO(spaced);
+        CHECK(round_trip(p21_test::wrap(spaced)).find("\n" + normal + "\n") != std::string::npos);
+      }
+    }
+    const std::string lower = normal.substr(0, normal.size() - 3) + "1.5e3);";
+    const std::string upper = normal.substr(0, normal.size() - 3) + "1.5E3);";
+    CHECK(round_trip(p21_test::wrap(lower)).find("\n" + upper + "\n") != std::string::npos);
+  }
+}
+
 TEST_CASE("read -> write -> read gives equal records, for generated files", "[p21][roundtrip]") {
   // Random records of every value kind, written with the token Writer.
   std::mt19937_64 random(2116);

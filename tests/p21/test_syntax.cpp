@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/writer.h"
 #include "test_helpers.h"
@@ -382,4 +384,78 @@ TEST_CASE("instance #0 is defined, referenced, reported and written back", "[p21
   CHECK(missing.diagnostics.to_string() == "t.stp:8:6: error: #1: reference to missing instance #0\n");
   ReadResult twice = read_data("#0=A();#00=A();", false);
   CHECK(twice.diagnostics.to_string() == "t.stp:8:8: error: duplicate instance id (first defined at line 8)\n");
+}
+
+// The end of a string is looked for in its first 16 bytes before memchr:
+// doubled apostrophes and the closing one at every offset around that.
+TEST_CASE("strings end at their closing apostrophe at every offset, '' inside", "[p21][syntax]") {
+  for (std::size_t before = 0; before <= 40; ++before) {
+    for (std::size_t after = 0; after <= 3; ++after) {
+      const std::string text = std::string(before, 'a') + "''" + std::string(after, 'b');
+      const std::string data = "#1=A('" + text + "','x;y',';');";
+      INFO(data);
+      ReadResult result = p21_test::read_data(data);
+      REQUIRE(result.ok());
+      ParamTree tree;
+      REQUIRE_FALSE(result.document->parse(result.document->records()[0], tree));
+      const auto attributes = tree.parts().front().attributes();
+      CHECK(attributes.at(0)->text() == std::string(before, 'a') + "'" + std::string(after, 'b'));
+      CHECK(attributes.at(1)->text() == "x;y");
+      CHECK(attributes.at(2)->text() == ";");
+    }
+  }
+}
+
+// Consecutive records' entity names are compared word-wise (8 to 16
+// bytes): names of every length up to 20 that differ in one byte only.
+TEST_CASE("consecutive entity names differing in one byte are told apart", "[p21][syntax]") {
+  std::string data;
+  std::vector<std::string> names;
+  std::uint64_t id = 1;
+  for (std::size_t length = 1; length <= 20; ++length) {
+    for (std::size_t at = 0; at < length; ++at) {
+      std::string name(length, 'N');
+      names.push_back(name);
+      name[at] = 'M';
+      names.push_back(name);
+    }
+  }
+  for (const std::string& name : names) data += fmt::format("#{}={}();\n", id++, name);
+  ReadResult result = read_data(data);
+  REQUIRE(result.ok());
+  const auto records = result.document->records();
+  REQUIRE(records.size() == names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) CHECK(result.document->entity_name(records[i]) == names[i]);
+}
+
+// Keywords' ends are found 16 bytes at a time (A-Z a-z 0-9 _ by ranges):
+// names of 1 to 40 bytes, enumeration items, and the bytes just outside
+// each range ending a name.
+TEST_CASE("keywords end at the first byte that is not A-Z, a-z, 0-9 or _, at any length", "[p21][syntax]") {
+  ReadOptions lenient;
+  lenient.strict = false;
+  const std::string alphabet = "AZ_09QazMm";
+  for (std::size_t length = 1; length <= 40; ++length) {
+    std::string name;
+    for (std::size_t i = 0; i < length; ++i) name += i == 0 ? 'E' : alphabet[i % alphabet.size()];
+    INFO(name);
+    ReadResult result = read_text(p21_test::wrap("#1=" + name + "(." + name + ".,1);"), "t.stp", lenient);
+    REQUIRE(result.ok());
+    CHECK(result.document->entity_name(result.document->records()[0]) == name);
+    ParamTree tree;
+    REQUIRE_FALSE(result.document->parse(result.document->records()[0], tree));
+    CHECK(tree.parts()[0].entity() == name);
+    CHECK(tree.parts()[0].attributes().at(0)->text() == name);
+    for (const char stop : {'@', '[', '`', '{', '/', ':', '-', '\x7F', '\x80', '\xC1', '\xFF'}) {
+      const std::string data = "#1=" + name + stop + "(1);";
+      ReadResult bad = read_text(p21_test::wrap(data), "t.stp", lenient);
+      INFO(data);
+      REQUIRE_FALSE(bad.ok());
+      const auto& items = bad.diagnostics.items();
+      const auto error = std::find_if(items.begin(), items.end(),
+                                      [](const Diagnostic& d) { return d.severity == Severity::error; });
+      REQUIRE(error != items.end());
+      CHECK(error->location.column == 4 + length);  // at the stop byte
+    }
+  }
 }

@@ -76,28 +76,72 @@ inline const char* find_statement_stop(const char* p, const char* end) {
   return p;
 }
 
-// Returns the first byte in [p, end) that ends a run of tokens for the
-// normaliser, or may need changing in it: a quote, whitespace, '/', '<'
-// or a lower-case letter; end if none. 16 bytes at a time on x86-64.
-inline const char* find_normalise_stop(const char* p, const char* end) {
-  const auto stops = [](unsigned char c) {
-    return c == '\'' || c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '/' || c == '<' ||
-           (c >= 'a' && c <= 'z');
-  };
+// The normaliser's stops (writer.cpp's append_normalised). kTokenEnds:
+// the first byte in [p, end) that ends a run of tokens or may need
+// changing in it: a quote, whitespace, '/', '<' or a lower-case letter.
+// Without kTokenEnds only the bytes that may change or go: whitespace,
+// '/' (a comment) and lower-case letters; a record with none of these is
+// already in its normal form. Returns end if none. 16 bytes at a time on
+// x86-64, the last block overlapping the one before (records are short:
+// a byte-wise tail would be a third of the work).
+template <bool kTokenEnds>
+inline bool is_normalise_stop(unsigned char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '/' || (c >= 'a' && c <= 'z') ||
+         (kTokenEnds && (c == '\'' || c == '<'));
+}
+
 #if defined(__SSE2__)
+template <bool kTokenEnds>
+inline unsigned normalise_stop_mask(const char* p) {
+  const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
   const __m128i bias = _mm_set1_epi8(static_cast<char>(0x80 - 'a'));  // 'a'..'z' -> -128..-103
   const __m128i lower_limit = _mm_set1_epi8(static_cast<char>(-128 + 26));
+  __m128i hits = _mm_cmplt_epi8(_mm_add_epi8(bytes, bias), lower_limit);
+  for (const char c : {' ', '\t', '\r', '\n', '/'}) hits = _mm_or_si128(hits, _mm_cmpeq_epi8(bytes, _mm_set1_epi8(c)));
+  if constexpr (kTokenEnds)
+    for (const char c : {'\'', '<'}) hits = _mm_or_si128(hits, _mm_cmpeq_epi8(bytes, _mm_set1_epi8(c)));
+  return static_cast<unsigned>(_mm_movemask_epi8(hits));
+}
+#endif
+
+template <bool kTokenEnds>
+inline const char* find_normalise_stop(const char* p, const char* end) {
+#if defined(__SSE2__)
+  if (end - p >= 16) {
+    const char* const last_block = end - 16;
+    for (; p < last_block; p += 16)
+      if (const unsigned mask = normalise_stop_mask<kTokenEnds>(p)) return p + __builtin_ctz(mask);
+    // The bytes of the last block before p are checked already.
+    const unsigned mask = normalise_stop_mask<kTokenEnds>(last_block) >> (p - last_block);
+    return mask != 0 ? p + __builtin_ctz(mask) : end;
+  }
+#endif
+  while (p < end && !is_normalise_stop<kTokenEnds>(static_cast<unsigned char>(*p))) ++p;
+  return p;
+}
+
+// The end of the run of keyword characters (A-Z a-z 0-9 _) starting at p,
+// at most end. Entity names are 10-30 bytes: on x86-64 16 are classified
+// at once, with no branch per byte to mispredict at the name's end.
+inline const char* keyword_end(const char* p, const char* end) {
+#if defined(__SSE2__)
+  const __m128i letter_bias = _mm_set1_epi8(static_cast<char>(0x80 - 'a'));  // 'a'..'z' -> -128..-103
+  const __m128i letter_limit = _mm_set1_epi8(static_cast<char>(-128 + 26));
+  const __m128i digit_bias = _mm_set1_epi8(static_cast<char>(0x80 - '0'));  // '0'..'9' -> -128..-119
+  const __m128i digit_limit = _mm_set1_epi8(static_cast<char>(-128 + 10));
   while (end - p >= 16) {
     const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-    __m128i hits = _mm_cmplt_epi8(_mm_add_epi8(bytes, bias), lower_limit);
-    for (const char c : {'\'', ' ', '\t', '\r', '\n', '/', '<'})
-      hits = _mm_or_si128(hits, _mm_cmpeq_epi8(bytes, _mm_set1_epi8(c)));
-    const int mask = _mm_movemask_epi8(hits);
-    if (mask != 0) return p + __builtin_ctz(static_cast<unsigned>(mask));
+    const __m128i folded = _mm_or_si128(bytes, _mm_set1_epi8(0x20));  // only A-Z and a-z fold to a-z
+    const __m128i keyword =
+        _mm_or_si128(_mm_or_si128(_mm_cmplt_epi8(_mm_add_epi8(folded, letter_bias), letter_limit),
+                                  _mm_cmplt_epi8(_mm_add_epi8(bytes, digit_bias), digit_limit)),
+                     _mm_cmpeq_epi8(bytes, _mm_set1_epi8('_')));
+    const unsigned others = ~static_cast<unsigned>(_mm_movemask_epi8(keyword)) & 0xFFFFu;
+    if (others != 0) return p + __builtin_ctz(others);
     p += 16;
   }
 #endif
-  while (p < end && !stops(static_cast<unsigned char>(*p))) ++p;
+  while (p < end && is_keyword_char(*p)) ++p;
   return p;
 }
 
@@ -133,7 +177,7 @@ inline std::optional<std::uint64_t> parse_id(const char*& cursor, const char* en
   std::uint64_t id = 0;
   const char* const start = cursor;
   const char* p = cursor;  // a local copy: `cursor` may be a member (see RecordParser::keyword)
-  while (p < end && is_digit(*p)) id = id * 10 + static_cast<unsigned>(*p++ - '0');
+  for (unsigned digit; p < end && (digit = static_cast<unsigned char>(*p) - unsigned{'0'}) < 10; ++p) id = id * 10 + digit;
   cursor = p;
   // Up to 19 digits always fit in 64 bits; longer spellings are checked.
   if (p - start > 19) {
@@ -178,6 +222,17 @@ inline const char* skip_space(const char* p, const char* end, const char** unter
 // is at p[-1] ('' inside the token is an escaped apostrophe). Returns end
 // when the string is unterminated.
 inline const char* find_string_end(const char* p, const char* end) {
+#if defined(__SSE2__)
+  // Most strings are short (often empty): look at the first 16 bytes
+  // here rather than call memchr.
+  if (end - p >= 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    const unsigned quotes = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(bytes, _mm_set1_epi8('\''))));
+    // The first quote, unless it is doubled (or may be: at the 16th byte).
+    if (quotes != 0 && (quotes & (quotes >> 1) & 1u << __builtin_ctz(quotes)) == 0 && __builtin_ctz(quotes) < 15)
+      return p + __builtin_ctz(quotes);
+  }
+#endif
   for (;;) {
     p = static_cast<const char*>(std::memchr(p, '\'', static_cast<std::size_t>(end - p)));
     if (p == nullptr) return end;

@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "lexical.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/writer.h"
 
@@ -15,6 +16,13 @@ namespace stepnc::p21::detail {
 // One record as the round trip writes it: `line` is scratch space, reused
 // from record to record.
 inline void write_normalised_record(std::string_view record_text, std::string& line, Writer& out) {
+  // Most records have no whitespace, comment or lower case: they are their
+  // own normal form, written without a copy through `line`.
+  const char* const end = record_text.data() + record_text.size();
+  if (find_normalise_stop<false>(record_text.data(), end) == end) {
+    out.raw_record(record_text);
+    return;
+  }
   line.clear();
   append_normalised(record_text, line);
   out.raw_record(line);

@@ -69,6 +69,7 @@ class Scanner final : public StreamContext {
   bool read_signature_section(bool after_end, RecordHandler& handler);
   bool read_record(const Statement& statement, RecordHandler& handler);
   std::uint32_t intern(std::string_view name);
+  static bool same_name(std::string_view a, std::string_view b);
   bool check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id = 0);
   static std::string upper_case(std::string_view keyword);
   std::string describe(const Statement& statement) const;

@@ -390,7 +390,7 @@ void append_normalised(std::string_view text, std::string& out) {
     const char* run = p;
     bool lower = false, uri = false;
     for (;;) {
-      p = detail::find_normalise_stop(p, end);
+      p = detail::find_normalise_stop<true>(p, end);
       if (p >= end) break;
       const char c = *p;
       if (c == '\'' || detail::is_space(c) || (c == '/' && p + 1 < end && p[1] == '*')) break;
