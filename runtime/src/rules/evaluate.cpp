@@ -2020,10 +2020,10 @@ class Checker {
     std::vector<meta::Instance*> order;
     const std::span<meta::Instance* const> instances = model_.in_id_order(order);
     const unsigned jobs = jobs_for(instances.size());
+    // Room for a violation per instance up to the limit: pages that are
+    // never written cost nothing, and a million are not copied as they grow.
+    findings_.reserve(std::min(options_.limit, instances.size()));
     if (jobs <= 1) {
-      // Room for a violation per instance up to the limit: pages that are
-      // never written cost nothing, and a million are not copied as they grow.
-      findings_.reserve(std::min(options_.limit, instances.size()));
       InstanceChecker(indexes_, fused_, options_.reuse).check(instances, findings_);
     } else {
       check_in_ranges(instances, jobs);
@@ -2072,7 +2072,9 @@ class Checker {
           if (range >= ranges) break;
           Findings found(options_.limit, fused_.size());
           const std::size_t first = range * per_range;
-          checker.check(instances.subspan(first, std::min(per_range, instances.size() - first)), found);
+          const std::size_t size = std::min(per_range, instances.size() - first);
+          found.reserve(std::min(options_.limit, size));
+          checker.check(instances.subspan(first, size), found);
           const std::lock_guard<std::mutex> lock(merging);
           done[range] = std::move(found);
           for (; appended < ranges && done[appended]; ++appended) {
