@@ -9,6 +9,7 @@
 // and count newlines) measured in the same run.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "machining_schema.h"
@@ -18,6 +19,14 @@
 
 namespace exchange = stepnc::exchange;
 using namespace stepnc_bench;
+
+// The 1, 5 and 15 minute load averages: how busy the shared machine was.
+std::string load_average() {
+  std::ifstream file("/proc/loadavg");
+  double one = 0, five = 0, fifteen = 0;
+  file >> one >> five >> fifteen;
+  return fmt::format("{:.1f} {:.1f} {:.1f}", one, five, fifteen);
+}
 
 int main(int argc, char** argv) {
   const std::string path = big_input(argc, argv, STEPNC_SHARED_DIR);
@@ -78,10 +87,31 @@ int main(int argc, char** argv) {
   // Every WHERE rule, UNIQUE clause and global RULE, no limit on violations:
   // as `stepnc validate` checks (outcomes replayed from traced instances),
   // and interpreting every rule on every instance (what it did before).
+  // On one thread, then on two (CheckOptions::jobs): CPU time, which adds
+  // up the threads and must not grow much (each thread plans and warms up
+  // its own traces), and wall time, which shows the second core only when
+  // it is free (the load average is printed with it).
   stepnc::rules::CheckOptions all_rules;
   all_rules.limit = SIZE_MAX;
-  std::size_t violations = 0;
-  const double rules = best_time(runs, [&] { violations = stepnc::rules::check(result.file->model, all_rules).size(); });
+  all_rules.jobs = 1;
+  std::vector<stepnc::rules::Violation> found;
+  const double rules = best_time(runs, [&] { found = stepnc::rules::check(result.file->model, all_rules); });
+  const std::size_t violations = found.size();
+  const double rules_wall = best_wall_time(runs, [&] { found = stepnc::rules::check(result.file->model, all_rules); });
+  all_rules.jobs = 2;
+  std::vector<stepnc::rules::Violation> found_on_two;
+  const double rules_two = best_time(runs, [&] { found_on_two = stepnc::rules::check(result.file->model, all_rules); });
+  const double rules_two_wall =
+      best_wall_time(runs, [&] { found_on_two = stepnc::rules::check(result.file->model, all_rules); });
+  const auto same = [](const stepnc::rules::Violation& a, const stepnc::rules::Violation& b) {
+    return a.kind == b.kind && a.id == b.id && a.owner == b.owner && a.label == b.label && a.attribute == b.attribute &&
+           a.other == b.other && a.message == b.message;
+  };
+  if (!std::equal(found.begin(), found.end(), found_on_two.begin(), found_on_two.end(), same)) {
+    fmt::print(stderr, "rules on 2 threads differ from rules on 1\n");
+    return 1;
+  }
+  all_rules.jobs = 1;
   all_rules.reuse = false;
   std::size_t interpreted_violations = 0;
   const double interpreted = best_time(1, [&] {
@@ -91,6 +121,12 @@ int main(int argc, char** argv) {
   fmt::print("input: {} ({:.1f} MB, {} instances)\n", path, megabytes, instances);
   fmt::print("all rules evaluated   : {:8.2f} s  {:5.2f}x the typed read time ({} violations)\n", rules, rules / read,
              violations);
+  fmt::print("  on 1 thread         : {:8.2f} s CPU {:5.2f}x the read's, {:6.2f} s wall {:5.2f}x the read's\n", rules,
+             rules / read, rules_wall, rules_wall / sequential_wall);
+  fmt::print("  on 2 threads        : {:8.2f} s CPU {:5.2f}x the read's, {:6.2f} s wall {:5.2f}x the read's"
+             " ({:.2f}x the CPU, {:.2f}x the wall of 1 thread; load {})\n",
+             rules_two, rules_two / read, rules_two_wall, rules_two_wall / sequential_wall, rules_two / rules,
+             rules_two_wall / rules_wall, load_average());
   fmt::print("  each interpreted    : {:8.2f} s  {:5.2f}x the typed read time ({} violations, no replay)\n", interpreted,
              interpreted / read, interpreted_violations);
   fmt::print("baseline newline scan : {:8.1f} MB/s\n", megabytes / baseline);

@@ -30,8 +30,9 @@ enum class Verbosity { quiet, normal, verbose };
 Verbosity verbosity();
 void set_verbosity(Verbosity level);
 
-// --jobs: threads that read a file (exchange::ModelReadOptions::jobs) and
-// that `format` writes with (p21::write_in_parts).
+// --jobs: threads that read a file (exchange::ModelReadOptions::jobs),
+// that `format` writes with (p21::write_in_parts) and that `validate`
+// checks rules with (rules::CheckOptions::jobs).
 unsigned read_jobs();
 void set_read_jobs(unsigned jobs);
 

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "Print errors only: no warnings, no summaries");
   app.add_flag("-v,--verbose", verbose, "Also print what was read and written");
   unsigned jobs = 0;
-  app.add_option("-j,--jobs", jobs, "Threads that read a file (and format writes): 0, the default, is the core count; 1 reads sequentially (the --lazy index scan runs in parts only for 2 or more)")
+  app.add_option("-j,--jobs", jobs, "Threads that read a file (and format writes, validate checks rules): 0, the default, is the core count; 1 reads sequentially (the --lazy index scan runs in parts only for 2 or more)")
       ->option_text("N");
 
   Action action;

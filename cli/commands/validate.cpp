@@ -37,9 +37,13 @@ int run_validate(const ValidateOptions& options) {
   read_options.error_limit = options.error_limit;
   LoadedFile result = read_and_report(options.file, read_options, /*print=*/false);
   // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly.
-  if (!options.no_rules && result.ok())
+  if (!options.no_rules && result.ok()) {
+    rules::CheckOptions check_options;
+    check_options.limit = options.error_limit;
+    check_options.jobs = read_jobs();  // --jobs: the same report on any number of threads
     rules::report_violations(result.file->model, options.file, result.diagnostics, verbosity() == Verbosity::verbose,
-                             options.error_limit);
+                             check_options);
+  }
   if (!options.json) report_read(result, options.file);
   std::size_t warnings = 0;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {

@@ -72,6 +72,9 @@ TEST_CASE("stepnc validate evaluates the schemas' rules: a type's, an entity's Q
   CHECK_THAT(verbose.out, Catch::Contains("#5: positive_length_measure.wr1 violated (by radius): (SELF > 0)\n"));
   const Run skipped = stepnc("validate --no-rules " + file.string());
   CHECK(skipped.exit_code == 0);
+  // --jobs: the rules checked on threads, the same report.
+  CHECK(stepnc("--jobs 2 validate " + file.string()).out == run.out);
+  CHECK(stepnc("--jobs 1 validate " + file.string()).out == run.out);
   fs::remove(file);
 
   // The samples conform to the schemas but for representation_item.wr1
@@ -79,6 +82,9 @@ TEST_CASE("stepnc validate evaluates the schemas' rules: a type's, an entity's Q
   const Run shaft = stepnc("validate " + sample("turning/shaft.stp"));
   CHECK(shaft.exit_code == 1);
   CHECK_THAT(shaft.out, Catch::Contains(": error: #903: representation_item.wr1 violated\n"));
+  CHECK(stepnc("--jobs 3 validate " + sample("turning/shaft.stp")).out == shaft.out);
+  CHECK(stepnc("--jobs 1 -v validate --max-errors 5 " + sample("turning/shaft.stp")).out ==
+        stepnc("--jobs 2 -v validate --max-errors 5 " + sample("turning/shaft.stp")).out);
 }
 
 TEST_CASE("stepnc validate reports every problem with file:line:col and #id", "[cli]") {

@@ -37,6 +37,12 @@ std::vector<std::string> violations(const std::string& data) {
   auto file = read(data);
   std::vector<std::string> out;
   for (const Violation& v : stepnc::rules::check(file->model)) out.push_back(v.to_string());
+  // On 3 threads (ranges of an instance or two), the same list.
+  stepnc::rules::CheckOptions on_threads;
+  on_threads.jobs = 3;
+  std::vector<std::string> parallel;
+  for (const Violation& v : stepnc::rules::check(file->model, on_threads)) parallel.push_back(v.to_string());
+  CHECK(parallel == out);
   return out;
 }
 

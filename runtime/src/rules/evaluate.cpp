@@ -9,13 +9,18 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <span>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -413,12 +418,45 @@ struct Frame {
 
 enum class Flow : std::uint8_t { Next, Return, Escape, Skip };
 
+// What every thread of one check reads and none changes once built: the
+// USEDIN index (detail::References) and the entity extents, each built on
+// first use, once, whichever thread asks first. An extent is shared by the
+// values that hold it; it is never changed in place, since the table holds
+// a reference too (an assignment copies on write, Interpreter::place).
+class Indexes {
+ public:
+  explicit Indexes(const meta::Model& model) : model_(model) {}
+
+  const detail::References& references() {
+    std::call_once(references_built_, [&] { references_ = std::make_unique<detail::References>(model_); });
+    return *references_;
+  }
+
+  std::shared_ptr<Elements> population(const meta::EntityInfo& entity) {
+    const std::lock_guard<std::mutex> lock(populations_mutex_);
+    auto [it, fresh] = populations_.try_emplace(&entity);
+    if (fresh) {
+      it->second = std::make_shared<Elements>();
+      for (meta::Instance* i : model_.instances())
+        if (i->entity_info().is_a(entity)) it->second->push_back(Value::of_instance(i));
+    }
+    return it->second;
+  }
+
+ private:
+  const meta::Model& model_;
+  std::once_flag references_built_;
+  std::unique_ptr<detail::References> references_;
+  std::mutex populations_mutex_;
+  std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
+};
+
 constexpr int max_depth = 256;              // nested calls
 constexpr std::uint64_t max_steps = 50'000'000;  // loop iterations of one top-level evaluation
 
 class Interpreter {
  public:
-  explicit Interpreter(const meta::Model& model) : model_(model) {}
+  explicit Interpreter(Indexes& indexes) : indexes_(indexes) {}
 
   Value evaluate(const meta::DomainRuleInfo& rule, Value self) {
     Frame frame(pool_, rule.frame);
@@ -504,11 +542,10 @@ class Interpreter {
   Value attribute_of(meta::Instance& instance, std::string_view name) { return attribute(Value::of_instance(&instance), name); }
 
  private:
-  const meta::Model& model_;
+  Indexes& indexes_;
   SlotPool pool_;
-  std::unique_ptr<detail::References> references_;
-  // Shared with the values that hold them: an assignment copies on write.
-  std::map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
+  // The extents this interpreter has read, from indexes_ (no lock for the next read).
+  std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
   int depth_ = 0;  // nested calls and derivations
 
   // One more level of nesting for the scope, at most max_depth; undone when
@@ -622,10 +659,7 @@ class Interpreter {
     return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
-  const detail::References& references() {
-    if (!references_) references_ = std::make_unique<detail::References>(model_);
-    return *references_;
-  }
+  const detail::References& references() { return indexes_.references(); }
 
   static bool is_a(const meta::Instance& instance, const meta::EntityInfo& entity) {
     return instance.entity_info().is_a(entity);
@@ -704,11 +738,7 @@ class Interpreter {
       trace_->add({detail::Observation::Kind::Population, nullptr, {}, &entity, {}});
     }
     auto [it, fresh] = populations_.try_emplace(&entity);
-    if (fresh) {
-      it->second = std::make_shared<Elements>();
-      for (meta::Instance* i : model_.instances())
-        if (is_a(*i, entity)) it->second->push_back(Value::of_instance(i));
-    }
+    if (fresh) it->second = indexes_.population(entity);
     Value extent = Value::of_shared(it->second);
     extent.shape = unbounded(AggregateShape::Kind::Set);
     return extent;
@@ -1581,57 +1611,89 @@ class Interpreter {
 
 // ---------------------------------------------------------------- checking a model
 
-class Checker {
- public:
-  Checker(const meta::Model& model, const CheckOptions& options)
-      : model_(model), interpreter_(model), limit_(options.limit), reuse_(options.reuse) {}
+// A global rule's domain rule `SIZEOF(QUERY(v <* E | p)) = 0` (the usual
+// form: "no E is such that p") in a RULE with no statements or locals:
+// p is evaluated on each E while that instance is checked, so it shares
+// the FUNCTION results its WHERE rules computed (using_representations in
+// both representation_item.wr1 and geometric_representation_item_3d), and
+// the rule is reported in its place with the others. Same result: QUERY
+// evaluates p on every element whatever the order, the SIZEOF of its
+// result is never `?`, and the first element whose p cannot be evaluated
+// makes the rule not evaluated, as it would.
+struct FusedRule {
+  const meta::AlgorithmInfo* rule;
+  std::size_t where;       // which domain rule
+  std::uint32_t query;     // the QUERY node
+  std::uint32_t frame;     // slots
+  const meta::EntityInfo* entity;
+};
 
-  std::vector<Violation> run() {
-    fuse_global_rules();
-    // Room for a violation per instance up to the limit: pages that are
-    // never written cost nothing, and a million are not copied as they grow.
-    violations_.reserve(std::min(limit_, model_.size()));
-    std::vector<meta::Instance*> order;
-    for (meta::Instance* instance : model_.in_id_order(order)) {
-      if (full()) break;
-      check_instance(*instance);
+// What the elements checked so far gave a fused rule's predicate.
+struct FusedResult {
+  bool holds_for_some = false;  // some E has p TRUE: the rule is violated
+  bool unevaluable = false;     // some E's p could not be evaluated: the first one's reason
+  std::string reason;
+
+  // What the elements after these gave, added: the first element that
+  // could not be evaluated decides, and a TRUE anywhere violates.
+  void append(FusedResult&& later) {
+    holds_for_some |= later.holds_for_some;
+    if (!unevaluable && later.unevaluable) {
+      unevaluable = true;
+      reason = std::move(later.reason);
     }
-    check_unique();
-    check_global_rules();
-    if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
-    return std::move(violations_);
+  }
+};
+
+// The global rules of the schemas the model's entities come from, in the
+// fused form above, and per concrete entity the ones over one of its
+// supertypes.
+class FusedRules {
+ public:
+  explicit FusedRules(const meta::Model& model) {
+    std::unordered_set<const meta::EntityInfo*> entities;
+    const meta::EntityInfo* last = nullptr;
+    for (meta::Instance* instance : model.instances())
+      if (&instance->entity_info() != last) entities.insert(last = &instance->entity_info());
+    std::vector<const meta::SchemaInfo*> schemas;
+    for (const meta::EntityInfo* entity : entities)
+      for (const meta::Upcast& up : entity->upcasts)
+        if (up.entity->schema && std::find(schemas.begin(), schemas.end(), up.entity->schema) == schemas.end())
+          schemas.push_back(up.entity->schema);
+    for (const meta::SchemaInfo* schema : schemas)
+      for (const meta::AlgorithmInfo* rule : schema->rules)
+        for (std::size_t i = 0; i < rule->where.size(); ++i)
+          if (const auto query = fusable_query(*rule, rule->where[i])) {
+            const meta::DomainRuleInfo& where = rule->where[i];
+            rules_.push_back({rule, i, *query, std::max(rule->frame, where.frame),
+                              where.expression.nodes[where.expression.nodes[*query].first].entity});
+          }
+    for (const meta::EntityInfo* entity : entities) {
+      std::vector<std::size_t>& applicable = for_entity_[entity];
+      for (std::size_t f = 0; f < rules_.size(); ++f)
+        if (rules_[f].entity && entity->is_a(*rules_[f].entity)) applicable.push_back(f);
+    }
+  }
+
+  std::size_t size() const { return rules_.size(); }
+  const FusedRule& operator[](std::size_t f) const { return rules_[f]; }
+
+  // The fused rules an instance of `entity` is an element of; null when none.
+  const std::vector<std::size_t>* over(const meta::EntityInfo& entity) const {
+    const auto f = for_entity_.find(&entity);
+    return f == for_entity_.end() || f->second.empty() ? nullptr : &f->second;
+  }
+
+  // Which of them is domain rule `where` of `rule`, if fused.
+  std::optional<std::size_t> find(const meta::AlgorithmInfo& rule, std::size_t where) const {
+    for (std::size_t f = 0; f < rules_.size(); ++f)
+      if (rules_[f].rule == &rule && rules_[f].where == where) return f;
+    return std::nullopt;
   }
 
  private:
-  const meta::Model& model_;
-  Interpreter interpreter_;
-  std::size_t limit_;
-  std::vector<Violation> violations_;
-  std::size_t errors_ = 0, warnings_ = 0;
-  std::vector<const meta::SchemaInfo*> schemas_;
-
-  // A global rule's domain rule `SIZEOF(QUERY(v <* E | p)) = 0` (the usual
-  // form: "no E is such that p") in a RULE with no statements or locals:
-  // p is evaluated on each E while that instance is checked, so it shares
-  // the FUNCTION results its WHERE rules computed (using_representations in
-  // both representation_item.wr1 and geometric_representation_item_3d), and
-  // the rule is reported in its place with the others. Same result: QUERY
-  // evaluates p on every element whatever the order, the SIZEOF of its
-  // result is never `?`, and the first element whose p cannot be evaluated
-  // makes the rule not evaluated, as it would.
-  struct FusedRule {
-    const meta::AlgorithmInfo* rule;
-    std::size_t where;       // which domain rule
-    std::uint32_t query;     // the QUERY node
-    std::uint32_t frame;     // slots
-    const meta::EntityInfo* entity;
-    bool holds_for_some = false;  // some E has p TRUE: the rule is violated
-    bool unevaluable = false;
-    std::string reason;
-  };
-  std::vector<FusedRule> fused_;
-  // Per concrete entity, the fused rules over one of its supertypes.
-  std::unordered_map<const meta::EntityInfo*, std::vector<std::size_t>> fused_for_;
+  std::vector<FusedRule> rules_;
+  std::unordered_map<const meta::EntityInfo*, std::vector<std::size_t>> for_entity_;
 
   static std::optional<std::uint32_t> fusable_query(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo& where) {
     const Node& body = rule.body.node();
@@ -1648,57 +1710,30 @@ class Checker {
       return std::nullopt;
     return size.first;
   }
+};
 
-  // The global rules of the schemas the model's entities come from, in the
-  // form above.
-  void fuse_global_rules() {
-    std::unordered_set<const meta::EntityInfo*> entities;
-    const meta::EntityInfo* last = nullptr;
-    for (meta::Instance* instance : model_.instances())
-      if (&instance->entity_info() != last) entities.insert(last = &instance->entity_info());
-    std::vector<const meta::SchemaInfo*> schemas;
-    for (const meta::EntityInfo* entity : entities)
-      for (const meta::Upcast& up : entity->upcasts)
-        if (up.entity->schema && std::find(schemas.begin(), schemas.end(), up.entity->schema) == schemas.end())
-          schemas.push_back(up.entity->schema);
-    for (const meta::SchemaInfo* schema : schemas)
-      for (const meta::AlgorithmInfo* rule : schema->rules)
-        for (std::size_t i = 0; i < rule->where.size(); ++i)
-          if (const auto query = fusable_query(*rule, rule->where[i])) {
-            const meta::DomainRuleInfo& where = rule->where[i];
-            fused_.push_back({rule, i, *query, std::max(rule->frame, where.frame),
-                              where.expression.nodes[where.expression.nodes[*query].first].entity, false, false, {}});
-          }
-    for (const meta::EntityInfo* entity : entities) {
-      std::vector<std::size_t>& applicable = fused_for_[entity];
-      for (std::size_t f = 0; f < fused_.size(); ++f)
-        if (fused_[f].entity && entity->is_a(*fused_[f].entity)) applicable.push_back(f);
-    }
-  }
+Violation violation_of(Violation::Kind kind, std::uint32_t id, std::string_view owner, std::string_view attribute = {}) {
+  Violation v;
+  v.kind = kind;
+  v.id = id;
+  v.owner = owner;
+  v.attribute = attribute;
+  return v;
+}
 
-  // The result of domain rule `where` of `rule` when it was fused.
-  std::optional<Truth> fused_result(const meta::AlgorithmInfo& rule, std::size_t where) const {
-    for (const FusedRule& fused : fused_)
-      if (fused.rule == &rule && fused.where == where) {
-        if (fused.unevaluable) throw Unevaluable(fused.reason);
-        return fused.holds_for_some ? Truth::False : Truth::True;
-      }
-    return std::nullopt;
-  }
+// What checking found, in the order a check of the instances one after
+// another finds it: the violations up to the limit, the schemas whose
+// rules were met (their global rules run in that order), and the fused
+// rules' results. What a range of instances found is appended to what
+// the ranges before it found, so checking ranges on several threads
+// gives what one thread gives.
+class Findings {
+ public:
+  Findings(std::size_t limit, std::size_t fused) : limit_(limit), fused_(fused) {}
 
   // Evaluation stops once `limit` rules are violated; rules that cannot be
   // evaluated (warnings) are kept up to `limit` too, without stopping it.
   bool full() const { return errors_ >= limit_; }
-
-  static Violation violation(Violation::Kind kind, std::uint32_t id, std::string_view owner,
-                             std::string_view attribute = {}) {
-    Violation v;
-    v.kind = kind;
-    v.id = id;
-    v.owner = owner;
-    v.attribute = attribute;
-    return v;
-  }
 
   void report(Violation v) {
     if (full()) return;
@@ -1708,6 +1743,66 @@ class Checker {
       return;
     violations_.push_back(std::move(v));
   }
+
+  void note_schema(const meta::SchemaInfo* schema) {
+    if (schema && std::find(schemas_.begin(), schemas_.end(), schema) == schemas_.end()) schemas_.push_back(schema);
+  }
+
+  FusedResult& fused(std::size_t f) { return fused_[f]; }
+  const FusedResult& fused(std::size_t f) const { return fused_[f]; }
+
+  // What the instances after these found. Reporting the later violations
+  // here drops what a check going on from here would have dropped: it
+  // keeps no more than it would have (a range's own limit), and stops
+  // where it would.
+  void append(Findings&& later) {
+    for (Violation& v : later.violations_) report(std::move(v));
+    for (const meta::SchemaInfo* schema : later.schemas_) note_schema(schema);
+    for (std::size_t f = 0; f < fused_.size(); ++f) fused_[f].append(std::move(later.fused_[f]));
+  }
+
+  const std::vector<const meta::SchemaInfo*>& schemas() const { return schemas_; }
+  void reserve(std::size_t n) { violations_.reserve(n); }
+  std::vector<Violation> take() {
+    if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
+    return std::move(violations_);
+  }
+
+ private:
+  std::size_t limit_;
+  std::vector<Violation> violations_;
+  std::size_t errors_ = 0, warnings_ = 0;
+  std::vector<const meta::SchemaInfo*> schemas_;
+  std::vector<FusedResult> fused_;
+};
+
+// Checks instances against the rules whose SELF (or QUERY element) they
+// are, one after another on one thread: WHERE rules of their entities,
+// WHERE rules of the types of their values, fused global rules. Each
+// thread has its own: the interpreter (frames, FUNCTION results), the
+// plans and the traces replayed; what all read is in Indexes.
+class InstanceChecker {
+ public:
+  InstanceChecker(Indexes& indexes, const FusedRules& fused, bool reuse)
+      : interpreter_(indexes), fused_(fused), reuse_(reuse) {}
+
+  // Checks `instances`, in order, into `findings` until it is full.
+  void check(std::span<meta::Instance* const> instances, Findings& findings) {
+    findings_ = &findings;
+    ++range_;
+    last_entity_ = nullptr;  // plan_of notes the schemas of each entity again in a new range
+    for (meta::Instance* instance : instances) {
+      if (findings.full()) break;
+      check_instance(*instance);
+    }
+    findings_ = nullptr;
+  }
+
+ private:
+  Interpreter interpreter_;
+  const FusedRules& fused_;
+  Findings* findings_ = nullptr;
+  std::size_t range_ = 0;  // which call of check
 
   // Evaluates one rule; FALSE is a violation, and a rule that cannot be
   // finished is reported as such.
@@ -1723,7 +1818,7 @@ class Checker {
     }
     violation.label = rule.label;
     violation.text = rule.text;
-    report(std::move(violation));
+    findings_->report(std::move(violation));
   }
 
   // What a rule gave for one instance: its truth, or why it could not be evaluated.
@@ -1753,6 +1848,7 @@ class Checker {
     std::vector<Kept> kept;  // the latest replayed first
     std::size_t recorded = 0, replayed = 0;
     bool reuse = true;
+    std::size_t noted_in = 0;  // the range whose findings have its schemas (0: none yet)
   };
   std::unordered_map<const meta::EntityInfo*, Plan> plans_;
   const meta::EntityInfo* last_entity_ = nullptr;
@@ -1766,14 +1862,18 @@ class Checker {
     auto [it, fresh] = plans_.try_emplace(&entity);
     Plan& plan = it->second;
     if (fresh) {
-      for (const meta::Upcast& up : entity.upcasts) {
-        note_schema(up.entity->schema);
+      for (const meta::Upcast& up : entity.upcasts)
         for (const meta::DomainRuleInfo& rule : up.entity->where) plan.where.push_back({up.entity, &rule});
-      }
       for (const meta::AttributeInfo& attribute : entity.attributes)
         if (attribute.stored() && attribute.type && has_type_rules(*attribute.type)) plan.typed.push_back(&attribute);
-      if (const auto f = fused_for_.find(&entity); f != fused_for_.end() && !f->second.empty()) plan.fused = &f->second;
+      plan.fused = fused_.over(entity);
       plan.reuse = reuse_ && (!plan.where.empty() || plan.fused);
+    }
+    // The schemas of the entity's rules, met at its first instance in each
+    // range: where a check of all instances in one range meets them first.
+    if (plan.noted_in != range_) {
+      for (const meta::Upcast& up : entity.upcasts) findings_->note_schema(up.entity->schema);
+      plan.noted_in = range_;
     }
     last_entity_ = &entity;
     last_plan_ = &plan;
@@ -1842,19 +1942,19 @@ class Checker {
     for (const Plan::Where& where : plan.where) {
       const Outcome& o = outcomes[i++];
       if (!o.unevaluable && o.truth != Truth::False) continue;
-      Violation v = violation(o.unevaluable ? Violation::Kind::Unevaluated : Violation::Kind::Where, instance.id(),
-                              where.owner->name);
+      Violation v = violation_of(o.unevaluable ? Violation::Kind::Unevaluated : Violation::Kind::Where, instance.id(),
+                                 where.owner->name);
       v.message = o.reason;
       v.label = where.rule->label;
       v.text = where.rule->text;
-      report(std::move(v));
+      findings_->report(std::move(v));
     }
     for (const meta::AttributeInfo* attribute : plan.typed)
       if (auto ref = meta::get(instance, *attribute)) check_value(instance, *attribute, *ref);
     if (plan.fused)
       for (const std::size_t f : *plan.fused) {
         const Outcome& o = outcomes[i++];
-        FusedRule& fused = fused_[f];
+        FusedResult& fused = findings_->fused(f);
         if (fused.unevaluable) continue;  // decided (a TRUE is not: a later element may not be evaluable)
         if (o.unevaluable) {
           fused.unevaluable = true;
@@ -1896,14 +1996,122 @@ class Checker {
   void apply_type_rules(meta::Instance& instance, const meta::AttributeInfo& attribute, const meta::TypeInfo& type,
                         MakeValue make) {
     if (type.where.empty()) return;
-    note_schema(type.schema);
+    findings_->note_schema(type.schema);
     const Value value = make();
     for (const meta::DomainRuleInfo& rule : type.where)
-      judge(rule, value, violation(Violation::Kind::TypeWhere, instance.id(), type.name, attribute.name));
+      judge(rule, value, violation_of(Violation::Kind::TypeWhere, instance.id(), type.name, attribute.name));
+  }
+};
+
+// Models smaller than this are checked on one thread when CheckOptions::jobs
+// is 0: starting threads would cost more than they save.
+constexpr std::size_t kParallelCheckMinimum = 16384;
+// Instances per range handed to a thread: enough ranges to even out the
+// threads' loads, few enough that each thread's traces warm up once.
+constexpr std::size_t kRangesPerThread = 8;
+constexpr std::size_t kMaxInstancesPerRange = 16384;
+
+class Checker {
+ public:
+  Checker(const meta::Model& model, const CheckOptions& options)
+      : model_(model), options_(options), indexes_(model), interpreter_(indexes_), fused_(model),
+        findings_(options.limit, fused_.size()) {}
+
+  std::vector<Violation> run() {
+    std::vector<meta::Instance*> order;
+    const std::span<meta::Instance* const> instances = model_.in_id_order(order);
+    const unsigned jobs = jobs_for(instances.size());
+    // Room for a violation per instance up to the limit: pages that are
+    // never written cost nothing, and a million are not copied as they grow.
+    findings_.reserve(std::min(options_.limit, instances.size()));
+    if (jobs <= 1) {
+      InstanceChecker(indexes_, fused_, options_.reuse).check(instances, findings_);
+    } else {
+      check_in_ranges(instances, jobs);
+    }
+    // UNIQUE clauses and global RULEs stay on this thread: the ISO 14649
+    // schemas have no UNIQUE clause, and their global rules are fused,
+    // evaluated per instance above.
+    check_unique();
+    check_global_rules();
+    return findings_.take();
   }
 
-  void note_schema(const meta::SchemaInfo* schema) {
-    if (schema && std::find(schemas_.begin(), schemas_.end(), schema) == schemas_.end()) schemas_.push_back(schema);
+ private:
+  const meta::Model& model_;
+  const CheckOptions& options_;
+  Indexes indexes_;
+  Interpreter interpreter_;  // UNIQUE clauses, global rules
+  FusedRules fused_;
+  Findings findings_;
+
+  unsigned jobs_for(std::size_t instances) const {
+    if (options_.jobs != 0) return options_.jobs;
+    if (instances < kParallelCheckMinimum) return 1;
+    return std::max(1u, std::thread::hardware_concurrency());
+  }
+
+  // The instances cut into ranges, taken in order by `jobs` threads (this
+  // one among them), each range checked into its own Findings; the
+  // findings are appended in range order as they are complete, so the
+  // result is a sequential check's, and the threads stop taking ranges
+  // once it is full.
+  void check_in_ranges(std::span<meta::Instance* const> instances, unsigned jobs) {
+    const std::size_t per_range =
+        std::clamp<std::size_t>(instances.size() / (std::size_t{jobs} * kRangesPerThread), 1, kMaxInstancesPerRange);
+    const std::size_t ranges = (instances.size() + per_range - 1) / per_range;
+    std::vector<std::optional<Findings>> done(ranges);
+    std::size_t appended = 0;  // ranges appended to findings_, under `merging`
+    std::mutex merging;
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::exception_ptr failure;
+    auto work = [&] {
+      try {
+        InstanceChecker checker(indexes_, fused_, options_.reuse);
+        while (!stop.load(std::memory_order_relaxed)) {
+          const std::size_t range = next.fetch_add(1);
+          if (range >= ranges) break;
+          Findings found(options_.limit, fused_.size());
+          const std::size_t first = range * per_range;
+          const std::size_t size = std::min(per_range, instances.size() - first);
+          found.reserve(std::min(options_.limit, size));
+          checker.check(instances.subspan(first, size), found);
+          const std::lock_guard<std::mutex> lock(merging);
+          done[range] = std::move(found);
+          for (; appended < ranges && done[appended]; ++appended) {
+            findings_.append(std::move(*done[appended]));
+            done[appended].reset();
+          }
+          if (findings_.full()) stop = true;
+        }
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(merging);
+        if (!failure) failure = std::current_exception();
+        stop = true;
+      }
+    };
+    std::vector<std::thread> threads;
+    threads.reserve(jobs - 1);
+    for (unsigned t = 1; t < jobs && t < ranges; ++t) {
+      try {
+        threads.emplace_back(work);
+      } catch (const std::system_error&) {
+        break;  // fewer threads: the same findings
+      }
+    }
+    work();
+    for (std::thread& thread : threads) thread.join();
+    if (failure) std::rethrow_exception(failure);
+  }
+
+  // The result of domain rule `where` of `rule` when it was fused.
+  std::optional<Truth> fused_result(const meta::AlgorithmInfo& rule, std::size_t where) const {
+    const std::optional<std::size_t> f = fused_.find(rule, where);
+    if (!f) return std::nullopt;
+    const FusedResult& fused = findings_.fused(*f);
+    if (fused.unevaluable) throw Unevaluable(fused.reason);
+    return fused.holds_for_some ? Truth::False : Truth::True;
   }
 
   // A key for the values of a UNIQUE clause: instances by id, the rest by
@@ -1938,7 +2146,7 @@ class Checker {
         std::unordered_map<std::string, std::uint32_t> first;
         std::vector<meta::Instance*> order;
         for (meta::Instance* instance : model_.in_id_order(order)) {
-          if (full()) return;
+          if (findings_.full()) return;
           if (!instance->entity_info().is_a(*entity)) continue;
           interpreter_.forget_results();
           std::string key;
@@ -1956,10 +2164,10 @@ class Checker {
           if (any_indeterminate) continue;  // `?` is never equal to anything
           auto [it, fresh] = first.try_emplace(std::move(key), instance->id());
           if (!fresh) {
-            Violation v = violation(Violation::Kind::Unique, instance->id(), entity->name);
+            Violation v = violation_of(Violation::Kind::Unique, instance->id(), entity->name);
             v.label = rule.label;
             v.other = it->second;
-            report(std::move(v));
+            findings_.report(std::move(v));
           }
         }
       }
@@ -1967,10 +2175,10 @@ class Checker {
   }
 
   void check_global_rules() {
-    for (const meta::SchemaInfo* schema : schemas_)
+    for (const meta::SchemaInfo* schema : findings_.schemas())
       for (const meta::AlgorithmInfo* rule : schema->rules) {
-        if (full()) return;
-        Violation base = violation(Violation::Kind::GlobalRule, 0, rule->name);
+        if (findings_.full()) return;
+        Violation base = violation_of(Violation::Kind::GlobalRule, 0, rule->name);
         try {
           const std::vector<Truth> results =
               interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
@@ -1979,12 +2187,12 @@ class Checker {
               Violation v = base;
               v.label = rule->where[i].label;
               v.text = rule->where[i].text;
-              report(std::move(v));
+              findings_.report(std::move(v));
             }
         } catch (const Unevaluable& reason) {
           base.kind = Violation::Kind::Unevaluated;
           base.message = reason.what();
-          report(std::move(base));
+          findings_.report(std::move(base));
         }
       }
   }
@@ -2092,16 +2300,29 @@ std::vector<std::string> Validation::messages() const {
   return out;
 }
 
-Validation validate(const meta::Model& model, std::size_t limit) {
+Validation validate(const meta::Model& model, const CheckOptions& options) {
   Validation result;
-  result.structure = meta::validate(model, limit);
-  if (result.structure.empty()) result.rules = check(model, limit);
+  result.structure = meta::validate(model, options.limit);
+  if (result.structure.empty()) result.rules = check(model, options);
   return result;
+}
+
+Validation validate(const meta::Model& model, std::size_t limit) {
+  CheckOptions options;
+  options.limit = limit;
+  return validate(model, options);
 }
 
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, std::size_t limit) {
-  const std::vector<Violation> violations = check(model, limit);
+  CheckOptions options;
+  options.limit = limit;
+  return report_violations(model, path, diagnostics, with_text, options);
+}
+
+std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
+                              p21::Diagnostics& diagnostics, bool with_text, const CheckOptions& check_options) {
+  const std::vector<Violation> violations = check(model, check_options);
   if (violations.empty()) return 0;
   std::optional<p21::Document> document;
   if (!io::is_standard_stream(path)) {
@@ -2148,7 +2369,8 @@ std::vector<std::string> list_rules(const meta::SchemaInfo& schema) {
 std::string derive_text(meta::Instance& instance, const meta::AttributeInfo& attribute) {
   if (!attribute.derivation) return {};
   meta::Model empty;
-  Interpreter interpreter(empty);
+  Indexes indexes(empty);
+  Interpreter interpreter(indexes);
   try {
     return express_text(interpreter.evaluate(*attribute.derivation, Value::of_instance(&instance)));
   } catch (const Unevaluable& reason) {
@@ -2157,7 +2379,8 @@ std::string derive_text(meta::Instance& instance, const meta::AttributeInfo& att
 }
 
 std::string call_text(const meta::Model& model, const meta::AlgorithmInfo& function, const std::vector<std::string>& arguments) {
-  Interpreter interpreter(model);
+  Indexes indexes(model);
+  Interpreter interpreter(indexes);
   std::vector<Value> values;
   for (const std::string& a : arguments) values.push_back(parse_argument(model, a));
   try {

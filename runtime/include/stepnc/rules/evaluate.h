@@ -65,6 +65,13 @@ struct CheckOptions {
   /// interpreting rules and FUNCTIONs again for each of a million points.
   /// Off: every rule is interpreted on every instance (for comparison).
   bool reuse = true;
+  /// Threads that check the instances' rules: 0, the default, is the core
+  /// count for models of 16,384 instances or more, one thread below; 1 is
+  /// the sequential check. The violations are the same, in the same order,
+  /// whatever the number (ranges of instances are checked apart and their
+  /// findings joined in order); UNIQUE clauses and global RULEs are
+  /// checked on the calling thread.
+  unsigned jobs = 0;
 };
 
 /// Every violation, in instance order (global rules last), as `options` say.
@@ -95,6 +102,8 @@ struct Validation {
 ///
 ///   if (auto v = rules::validate(model); !v.valid()) for (auto& m : v.messages()) print(m);
 Validation validate(const meta::Model& model, std::size_t limit = 1000);
+/// The same, each up to `options.limit`, the rules checked as `options` say.
+Validation validate(const meta::Model& model, const CheckOptions& options);
 
 /// Evaluates every rule on `model`, read from `path`, and adds each
 /// violation to `diagnostics` as an error at the instance's record
@@ -107,6 +116,10 @@ Validation validate(const meta::Model& model, std::size_t limit = 1000);
 /// violations.
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, std::size_t limit = 1000);
+/// The same, the rules checked as `options` say (up to `options.limit`,
+/// on `options.jobs` threads).
+std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
+                              p21::Diagnostics& diagnostics, bool with_text, const CheckOptions& options);
 
 /// Every rule a schema declares, as "owner.label" (WHERE rules of entities
 /// and types, UNIQUE clauses, global RULEs), in declaration order: what a
