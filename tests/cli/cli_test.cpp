@@ -281,7 +281,19 @@ TEST_CASE("stepnc post names the file, line and #id of what it refuses, numbers 
   CHECK_THAT(run.out, Catch::Contains(bad.string() +
                                       ":57:1: #50 'FACE TOP 1 MM': error: retract plane z=129.1 lies above the "
                                       "security plane z=50\n"));
+  // The same operation named #0: its label and its line:col too.
+  for (const char* reference : {"#50,", "#50)", "#50="}) {
+    REQUIRE(text.find(reference) != std::string::npos);
+    text.replace(text.find(reference), 3, "#0");
+  }
+  const fs::path zero = write_temp("stepnc-cli-retract-zero.stp", text);
+  const Run named_zero = stepnc("post " + zero.string() + " -d rs274ngc");
+  CHECK(named_zero.exit_code == 1);
+  CHECK_THAT(named_zero.out, Catch::Contains(zero.string() +
+                                             ":57:1: #0 'FACE TOP 1 MM': error: retract plane z=129.1 lies above the "
+                                             "security plane z=50\n"));
   fs::remove(bad);
+  fs::remove(zero);
 }
 
 TEST_CASE("stepnc plot draws an SVG", "[cli]") {
