@@ -21,10 +21,9 @@ bool report_diagnostics(const std::filesystem::path& path, const std::vector<mac
     const bool from_stdin = io::is_standard_stream(path);
     std::string where = from_stdin ? std::string(io::standard_input_name) : path.string();
     // Standard input cannot be read twice: its diagnostics name the #id only.
-    if (diagnostic.where.id > 0 && !from_stdin) {
+    if (diagnostic.where.id && !from_stdin) {
       if (!index) index = p21::read_file(path);
-      const p21::RecordEntry* record =
-          index->document ? index->document->find(static_cast<std::uint64_t>(diagnostic.where.id)) : nullptr;
+      const p21::RecordEntry* record = index->document ? index->document->find(*diagnostic.where.id) : nullptr;
       if (record) {
         const p21::SourceLocation at = index->document->location(record->offset);
         where = fmt::format("{}:{}:{}", where, at.line, at.column);

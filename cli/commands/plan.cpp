@@ -27,10 +27,12 @@ struct PlanCommandOptions {
   bool remainder_first = false;
 };
 
-std::string where(const machining::Source& source) { return fmt::format("#{} '{}'", source.id, source.name); }
+std::string where(const machining::Source& source) { return fmt::format("{} '{}'", source.label(), source.name); }
 
 std::string report_json(const planning::PlanResult& result) {
-  const auto source = [](const machining::Source& s) { return nlohmann::ordered_json{{"id", s.id}, {"name", s.name}}; };
+  const auto source = [](const machining::Source& s) {
+    return nlohmann::ordered_json{{"id", s.id ? nlohmann::ordered_json(*s.id) : nlohmann::ordered_json()}, {"name", s.name}};
+  };
   nlohmann::ordered_json roughness = nlohmann::ordered_json::array();
   for (const planning::WorkingstepRoughness& line : result.roughness) {
     nlohmann::ordered_json entry{{"workingstep", source(line.workingstep)},

@@ -27,7 +27,7 @@ nlohmann::ordered_json diagnostic_json(const p21::Diagnostic& diagnostic) {
   // Unknown parts are null, as they are left out of the text form.
   object["line"] = diagnostic.location.line != 0 ? nlohmann::ordered_json(diagnostic.location.line) : nlohmann::ordered_json();
   object["column"] = diagnostic.location.column != 0 ? nlohmann::ordered_json(diagnostic.location.column) : nlohmann::ordered_json();
-  object["id"] = diagnostic.instance_id != 0 ? nlohmann::ordered_json(diagnostic.instance_id) : nlohmann::ordered_json();
+  object["id"] = diagnostic.instance_id ? nlohmann::ordered_json(*diagnostic.instance_id) : nlohmann::ordered_json();
   return object;
 }
 

@@ -28,7 +28,7 @@ std::string_view to_string(NodeKind kind) {
 
 std::string Graph::label(int node) const {
   const Node& n = nodes[static_cast<std::size_t>(node)];
-  return n.source.name.empty() ? fmt::format("#{}", n.source.id) : n.source.name;
+  return n.source.name.empty() ? n.source.label() : n.source.name;
 }
 
 bool Graph::is_leaf(int node) const {
@@ -86,7 +86,7 @@ struct Builder {
     if (parent >= 0) out.graph.nodes[static_cast<std::size_t>(parent)].children.push_back(index);
     if (leaf) return;
     const int inner_setup =
-        e.kind == ExecutableKind::workplan && e.setup_security_plane ? static_cast<int>(e.source.id) : setup;
+        e.kind == ExecutableKind::workplan && e.setup_security_plane && e.source.id ? static_cast<int>(*e.source.id) : setup;
     for (const Executable& child : e.children) add(child, index, inner_setup);
   }
 };
@@ -168,7 +168,7 @@ bool same_structure(const Graph& ga, int a, const Graph& gb, int b) {
 
 GraphResult build_graph(const Executable& main_workplan) {
   GraphResult result;
-  Builder{result}.add(main_workplan, -1, 0);
+  Builder{result}.add(main_workplan, -1, -1);
   return result;
 }
 

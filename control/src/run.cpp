@@ -88,7 +88,7 @@ class Controller {
     std::set<std::string> labels;
     for (int leaf : built.graph.leaves) {
       labels.insert(built.graph.label(leaf));
-      labels.insert(fmt::format("#{}", built.graph.nodes[static_cast<std::size_t>(leaf)].source.id));
+      labels.insert(built.graph.nodes[static_cast<std::size_t>(leaf)].source.label());
     }
     for (const Event& e : events_) {
       for (const std::string* node : {&e.node, &e.before})
@@ -259,7 +259,7 @@ class Controller {
   }
 
   bool matches(const std::string& label, int leaf) const {
-    auto named = [&](int n) { return graph().label(n) == label || fmt::format("#{}", node(n).source.id) == label; };
+    auto named = [&](int n) { return graph().label(n) == label || (node(n).source.id && node(n).source.label() == label); };
     // Parts of a split node answer to the original node's name.
     return named(leaf) || (split_from_.count(leaf) && named(node(leaf).parent));
   }

@@ -53,11 +53,17 @@ std::pair<std::string, std::vector<TracedStep>> read_trace(const std::filesystem
       TracedStep step;
       step.first_line = block.at("first_line").get<std::size_t>();
       step.last_line = block.at("last_line").get<std::size_t>();
-      step.workingstep_id = block.at("workingstep").at("id").get<std::int64_t>();
+      // null: made up by the poster (a rapid movement has no feature); the
+      // store keeps 0 for it, as before ids were optional.
+      const auto id_of = [&](const char* key) {
+        const nlohmann::json& id = block.at(key).at("id");
+        return id.is_null() ? std::int64_t{0} : id.get<std::int64_t>();
+      };
+      step.workingstep_id = id_of("workingstep");
       step.workingstep = block.at("workingstep").at("name").get<std::string>();
-      step.operation_id = block.at("operation").at("id").get<std::int64_t>();
+      step.operation_id = id_of("operation");
       step.operation = block.at("operation").at("name").get<std::string>();
-      step.feature_id = block.at("feature").at("id").get<std::int64_t>();
+      step.feature_id = id_of("feature");
       step.feature = block.at("feature").at("name").get<std::string>();
       if (step.first_line == 0 || step.last_line < step.first_line ||
           (!steps.empty() && step.first_line <= steps.back().last_line))

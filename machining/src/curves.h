@@ -17,7 +17,7 @@ namespace stepnc::machining::detail {
 constexpr double spline_chordal_tolerance = 0.001;  // mm
 
 struct CurveProblem {
-  std::int64_t id = 0;  // the instance the problem is about
+  std::uint64_t id = 0;  // the instance the problem is about
   std::string message;
   bool warning = false;
 };

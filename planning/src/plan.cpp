@@ -57,7 +57,7 @@ CuttingData default_cutting_data(OperationKind kind) {
 constexpr double min_finishing_feed = 0.01;
 
 Source source_of(const meta::Instance& instance, std::string name) {
-  return {static_cast<std::int64_t>(instance.id()), std::move(name)};
+  return {instance.id(), std::move(name)};
 }
 
 bool is_finishing(OperationKind kind) {
@@ -285,11 +285,11 @@ class Planner {
       } else if (tool.kind == machining::ToolKind::grooving_insert) {
         line.note = "n/a: a grooving insert's edge angles are not in the model";
       } else if (!has_nose_radius(tool.source)) {
-        error(tool.source, fmt::format("turning tool has no nose_radius: the roughness of {} (#{}) cannot be computed",
-                                       e->source.name, e->source.id));
+        error(tool.source, fmt::format("turning tool has no nose_radius: the roughness of {} ({}) cannot be computed",
+                                       e->source.name, e->source.label()));
         continue;
       } else if (const std::string problem = machining::roughness_input_problem(in); !problem.empty()) {
-        error(op.source, fmt::format("cannot compute the roughness with tool #{}: {}", tool.source.id, problem));
+        error(op.source, fmt::format("cannot compute the roughness with tool {}: {}", tool.source.label(), problem));
         continue;
       } else {
         if (!op.technology->feed_per_revolution)
@@ -364,16 +364,16 @@ class Planner {
     return copy;
   }
 
-  meta::Instance* instance(std::int64_t id) {
+  meta::Instance* instance(std::optional<std::uint64_t> id) {
     for (meta::Instance* i : model_.instances())
-      if (static_cast<std::int64_t>(i->id()) == id) return i;
+      if (i->id() == id) return i;
     return nullptr;
   }
 
   // ---------------------------------------------------------- final checks
   void check_result() {
     for (const meta::ValidationProblem& problem : meta::validate(model_))
-      error({static_cast<std::int64_t>(problem.id), std::string(problem.entity)}, fmt::format("planned model: {}: {}", problem.attribute, problem.message));
+      error({problem.id, std::string(problem.entity)}, fmt::format("planned model: {}: {}", problem.attribute, problem.message));
     if (!result_.ok()) return;
     const machining::DescribeResult described = machining::describe_project(model_);
     machining::GenerateOptions generate_options;
@@ -388,11 +388,11 @@ class Planner {
   // The generated motion of each workingstep, as runs of rapid and feed
   // moves; the lathe frame is the setup's (x radius, z axis).
   void write_toolpaths(const machining::MachiningProject& project, const machining::Program& program) {
-    std::map<std::int64_t, std::vector<const machining::Move*>> by_workingstep;
+    std::map<std::optional<std::uint64_t>, std::vector<const machining::Move*>> by_workingstep;
     const std::vector<machining::Move> moves = machining::expand_motion(program);
     for (const machining::Move& m : moves) {
       const auto& provenance = program.provenance[program.blocks[m.block].provenance];
-      if (provenance.workingstep.id > 0) by_workingstep[provenance.workingstep.id].push_back(&m);
+      if (provenance.workingstep.id) by_workingstep[provenance.workingstep.id].push_back(&m);
     }
     for (const machining::Executable* e : workingsteps_in_order(project.main_workplan)) {
       const machining::Operation& op = project.operations[e->step.operation];

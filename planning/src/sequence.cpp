@@ -16,7 +16,7 @@ namespace ms = machining_schema;
 using machining::Diagnostic;
 using machining::Source;
 
-Source source_of(const ms::executable& e) { return {static_cast<std::int64_t>(e.id()), e.its_id.str()}; }
+Source source_of(const ms::executable& e) { return {e.id(), e.its_id.str()}; }
 
 const ms::project* find_project(const meta::Model& model) {
   for (const meta::Instance* i : model.instances())

@@ -72,7 +72,9 @@ void append_json_string(std::string& out, std::string_view s) {
 }
 
 void append_source(std::string& out, std::string_view key, const Source& source) {
-  fmt::format_to(std::back_inserter(out), "\"{}\": {{\"id\": {}, \"name\": ", key, source.id);
+  // null for a value made up by the poster (#0 is an instance)
+  fmt::format_to(std::back_inserter(out), "\"{}\": {{\"id\": {}, \"name\": ", key,
+                 source.id ? std::to_string(*source.id) : std::string("null"));
   append_json_string(out, source.name);
   out.push_back('}');
 }

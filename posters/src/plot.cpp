@@ -138,7 +138,7 @@ Motion collect_motion(const Program& program) {
   Motion motion;
   int tool = -1;
   bool have_position = false;  // the first move starts from LinuxCNC's assumed (0,0,0): not drawn
-  std::set<std::pair<std::int64_t, std::string>> started;  // workingsteps by (#id, name)
+  std::set<std::pair<std::optional<std::uint64_t>, std::string>> started;  // workingsteps by (#id, name)
   for (const Move& m : expand_motion(program)) {
     if (m.kind == Move::Kind::tool_change) {
       tool = -1;
@@ -165,7 +165,7 @@ Motion collect_motion(const Program& program) {
     if (rapid) continue;
     const std::uint32_t provenance = m.block < program.blocks.size() ? program.blocks[m.block].provenance : 0;
     const Source& ws = program.provenance[provenance].workingstep;
-    if ((ws.id != 0 || !ws.name.empty()) && started.insert({ws.id, ws.name}).second) {
+    if ((ws.id || !ws.name.empty()) && started.insert({ws.id, ws.name}).second) {
       motion.starts.push_back({ws, m.from, tool});
     }
     if (m.kind == Move::Kind::feed && program.machine == MachineKind::milling && m.to.z < m.from.z &&

@@ -159,13 +159,16 @@ void keep_typed_where_reproduced(const Tools& tools, const ImportOptions& option
   write_model(out, tools, options, written, &instance_of);
   const machining::DescribeResult described = machining::describe_project(*written.model);
   const machining::GenerateResult generated = machining::generate(described.project);
-  std::unordered_map<std::int64_t, std::size_t> operation_of;
+  std::unordered_map<std::uint64_t, std::size_t> operation_of;
   for (std::size_t k = 0; k < instance_of.size(); ++k) operation_of[instance_of[k]] = k;
+  const auto operation_index = [&](const machining::Source& source) {
+    return source.id ? operation_of.find(*source.id) : operation_of.end();
+  };
   // What stops the posters, per operation.
   std::vector<std::string> refused(out.operations.size());
   for (const auto* diagnostics : {&described.diagnostics, &generated.diagnostics})
     for (const machining::Diagnostic& d : *diagnostics)
-      if (const auto it = operation_of.find(d.where.id);
+      if (const auto it = operation_index(d.where);
           d.severity == machining::Diagnostic::Severity::error && it != operation_of.end() && refused[it->second].empty())
         refused[it->second] = d.message;
   // The posted feed moves of each operation, as runs between rapids.
@@ -173,7 +176,7 @@ void keep_typed_where_reproduced(const Tools& tools, const ImportOptions& option
   for (const machining::Move& m : machining::expand_motion(generated.program)) {
     const std::uint32_t provenance = generated.program.blocks[m.block].provenance;
     if (provenance == 0) continue;
-    const auto it = operation_of.find(generated.program.provenance[provenance].operation.id);
+    const auto it = operation_index(generated.program.provenance[provenance].operation);
     if (it == operation_of.end() || (m.kind != machining::Move::Kind::feed && m.kind != machining::Move::Kind::arc))
       continue;
     auto& runs = posted[it->second];

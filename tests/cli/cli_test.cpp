@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli_run.h"
 
@@ -182,6 +183,61 @@ TEST_CASE("stepnc format, validate, query and dump take instance #0", "[cli]") {
   }
 }
 
+// A diagnostic about #0 names #0 and its place; one about no instance
+// (the header, a global RULE) names none.
+TEST_CASE("stepnc validate labels problems of #0 with #0 and line:col", "[cli][rules]") {
+  const std::string header =
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nfile_name('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n";
+  const std::string footer = "ENDSEC;\nEND-ISO-10303-21;\n";
+  // A structural error: one attribute too many, reported at the '('.
+  const fs::path extra = write_temp("stepnc-cli-zero-extra.stp", header + "#0=DIRECTION('z',(0.,0.,1.),3);\n" + footer);
+  const Run structural = stepnc("validate " + extra.string());
+  CHECK(structural.exit_code == 1);
+  CHECK_THAT(structural.out, Catch::Contains(extra.string() + ":8:13: error: #0: DIRECTION has 2 attributes, found 3\n"));
+  CHECK_THAT(structural.out, Catch::Contains(extra.string() + ":4:1: warning: keyword 'file_name' is not in capitals"));
+  const nlohmann::json report = nlohmann::json::parse(stepnc("validate --json " + extra.string()).out);
+  REQUIRE(report["diagnostics"].size() == 2);
+  const nlohmann::json& about_header = report["diagnostics"][0];
+  CHECK(about_header["line"] == 4);
+  CHECK(about_header["id"].is_null());
+  const nlohmann::json& about_zero = report["diagnostics"][1];
+  CHECK(about_zero["line"] == 8);
+  CHECK(about_zero["column"] == 13);
+  CHECK(about_zero["id"] == 0);
+  CHECK(about_zero["message"] == "DIRECTION has 2 attributes, found 3");
+
+  // A missing #0 is named by the instance that refers to it.
+  const fs::path dangling =
+      write_temp("stepnc-cli-zero-dangling.stp", header + "#1=AXIS2_PLACEMENT_3D('a',#0,$,$);\n" + footer);
+  CHECK_THAT(stepnc("validate " + dangling.string()).out,
+             Catch::Contains(dangling.string() + ":8:27: error: #1: attribute 'location' of placement: #0 does not exist\n"));
+
+  // A WHERE rule of #0, and a global RULE (the 2D point in a 3D context), which has no instance.
+  const fs::path zero_direction = write_temp(
+      "stepnc-cli-zero-rule.stp", header +
+                                      "#0=DIRECTION('z',(0.,0.,0.));\n#1=CARTESIAN_POINT('p',(0.,0.));\n"
+                                      "#2=GEOMETRIC_REPRESENTATION_CONTEXT('c','3d',3);\n"
+                                      "#3=SHAPE_REPRESENTATION('s',(#0,#1),#2);\n" +
+                                      footer);
+  const Run rule = stepnc("validate " + zero_direction.string());
+  CHECK(rule.exit_code == 1);
+  CHECK_THAT(rule.out, Catch::Contains(zero_direction.string() + ":8:1: error: #0: direction.wr1 violated\n"));
+  CHECK_THAT(rule.out, Catch::Contains(zero_direction.string() + ": error: rule compatible_dimension.wr1 violated\n"));
+  const nlohmann::json rules = nlohmann::json::parse(stepnc("validate --json " + zero_direction.string()).out);
+  REQUIRE(rules["diagnostics"].size() >= 2);
+  const nlohmann::json& where_rule = rules["diagnostics"][1];
+  CHECK(where_rule["message"] == "direction.wr1 violated");
+  CHECK(where_rule["line"] == 8);
+  CHECK(where_rule["column"] == 1);
+  CHECK(where_rule["id"] == 0);
+  const nlohmann::json& global_rule = rules["diagnostics"][2];
+  CHECK(global_rule["message"] == "rule compatible_dimension.wr1 violated");
+  CHECK(global_rule["line"].is_null());
+  CHECK(global_rule["id"].is_null());
+  for (const auto& p : {extra, dangling, zero_direction}) fs::remove(p);
+}
+
 TEST_CASE("stepnc post writes the program and its trace atomically", "[cli]") {
   const fs::path program = fs::temp_directory_path() / "stepnc-cli-example1.mpf";
   const fs::path trace = fs::temp_directory_path() / "stepnc-cli-example1.json";
@@ -225,13 +281,22 @@ TEST_CASE("stepnc post names the file, line and #id of what it refuses, numbers 
   const std::string op = "#50=FREEFORM_OPERATION(#200,$,'FACE TOP 1 MM',5.000,";
   REQUIRE(text.find(op) != std::string::npos);
   text.replace(text.find(op), op.size(), "#50=FREEFORM_OPERATION(#200,$,'FACE TOP 1 MM',99.100000000001,");
-  const fs::path bad = write_temp("stepnc-cli-retract.stp", text);
-  const Run run = stepnc("post " + bad.string() + " -d rs274ngc");
-  CHECK(run.exit_code == 1);
-  CHECK_THAT(run.out, Catch::Contains(bad.string() +
-                                      ":57:1: #50 'FACE TOP 1 MM': error: retract plane z=129.1 lies above the "
-                                      "security plane z=50\n"));
-  fs::remove(bad);
+  // Then the same operation named #0: its label and its line:col too.
+  for (const std::string label : {"#50", "#0"}) {
+    INFO(label);
+    if (label == "#0")
+      for (const char* reference : {"#50,", "#50)", "#50="}) {
+        REQUIRE(text.find(reference) != std::string::npos);
+        text.replace(text.find(reference), 3, "#0");
+      }
+    const fs::path bad = write_temp("stepnc-cli-retract.stp", text);
+    const Run run = stepnc("post " + bad.string() + " -d rs274ngc");
+    CHECK(run.exit_code == 1);
+    CHECK_THAT(run.out, Catch::Contains(bad.string() + ":57:1: " + label +
+                                        " 'FACE TOP 1 MM': error: retract plane z=129.1 lies above the "
+                                        "security plane z=50\n"));
+    fs::remove(bad);
+  }
 }
 
 TEST_CASE("stepnc plot draws an SVG", "[cli]") {

@@ -336,7 +336,7 @@ TEST_CASE("Bad input: unknown nodes and tools in events, bad magazines and event
 }
 
 // Blocks generated for instance `id` (a workingstep or NC function).
-std::vector<const machining::Block*> blocks_of(const machining::Program& program, std::int64_t id) {
+std::vector<const machining::Block*> blocks_of(const machining::Program& program, std::uint64_t id) {
   std::vector<const machining::Block*> out;
   for (const auto& b : program.blocks)
     if (b.provenance != 0 && program.provenance[b.provenance].workingstep.id == id) out.push_back(&b);

@@ -29,7 +29,7 @@ bool mentions(const GenerateResult& result, const std::string& text) {
                      [&](const Diagnostic& d) { return d.to_string().find(text) != std::string::npos; });
 }
 
-Executable plan(ExecutableKind kind, std::int64_t id, std::vector<Executable> children) {
+Executable plan(ExecutableKind kind, std::uint64_t id, std::vector<Executable> children) {
   Executable e;
   e.kind = kind;
   e.source = {id, "PLAN"};
@@ -129,7 +129,7 @@ TEST_CASE("a nested workplan's own setup gives the security plane of what it hol
   const auto result = generate(project);
   REQUIRE(result.ok());
   // Each workingstep ends at its security plane: 60 inside the nested workplan, 30 outside.
-  std::map<std::int64_t, double> last;
+  std::map<std::optional<std::uint64_t>, double> last;
   for (const Block& b : result.program.blocks)
     if (auto* r = std::get_if<Rapid>(&b.statement)) last[result.program.provenance[b.provenance].workingstep.id] = r->to.z;
   CHECK(last[10] == 30);
@@ -167,6 +167,20 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     CHECK(mentions(result, "#18 'POCKET1': error: tool radius 10 is larger than the pocket corner radius 6"));
     polygon.corner_radius = 12;
     CHECK(generate(project).ok());
+  }
+  SECTION("an instance #0 is named; an item made up by the poster is not") {
+    project.operations[3].strategy = UnknownStrategy{"CENTER_MILLING"};
+    project.operations[3].source.id = 0;
+    const auto named = generate(project);
+    CHECK_FALSE(named.ok());
+    CHECK(mentions(named, "#0 'ROUGH POCKET1': error: unknown machining strategy 'CENTER_MILLING'"));
+    project.operations[3].source.id.reset();
+    const auto made_up = generate(project);
+    REQUIRE_FALSE(made_up.ok());
+    const auto error = std::find_if(made_up.diagnostics.begin(), made_up.diagnostics.end(),
+                                    [](const Diagnostic& d) { return d.severity == Diagnostic::Severity::error; });
+    REQUIRE(error != made_up.diagnostics.end());
+    CHECK(error->to_string() == "'ROUGH POCKET1': error: unknown machining strategy 'CENTER_MILLING'");
   }
   SECTION("numbers in messages are rounded") {
     project.operations[3].strategy = ContourBidirectional{1 - 2.2};  // -1.2000000000000002
@@ -272,7 +286,7 @@ TEST_CASE("unidirectional turning follows the cutting-depth list (seed 001 5.2)"
   // Passes of the contour rough: feed moves along -z at constant radius.
   std::vector<double> radii;
   Vec3 at{};
-  const std::int64_t rough_id = 23;
+  const std::uint64_t rough_id = 23;
   for (const auto& block : result.program.blocks) {
     const Provenance& p = result.program.provenance[block.provenance];
     if (auto* l = std::get_if<Linear>(&block.statement)) {

@@ -374,16 +374,17 @@ TEST_CASE("instance #0 is defined, referenced, reported and written back", "[p21
     }
   }
 
-  // A problem in #0 is reported at its place (a Diagnostic's instance_id 0
-  // means "no instance", so it carries no #id label), and so is a
-  // reference to a missing #0.
+  // A problem in #0 is reported at its place with its #0 label, and so is
+  // a reference to a missing #0.
   ReadResult bad = read_data("#0=A(1.2.3);", false);
-  CHECK(bad.diagnostics.to_string() == "t.stp:8:9: error: expected ')', found '.'\n");
+  CHECK(bad.diagnostics.to_string() == "t.stp:8:9: error: #0: expected ')', found '.'\n");
+  REQUIRE(bad.diagnostics.items().size() == 1);
+  CHECK(bad.diagnostics.items()[0].instance_id == std::optional<std::uint64_t>(0));
   ReadResult missing = read_data("#1=A(#0);");
   CHECK_FALSE(missing.ok());
   CHECK(missing.diagnostics.to_string() == "t.stp:8:6: error: #1: reference to missing instance #0\n");
   ReadResult twice = read_data("#0=A();#00=A();", false);
-  CHECK(twice.diagnostics.to_string() == "t.stp:8:8: error: duplicate instance id (first defined at line 8)\n");
+  CHECK(twice.diagnostics.to_string() == "t.stp:8:8: error: #0: duplicate instance id (first defined at line 8)\n");
 }
 
 // The end of a string is looked for in its first 16 bytes before memchr:

@@ -196,9 +196,9 @@ std::unique_ptr<exchange::ModelFile> read_strict(const std::string& path) {
   return std::move(read.file);
 }
 
-std::vector<std::int64_t> workingstep_order(const planning::PlanResult& result) {
-  std::vector<std::int64_t> ids;
-  for (const auto& line : result.roughness) ids.push_back(line.workingstep.id);
+std::vector<std::uint64_t> workingstep_order(const planning::PlanResult& result) {
+  std::vector<std::uint64_t> ids;
+  for (const auto& line : result.roughness) ids.push_back(line.workingstep.id.value());
   return ids;
 }
 
@@ -211,7 +211,7 @@ TEST_CASE("re-sequencing: a move between setups, written and read back (T001-19)
   const planning::PlanResult result = planning::plan(*file, options);
   for (const auto& d : result.diagnostics) INFO(d.to_string());
   REQUIRE(result.ok());
-  CHECK(workingstep_order(result) == std::vector<std::int64_t>{40, 41, 43, 45, 44});
+  CHECK(workingstep_order(result) == std::vector<std::uint64_t>{40, 41, 43, 45, 44});
   CHECK_THAT(result.changes.at(0).what, Catch::Contains("to workplan #3 'SETUP 1 WORKPLAN'"));
   const std::string text = exchange::to_text(*file);
   CHECK_THAT(text, Catch::Contains("#3=WORKPLAN('SETUP 1 WORKPLAN',(#40,#41,#42,#43,#45,#44)"));
@@ -286,7 +286,7 @@ TEST_CASE("fewest tool changes keeps precedence and never adds a tool change", "
   // each roughing still precedes its finishing.
   CHECK(result.tool_changes_before == 6);
   CHECK(result.tool_changes_after == 4);
-  CHECK(workingstep_order(result) == std::vector<std::int64_t>{40, 43, 41, 44, 45});
+  CHECK(workingstep_order(result) == std::vector<std::uint64_t>{40, 43, 41, 44, 45});
   // The planned file posts.
   auto reread = exchange::read_model_text(exchange::to_text(*file), "ordered.stp", registry());
   REQUIRE(reread.ok());

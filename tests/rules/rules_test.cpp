@@ -93,6 +93,14 @@ TEST_CASE("a UNIQUE clause among the instances of the entity and its subtypes", 
 TEST_CASE("a global RULE over the populations", "[rules]") {
   CHECK(violations(good_parts + "#10=ASSEMBLY('kit',(#1,#2));\n") ==
         std::vector<std::string>{"#10: assembly.long_enough violated", "rule every_part_used.wr1 violated"});
+  // #0 is an instance like #10; only the global RULE has no instance.
+  auto file = read(good_parts + "#0=ASSEMBLY('kit',(#1,#2));\n");
+  const std::vector<Violation> found = stepnc::rules::check(file->model);
+  REQUIRE(found.size() == 2);
+  CHECK(found[0].to_string() == "#0: assembly.long_enough violated");
+  CHECK(found[0].id == std::optional<std::uint32_t>(0));
+  CHECK(found[1].to_string() == "rule every_part_used.wr1 violated");
+  CHECK_FALSE(found[1].id);
 }
 
 TEST_CASE("derived and inverse attributes, functions, and the rules a schema lists", "[rules]") {

@@ -27,7 +27,8 @@ const stepnc::meta::Registry& registry() {
 }
 
 
-// Every diagnostic of a lenient read, as "#id: message".
+// Every diagnostic of a lenient read, as "#id: message" (just the message
+// when it is about no instance).
 std::vector<std::string> errors_in(const std::string& data_section) {
   const std::string text =
       "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
@@ -38,7 +39,8 @@ std::vector<std::string> errors_in(const std::string& data_section) {
   lenient.strict = false;
   const auto read = stepnc::exchange::read_model_text(text, "t.stp", registry(), lenient);
   std::vector<std::string> out;
-  for (const auto& d : read.diagnostics.items()) out.push_back(fmt::format("#{}: {}", d.instance_id, d.message));
+  for (const auto& d : read.diagnostics.items())
+    out.push_back((d.instance_id ? fmt::format("#{}: ", *d.instance_id) : std::string()) + d.message);
   return out;
 }
 

@@ -560,7 +560,7 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
   const bool standard_input = io::is_standard_stream(path);
   auto state = std::make_unique<State>(registry, standard_input ? io::standard_input_name : path.string());
   const auto fail = [&](std::string message) {
-    diagnostics.add(p21::Diagnostic{p21::Severity::error, state->file_name, {}, 0, std::move(message)});
+    diagnostics.add(p21::Diagnostic{p21::Severity::error, state->file_name, {}, std::nullopt, std::move(message)});
     return nullptr;
   };
   FileStamp stamp;
@@ -631,7 +631,7 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     diagnostics.add(p21::Diagnostic{problem.severity, state->file_name,
                                     problem.offset == 0 ? p21::SourceLocation{}
                                                         : p21::text_location(state->text, problem.offset),
-                                    0, problem.message});
+                                    std::nullopt, problem.message});
     if (problem.severity == p21::Severity::error) schema_known = false;
   }
   if (!schema_known) return nullptr;

@@ -232,7 +232,7 @@ class ModelBuilder final : public meta::FillContext {
   void run() {
     file_.header = document_.header();
     for (detail::HeaderProblem& problem : detail::check_file_schema(file_.header, registry_))
-      report(problem.severity, problem.offset, 0, std::move(problem.message));
+      report(problem.severity, problem.offset, std::nullopt, std::move(problem.message));
     const auto records = document_.records();
     file_.record_count = records.size();
     file_.model.reserve(records.size());
@@ -355,9 +355,9 @@ class ModelBuilder final : public meta::FillContext {
     diagnostics_.add(document_.diagnostic(problem, id));
   }
 
-  void report(p21::Severity severity, std::uint64_t offset, std::uint64_t id, std::string message) {
+  void report(p21::Severity severity, std::uint64_t offset, std::optional<std::uint64_t> id, std::string message) {
     // Offset 0 with no instance: a problem of the file as a whole, no position.
-    const p21::SourceLocation location = offset == 0 && id == 0 ? p21::SourceLocation{} : document_.location(offset);
+    const p21::SourceLocation location = offset == 0 && !id ? p21::SourceLocation{} : document_.location(offset);
     diagnostics_.add(p21::Diagnostic{severity, document_.file_name(), location, id,
                                      std::move(message)});
   }
@@ -400,7 +400,7 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
     std::string text;
     if (auto error = io::read_standard_input(text)) {
       ModelReadResult result{nullptr, p21::Diagnostics(options.error_limit)};
-      result.diagnostics.add(p21::Diagnostic{p21::Severity::error, io::standard_input_name, {}, 0, *error});
+      result.diagnostics.add(p21::Diagnostic{p21::Severity::error, io::standard_input_name, {}, std::nullopt, *error});
       return result;
     }
     return read_model_text(std::move(text), io::standard_input_name, registry, options);

@@ -32,7 +32,7 @@ std::string Diagnostic::to_string() const {
   if (location.line != 0) out += fmt::format("{}{}:{}", out.empty() ? "" : ":", location.line, location.column);
   if (!out.empty()) out += ": ";
   out += severity == Severity::error ? "error: " : "warning: ";
-  if (instance_id != 0) out += fmt::format("#{}: ", instance_id);
+  if (instance_id) out += fmt::format("#{}: ", *instance_id);
   out += message;
   return out;
 }
@@ -269,7 +269,8 @@ SourceLocation Document::location(std::uint64_t offset) const {
   return {line, static_cast<std::uint32_t>(offset - *(next - 1) + 1)};
 }
 
-Diagnostic Document::diagnostic(const ParseError& error, std::uint64_t instance_id, Severity severity) const {
+Diagnostic Document::diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
+                                Severity severity) const {
   return Diagnostic{severity, file_name_, location(error.offset), instance_id, error.message};
 }
 
@@ -519,7 +520,7 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
   if (streamed != nullptr) *streamed = false;
   const auto io_error = [&](std::string message) {
     ReadResult result{std::nullopt, Diagnostics(options.error_limit)};
-    result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0, std::move(message)});
+    result.diagnostics.add(Diagnostic{Severity::error, path.string(), {}, std::nullopt, std::move(message)});
     return result;
   };
   // Files from this size on are mapped rather than copied (below it the

@@ -63,7 +63,7 @@ bool Scanner::refill(std::size_t keep_from) {
   if (got == 0) {
     at_eof_ = true;
     if (std::ferror(file_))
-      report(Diagnostic{Severity::error, file_name_, {}, 0,
+      report(Diagnostic{Severity::error, file_name_, {}, std::nullopt,
                         "read error: " + std::error_code(errno, std::generic_category()).message()});
   }
   return got > 0;
@@ -88,7 +88,7 @@ bool Scanner::report(Diagnostic diagnostic) {
   return more && !(is_error && options_.strict);
 }
 
-bool Scanner::fail_at(std::uint64_t offset, std::string message, std::uint64_t id) {
+bool Scanner::fail_at(std::uint64_t offset, std::string message, std::optional<std::uint64_t> id) {
   return report(Diagnostic{Severity::error, file_name_, location(offset), id, std::move(message)});
 }
 
@@ -161,7 +161,7 @@ bool Scanner::next_statement(Statement& statement, bool verbatim) {
         message = fmt::format("expected {}, found {}", expected_first_, describe(partial));
       }
       if (refill(keep(start))) continue;
-      fail_at(error_offset, std::move(message), id.value_or(0));  // Diagnostic: 0 is "no instance"
+      fail_at(error_offset, std::move(message), id);
       return false;
     }
     pos_ = keep(p + 1);
@@ -439,7 +439,8 @@ bool Scanner::read_record(const Statement& statement, RecordHandler& handler) {
 // Keywords are capital letters, digits and low lines (ISO 10303-21 6.3).
 // Lower case is read, as real files have it, but is an error in a strict
 // read and a warning otherwise; the writer puts it back in capitals.
-bool Scanner::check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id) {
+bool Scanner::check_keyword_case(std::string_view keyword, std::uint64_t offset,
+                                 std::optional<std::uint64_t> id) {
   if (std::none_of(keyword.begin(), keyword.end(), [](char c) { return c >= 'a' && c <= 'z'; })) return true;
   return report(Diagnostic{options_.strict ? Severity::error : Severity::warning, file_name_, location(offset), id,
                            fmt::format("keyword '{}' is not in capitals (ISO 10303-21 6.3); read as {}", keyword,
@@ -518,7 +519,7 @@ Diagnostics stream_file(const std::filesystem::path& path, const ReadOptions& op
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) {
     Diagnostics diagnostics(options.error_limit);
-    diagnostics.add(Diagnostic{Severity::error, path.string(), {}, 0,
+    diagnostics.add(Diagnostic{Severity::error, path.string(), {}, std::nullopt,
                                "cannot open file: " + std::error_code(errno, std::generic_category()).message()});
     return diagnostics;
   }

@@ -60,7 +60,7 @@ class Scanner final : public StreamContext {
   bool next_statement(Statement& statement, bool verbatim = false);
   bool refill(std::size_t keep_from);
   bool classify(Statement& statement, bool verbatim);
-  bool fail_at(std::uint64_t offset, std::string message, std::uint64_t id = 0);
+  bool fail_at(std::uint64_t offset, std::string message, std::optional<std::uint64_t> id = std::nullopt);
   bool report_allows_more() const;
 
   bool read_header();
@@ -70,7 +70,8 @@ class Scanner final : public StreamContext {
   bool read_record(const Statement& statement, RecordHandler& handler);
   std::uint32_t intern(std::string_view name);
   static bool same_name(std::string_view a, std::string_view b);
-  bool check_keyword_case(std::string_view keyword, std::uint64_t offset, std::uint64_t id = 0);
+  bool check_keyword_case(std::string_view keyword, std::uint64_t offset,
+                          std::optional<std::uint64_t> id = std::nullopt);
   static std::string upper_case(std::string_view keyword);
   std::string describe(const Statement& statement) const;
   static std::optional<std::uint64_t> leading_instance_id(std::string_view text);

@@ -1712,7 +1712,7 @@ class FusedRules {
   }
 };
 
-Violation violation_of(Violation::Kind kind, std::uint32_t id, std::string_view owner, std::string_view attribute = {}) {
+Violation violation_of(Violation::Kind kind, std::optional<std::uint32_t> id, std::string_view owner, std::string_view attribute = {}) {
   Violation v;
   v.kind = kind;
   v.id = id;
@@ -2178,7 +2178,7 @@ class Checker {
     for (const meta::SchemaInfo* schema : findings_.schemas())
       for (const meta::AlgorithmInfo* rule : schema->rules) {
         if (findings_.full()) return;
-        Violation base = violation_of(Violation::Kind::GlobalRule, 0, rule->name);
+        Violation base = violation_of(Violation::Kind::GlobalRule, std::nullopt, rule->name);
         try {
           const std::vector<Truth> results =
               interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
@@ -2267,13 +2267,14 @@ Value parse_argument(const meta::Model& model, std::string_view text) {
 
 std::string Violation::to_string() const {
   const std::string rule = std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+  const std::string at = id ? fmt::format("#{}: ", *id) : std::string();
   switch (kind) {
-    case Kind::Where: return fmt::format("#{}: {} violated", id, rule);
-    case Kind::TypeWhere: return fmt::format("#{}: {} violated (by {})", id, rule, attribute);
-    case Kind::Unique: return fmt::format("#{}: {} violated: the same values as #{}", id, rule, other);
+    case Kind::Where: return fmt::format("{}{} violated", at, rule);
+    case Kind::TypeWhere: return fmt::format("{}{} violated (by {})", at, rule, attribute);
+    case Kind::Unique: return fmt::format("{}{} violated: the same values as #{}", at, rule, other);
     case Kind::GlobalRule: return fmt::format("rule {} violated", rule);
     case Kind::Unevaluated:
-      return id ? fmt::format("#{}: {} not evaluated: {}", id, rule, message)
+      return id ? fmt::format("{}{} not evaluated: {}", at, rule, message)
                 : fmt::format("rule {} not evaluated: {}", rule, message);
   }
   return rule;
@@ -2335,16 +2336,16 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
   for (const Violation& v : violations) {
     p21::Diagnostic d;
     d.file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
-    d.instance_id = v.id;
+    if (v.id) d.instance_id = *v.id;  // none for a global RULE
     d.severity = v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
     if (v.kind != Violation::Kind::Unevaluated) ++count;
     std::string message = v.to_string();
-    const std::string prefix = fmt::format("#{}: ", v.id);
+    const std::string prefix = v.id ? fmt::format("#{}: ", *v.id) : std::string();
     if (v.id && message.starts_with(prefix)) message.erase(0, prefix.size());  // the diagnostic prints `#id`
     if (with_text && !v.text.empty()) message += fmt::format(": {}", v.text);
     d.message = std::move(message);
     if (document && v.id)
-      if (const p21::RecordEntry* record = document->find(v.id)) d.location = document->location(record->offset);
+      if (const p21::RecordEntry* record = document->find(*v.id)) d.location = document->location(record->offset);
     diagnostics.add(std::move(d));
   }
   return count;

@@ -42,7 +42,7 @@ struct Node {
   std::vector<int> children;           ///< structures: indices of the children, in listed order
   machining::Executable executable;    ///< leaves: the workingstep or NC function (children cleared)
   int order = 0;                       ///< leaves: position in the workplan's listed order (tie-break rule 3)
-  int setup = 0;                       ///< leaves: `#id` of the innermost workplan with its own setup, 0 = the project's
+  int setup = -1;                      ///< leaves: `#id` of the innermost workplan with its own setup, -1 = the project's (#0 is a name)
 };
 
 /// A process sequence graph. Node 0 is the root (the main workplan); node

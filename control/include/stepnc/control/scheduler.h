@@ -72,7 +72,7 @@ struct Candidate {
 /// The controller's state the tie-break compares against.
 struct TieBreakContext {
   std::string_view tool;  ///< the tool in the spindle ("" at the start)
-  int setup = 0;          ///< the current setup
+  int setup = -1;         ///< the current setup (-1: the project's, as Node::setup)
 };
 
 /// True when `a` should run before `b`. Must be a strict weak order.

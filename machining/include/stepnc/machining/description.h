@@ -20,10 +20,14 @@
 namespace stepnc::machining {
 
 /// A Part 21 instance a value came from: `#id` plus its name (its_id / name
-/// attribute). id 0 means "not from the file" (made up by the poster).
+/// attribute). No id: not from the file (made up by the poster); #0 is a
+/// valid name (ISO 10303-21 token `"#" DIGIT { DIGIT }`), not "none".
 struct Source {
-  std::int64_t id = 0;  ///< Part 21 instance id; 0 when made up by the poster
+  std::optional<std::uint64_t> id;  ///< Part 21 instance id; empty when made up by the poster
   std::string name;  ///< its_id or name attribute of the instance
+
+  /// "#12" for messages and comments; "" when made up.
+  std::string label() const;
 };
 
 /// A point or vector in a plane, mm.

@@ -22,7 +22,7 @@ struct Diagnostic {
   Source where;        ///< `#id` + name of the offending instance
   std::string message;  ///< what is wrong
 
-  std::string to_string() const;  ///< "`#34` 'ROUGH POCKET1': error: ..."
+  std::string to_string() const;  ///< "`#34` 'ROUGH POCKET1': error: ..." (no `#id` when made up)
 };
 
 /// Distances generate() keeps, in mm.

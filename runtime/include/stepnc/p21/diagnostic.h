@@ -28,10 +28,10 @@ struct Diagnostic {
   Severity severity = Severity::error;  ///< error or warning
   std::string file;  ///< the file name given to the reader
   SourceLocation location;  ///< line and column
-  /// 0: not tied to an instance. #0 is a valid name (ISO 10303-21:2016
-  /// 5.4), so a diagnostic about #0 has its line:col but no `#id` label:
-  /// the rules room reports global RULEs with id 0 (rules/evaluate.cpp).
-  std::uint64_t instance_id = 0;
+  /// The instance the problem is in; empty for the header, the file as a
+  /// whole and global RULEs. Not 0 for "none": #0 is a valid name
+  /// (ISO 10303-21 token `"#" DIGIT { DIGIT }`).
+  std::optional<std::uint64_t> instance_id;
   std::string message;  ///< what is wrong
 
   /// "file:line:col: error: `#id`: message" (parts that are unknown are left out).

@@ -158,8 +158,9 @@ class Document {
   /// Line and column of a byte offset, computed on demand (the line table
   /// is built on first use; not thread-safe on that first call).
   SourceLocation location(std::uint64_t offset) const;
-  /// A Diagnostic for a ParseError, with this file's name and line:col.
-  Diagnostic diagnostic(const ParseError& error, std::uint64_t instance_id = 0,
+  /// A Diagnostic for a ParseError, with this file's name and line:col;
+  /// `instance_id` empty when the error is in no instance (the header).
+  Diagnostic diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
                         Severity severity = Severity::error) const;
 
  private:

@@ -59,8 +59,9 @@ class StreamContext {
   /// and an error, or the error limit reached).
   virtual bool report(Diagnostic diagnostic) = 0;
 
-  /// A Diagnostic for a ParseError in this file, with line and column.
-  Diagnostic diagnostic(const ParseError& error, std::uint64_t instance_id = 0,
+  /// A Diagnostic for a ParseError in this file, with line and column;
+  /// `instance_id` empty when the error is in no instance.
+  Diagnostic diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
                         Severity severity = Severity::error) const {
     return Diagnostic{severity, file_name(), location(error.offset), instance_id, error.message};
   }

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,11 +38,11 @@ struct Violation {
     Where,        ///< an entity's WHERE rule
     TypeWhere,    ///< a defined type's WHERE rule, on a value held by `attribute`
     Unique,       ///< a UNIQUE clause: `other` holds the same values
-    GlobalRule,   ///< a RULE's domain rule (`id` 0)
+    GlobalRule,   ///< a RULE's domain rule (no `id`)
     Unevaluated,  ///< the rule could not be evaluated: `message` says why
   };
   Kind kind = Kind::Where;       ///< which kind of rule
-  std::uint32_t id = 0;         ///< the instance's `#id`; 0 for a global rule
+  std::optional<std::uint32_t> id;  ///< the instance's `#id`; empty for a global rule (#0 is a name)
   std::string_view owner;       ///< the entity, defined type or RULE declaring the rule
   std::string_view label;       ///< the rule's label (may be empty)
   std::string_view text;        ///< the rule in canonical EXPRESS
