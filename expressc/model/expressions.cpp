@@ -12,6 +12,8 @@
 // ancestors or one of its subtypes declares it, because schemas commonly
 // read a subtype's attribute after testing TYPEOF. Where nothing is known
 // (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
+#include <algorithm>
+#include <cctype>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -466,7 +468,9 @@ class Checker {
       }
       case K::Integer:
       case K::Real: return Shape::of(Family::Number);
-      case K::String: return Shape::of(Family::String);
+      case K::String:
+        check_qualified_name(e);
+        return Shape::of(Family::String);
       case K::BinaryLiteral: return Shape::of(Family::Binary);
       case K::Logical: return Shape::of(Family::Logical);
       case K::Unary: return check_unary(e, check(*e.operands[0]));
@@ -704,6 +708,33 @@ class Checker {
     if (name == "typeof" || name == "rolesof") return Shape::aggregate_of(Shape::of(Family::String));
     if (name == "nvl") return arg(0);
     return {};
+  }
+
+  // A string 'schema.type' or 'schema.entity.attribute' naming this
+  // schema: what TYPEOF returns and USEDIN and ROLESOF take (ISO 10303-11
+  // 15.20, 15.25, 15.26) is a type's name qualified by a schema, so a name
+  // this schema neither declares nor interfaces never matches (IFC2X4 RC2's
+  // 'IFC2X4_RC2.IFCTRANFORMERTYPE'). Strings naming another schema are
+  // left alone: that schema may not be part of the compilation.
+  void check_qualified_name(const ast::Expression& e) {
+    const std::string_view text = e.text;
+    const bool name_characters = std::all_of(text.begin(), text.end(), [](char c) {
+      return c == '.' || c == '_' || std::isalnum(static_cast<unsigned char>(c));
+    });
+    if (!name_characters || std::count(text.begin(), text.end(), '.') > 2) return;  // prose, not a name
+    const size_t first = text.find('.');
+    if (first == std::string_view::npos || !same_name(text.substr(0, first), work_.schema->name)) return;
+    const size_t second = text.find('.', first + 1);
+    const std::string_view type = text.substr(first + 1, second == std::string_view::npos ? text.npos : second - first - 1);
+    const Symbol* symbol = work_.find(type);
+    if (!symbol || (symbol->kind != Symbol::Kind::Entity && symbol->kind != Symbol::Kind::Type)) {
+      warning(e.position, fmt::format("'{}' names no entity or type of schema {}", text, work_.schema->name));
+      return;
+    }
+    if (second == std::string_view::npos || symbol->kind != Symbol::Kind::Entity) return;
+    const std::string_view attribute = text.substr(second + 1);
+    if (!own_or_inherited(*symbol->entity, attribute))
+      warning(e.position, fmt::format("'{}': entity {} has no attribute '{}'", text, symbol->entity->name, attribute));
   }
 
   // The number of arguments of a call against the signature: a user

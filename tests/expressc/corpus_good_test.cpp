@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "ast/ast.h"
+#include "emit/cpp/cpp_generator.h"
 #include "emit/json/json_generator.h"
 #include "support.h"
 
@@ -396,4 +397,23 @@ TEST_CASE("a function without parameters is called without parentheses", "[corpu
   CHECK(call->kind == ast::Expression::Kind::Name);
   CHECK(call->binding.kind == ast::Binding::Kind::Function);
   CHECK(call->binding.algorithm == &algorithm(*model->schemas.at(0), "this_schema"));
+}
+
+TEST_CASE("names the C library defines as macros keep their spelling in EXPRESS, not in C++", "[corpus]") {
+  auto model = compile_good({"library_macro_names.exp"});
+  CHECK(test::type(*model, "null_style").enumeration_items == Names{"NULL"});
+  CHECK(test::type(*model, "stream_end").enumeration_items == Names{"EOF", "more"});
+  CHECK(test::part21_names(test::entity(*model, "reading")) == Names{"errno", "style", "stdin"});
+
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  CHECK(diagnostics.empty());
+  REQUIRE(files.size() == 2);
+  const std::string& h = files[0].text;
+  CHECK(h.find("enum class null_style : std::uint8_t { NULL_ };") != std::string::npos);
+  CHECK(h.find("enum class stream_end : std::uint8_t { EOF_, more };") != std::string::npos);
+  CHECK(h.find("std::int64_t errno_{};") != std::string::npos);
+  CHECK(h.find("library_macro_names::stream_end stdin_{};") != std::string::npos);
+  // Part 21 and reflection keep the EXPRESS names.
+  CHECK(files[1].text.find("\"NULL\"") != std::string::npos);
 }

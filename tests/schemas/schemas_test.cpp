@@ -163,19 +163,27 @@ const Interface* find_interface(const Model& model, std::string_view schema,
 
 }  // namespace
 
-TEST_CASE("schemas/ compiles without errors; its warnings are the reference's constructor defect", "[schemas]") {
+TEST_CASE("schemas/ compiles without errors; its warnings are the reference's known defects", "[schemas]") {
   const CompileResult& result = project_schemas().result;
   INFO(diagnostics_text(result));
   REQUIRE(result.ok());
   // The reference moved `name` down from representation_item to its
   // subtypes (direction, vector, face, edge...), so its functions'
-  // constructors, written for the standard's attributes, pass one fewer
-  // (schemas/README.md); nothing else is reported.
-  CHECK(result.diagnostics.size() == 32);
+  // constructors, written for the standard's attributes, pass one fewer;
+  // trimmed_curve.wr3 tests TYPEOF for an enumeration item, which is no
+  // type (schemas/README.md). Nothing else is reported.
+  CHECK(result.diagnostics.size() == 33);
+  int constructors = 0;
   for (const auto& d : result.diagnostics) {
     CHECK(d.severity == expressc::model::Diagnostic::Severity::Warning);
-    CHECK(d.message.rfind("entity constructor '", 0) == 0);
+    if (d.message.rfind("entity constructor '", 0) == 0) {
+      ++constructors;
+    } else {
+      CHECK(d.message == "'MACHINING_SCHEMA.PARAMETER' names no entity or type of schema machining_schema");
+      CHECK(d.line == 91);
+    }
   }
+  CHECK(constructors == 32);
 }
 
 TEST_CASE("schemas/ holds one schema per ISO 14649 part, linked by USE FROM",

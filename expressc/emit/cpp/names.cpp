@@ -21,6 +21,20 @@ const std::set<std::string_view> kCppKeywords = {
     "void", "volatile", "wchar_t", "while", "xor_eq", "and_eq", "int8_t", "int16_t", "int32_t",
     "int64_t", "uint8_t", "uint16_t", "uint32_t", "uint64_t", "size_t", "std", "stepnc"};
 
+// Macros of the C and C++ standard libraries (and the GNU predefined ones)
+// that a generated file may see through its includes: an EXPRESS name spelled
+// like one would be replaced by the preprocessor (IFC4's IfcNullStyle has the
+// enumeration item NULL). Only names EXPRESS can spell: no leading underscore.
+const std::set<std::string_view> kLibraryMacros = {
+    "NULL", "EOF", "BUFSIZ", "FILENAME_MAX", "FOPEN_MAX", "TMP_MAX", "L_tmpnam", "SEEK_SET",
+    "SEEK_CUR", "SEEK_END", "stdin", "stdout", "stderr", "errno", "EDOM", "ERANGE", "EILSEQ",
+    "assert", "offsetof", "setjmp", "va_arg", "va_copy", "va_end", "va_start", "CHAR_BIT",
+    "MB_LEN_MAX", "EXIT_SUCCESS", "EXIT_FAILURE", "RAND_MAX", "MB_CUR_MAX", "CLOCKS_PER_SEC",
+    "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "INFINITY", "NAN", "FP_INFINITE", "FP_NAN", "FP_NORMAL",
+    "FP_SUBNORMAL", "FP_ZERO", "math_errhandling", "MATH_ERRNO", "MATH_ERREXCEPT", "SIGABRT",
+    "SIGFPE", "SIGILL", "SIGINT", "SIGSEGV", "SIGTERM", "SIG_DFL", "SIG_ERR", "SIG_IGN", "LC_ALL",
+    "LC_COLLATE", "LC_CTYPE", "LC_MONETARY", "LC_NUMERIC", "LC_TIME", "linux", "unix"};
+
 // Names every generated entity class already has (from meta::Instance or
 // the generator); an attribute with one of these names gets a trailing _.
 const std::set<std::string_view> kReservedMembers = {"id", "object", "entity_info", "meta_entity",
@@ -30,7 +44,7 @@ const std::set<std::string_view> kReservedMembers = {"id", "object", "entity_inf
 
 std::string identifier(std::string_view name) {
   std::string id(name);
-  if (kCppKeywords.count(id) != 0) id += '_';
+  if (kCppKeywords.count(id) != 0 || kLibraryMacros.count(id) != 0) id += '_';
   return id;
 }
 

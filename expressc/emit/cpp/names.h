@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // C++ names for EXPRESS identifiers: the EXPRESS spelling, with a trailing
-// underscore where it would clash with C++ or with the runtime.
+// underscore where it would clash with C++, its library macros or the runtime.
 #pragma once
 
 #include <string>
@@ -8,7 +8,8 @@
 
 namespace expressc::emit::cpp {
 
-// A type, namespace or enumerator name (C++ keywords get a trailing _).
+// A type, namespace or enumerator name (C++ keywords and standard library
+// macros get a trailing _).
 std::string identifier(std::string_view name);
 // A member name of a generated entity class: also avoids the members every
 // class has (id, object, entity_info, meta_entity...).
