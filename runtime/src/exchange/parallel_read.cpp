@@ -36,6 +36,12 @@
 namespace stepnc::exchange::detail {
 namespace {
 
+// What each thread writes is kept on cache lines of its own: a line that
+// one thread writes for every record and another reads (a counter beside
+// a table's pointer, two threads' parse trees side by side) would move
+// between the cores at every record.
+constexpr std::size_t kCacheLine = 64;
+
 // Ids to instances, read by every thread while the streaming thread adds
 // to it. Ids up to 2^32 (the typed model's limit) map to segments of 4096
 // slots, allocated as ids arrive; a segment never moves, so readers need
@@ -43,7 +49,7 @@ namespace {
 // may refer to it is handed over. Sparse ids would cost a segment each, so
 // a table with far more slots than instances refuses further ids: the
 // read gives up, and the sequential read (which hashes sparse ids) takes it.
-class SharedIdTable {
+class alignas(kCacheLine) SharedIdTable {
  public:
   SharedIdTable() : directory_(static_cast<meta::Instance***>(std::calloc(kSegments, sizeof(meta::Instance**)))) {}
   SharedIdTable(const SharedIdTable&) = delete;
@@ -88,8 +94,9 @@ class SharedIdTable {
   static constexpr std::size_t kSegments = kLimit >> kSegmentBits;  // 8 MiB of address space, touched as used
   static constexpr std::size_t kSlack = std::size_t{1} << 16;
 
-  meta::Instance*** directory_;
-  std::vector<meta::Instance**> allocated_;
+  meta::Instance*** directory_;  // read by every thread
+  // Written for every record: kept off the line the readers read.
+  alignas(kCacheLine) std::vector<meta::Instance**> allocated_;
   std::size_t count_ = 0;
 };
 
@@ -106,7 +113,7 @@ struct Batch {
 };
 
 // Parses and fills the instances of batches; one per thread.
-class Filler final : public meta::FillContext {
+class alignas(kCacheLine) Filler final : public meta::FillContext {
  public:
   Filler(std::string_view text, const SharedIdTable& ids, std::atomic<bool>& failed)
       : text_(text), ids_(ids), failed_(failed) {}
@@ -143,7 +150,7 @@ class Filler final : public meta::FillContext {
 };
 
 // Batches waiting to be filled.
-class BatchQueue {
+class alignas(kCacheLine) BatchQueue {
  public:
   explicit BatchQueue(std::size_t capacity) : capacity_(capacity) {}
 
@@ -190,7 +197,7 @@ class BatchQueue {
 // The streaming thread's side: creates instances in file order, batches
 // the records, maps the file in ahead of the scanner and gives back the
 // pages of records every thread is done with.
-class Producer final : public p21::RecordHandler {
+class alignas(kCacheLine) Producer final : public p21::RecordHandler {
  public:
   Producer(ModelFile& file, const meta::Registry& registry, const Mapping* mapping, SharedIdTable& ids,
            BatchQueue& queue, Filler& own, std::atomic<bool>& failed, std::size_t batch_bytes)
@@ -292,7 +299,7 @@ std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const Ma
   auto file = std::make_unique<ModelFile>();
   file->model.reserve(text.size() / 48);  // typical records are 40-80 bytes
   SharedIdTable ids;
-  std::atomic<bool> failed{false};
+  alignas(kCacheLine) std::atomic<bool> failed{false};
   BatchQueue queue(2 * std::size_t{jobs});
   std::vector<Filler> fillers;
   fillers.reserve(jobs);
