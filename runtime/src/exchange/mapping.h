@@ -95,7 +95,7 @@ class ReadWindow {
 
  private:
   // A few system calls per file, a few MiB of it resident at a time.
-  static constexpr std::uint64_t kStep = std::uint64_t{1} << 20;
+  static constexpr std::uint64_t kStep = std::uint64_t{512} << 10;
 
   const Mapping* mapping_;
   std::uint64_t populated_ = 0;  // mapped in up to here
