@@ -39,22 +39,17 @@ exchange::ModelReadResult read(std::string_view bytes, unsigned jobs, bool stric
   return exchange::read_model_text(std::string(bytes), "input.stp", stepnc_test::registry(), options);
 }
 
-// `polylines` polylines of `points` points each, the points after the
-// polylines that use them (forward references), with names that look like
-// records: strings holding ';' and quotes, and comments.
+// A file of polylines whose points follow them (see
+// forward_reference_records).
 std::string polylines_text(int polylines, int points) {
-  std::string text = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
-                     "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n";
-  for (int p = 0; p < polylines; ++p) {
-    std::string refs;
-    for (int i = 0; i < points; ++i) refs += fmt::format("{}#{}", i == 0 ? "" : ",", 100000 + p * points + i);
-    text += fmt::format("#{}=POLYLINE('pass {};\n#9=PLANE(''x'',#1);/* not a comment */',({}));\n", p + 1, p, refs);
-    text += "/* a comment; with 'quotes' and #7=X(); */\n";
-  }
-  for (int i = 0; i < polylines * points; ++i)
-    text += fmt::format("#{}=CARTESIAN_POINT('it''s; #{}=',({}.5,2.,-3.));\n", 100000 + i, i, i);
-  text += "ENDSEC;\nEND-ISO-10303-21;\n";
-  return text;
+  return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
+         "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n" +
+         stepnc_test::forward_reference_records(polylines, points,
+                                                [](int id, int index) {
+                                                  return fmt::format("#{}=CARTESIAN_POINT('it''s; #{}=',({}.5,2.,-3.));\n",
+                                                                     id, index, index);
+                                                }) +
+         "ENDSEC;\nEND-ISO-10303-21;\n";
 }
 
 }  // namespace
