@@ -84,6 +84,9 @@ class ReadWindow {
   void advance(std::uint64_t offset, std::uint64_t needed) {
     if (mapping_ == nullptr) return;
     if (offset + kStep / 2 >= populated_) {
+      // Never behind the reader: pages mapped in there after they were
+      // given back would stay resident.
+      populated_ = std::max(populated_, offset);
       mapping_->populate(populated_, populated_ + kStep);
       populated_ += kStep;
     }
