@@ -17,7 +17,10 @@
 
 namespace stepnc::exchange::detail {
 
-// A file mapped read-only; empty files are not mapped.
+// A file mapped read-only; empty files are not mapped. As for the mapped
+// Document (p21/document.cpp): a file truncated by another process while
+// it is read faults (SIGBUS); files are not expected to change under a
+// reader.
 class Mapping {
  public:
   Mapping() = default;
