@@ -39,6 +39,19 @@ exchange::ModelReadResult read(std::string_view bytes, unsigned jobs, bool stric
   return exchange::read_model_text(std::string(bytes), "input.stp", stepnc_test::registry(), options);
 }
 
+// A file of polylines whose points follow them (see
+// forward_reference_records).
+std::string polylines_text(int polylines, int points) {
+  return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
+         "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n" +
+         stepnc_test::forward_reference_records(polylines, points,
+                                                [](int id, int index) {
+                                                  return fmt::format("#{}=CARTESIAN_POINT('it''s; #{}=',({}.5,2.,-3.));\n",
+                                                                     id, index, index);
+                                                }) +
+         "ENDSEC;\nEND-ISO-10303-21;\n";
+}
+
 }  // namespace
 
 TEST_CASE("parallel and sequential reads agree on every corpus file", "[exchange][parallel]") {
@@ -55,19 +68,8 @@ TEST_CASE("parallel and sequential reads agree on every corpus file", "[exchange
 
 TEST_CASE("parallel read: forward references across batches, strings with ';' and quotes, comments",
           "[exchange][parallel]") {
-  // Points after the polylines that use them; names that look like records.
-  std::string text = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
-                     "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n";
   constexpr int polylines = 200, points = 20;
-  for (int p = 0; p < polylines; ++p) {
-    std::string refs;
-    for (int i = 0; i < points; ++i) refs += fmt::format("{}#{}", i == 0 ? "" : ",", 100000 + p * points + i);
-    text += fmt::format("#{}=POLYLINE('pass {};\n#9=PLANE(''x'',#1);/* not a comment */',({}));\n", p + 1, p, refs);
-    text += "/* a comment; with 'quotes' and #7=X(); */\n";
-  }
-  for (int i = 0; i < polylines * points; ++i)
-    text += fmt::format("#{}=CARTESIAN_POINT('it''s; #{}=',({}.5,2.,-3.));\n", 100000 + i, i, i);
-  text += "ENDSEC;\nEND-ISO-10303-21;\n";
+  const std::string text = polylines_text(polylines, points);
 
   const exchange::ModelReadResult sequential = read(text, 1, true);
   REQUIRE(sequential.ok());
@@ -91,4 +93,40 @@ TEST_CASE("parallel read: forward references across batches, strings with ';' an
     CHECK(fingerprint(read(bad, 2, strict)) == bad_expected);
     CHECK(fingerprint(read(bad, 5, strict)) == bad_expected);
   }
+}
+
+TEST_CASE("a file read from its mapping, on one thread or several, gives the model of its text",
+          "[exchange][parallel]") {
+  // Several MiB: the reads map the file in and give it back in 1 MiB steps.
+  constexpr int polylines = 1500, points = 40;
+  const std::string text = polylines_text(polylines, points);
+  REQUIRE(text.size() > (std::size_t{4} << 20));
+  const fs::path path = stepnc_test::scratch_directory("parallel-mapped") / "input.stp";
+  const auto read_file = [&](const std::string& bytes, unsigned jobs) {
+    stepnc_test::write_text(path, bytes);
+    exchange::ModelReadOptions options;
+    options.jobs = jobs;
+    options.strict = false;
+    return fingerprint(exchange::read_model_file(path, stepnc_test::registry(), options));
+  };
+
+  const exchange::ModelReadResult from_text = read(text, 1, false);
+  REQUIRE(from_text.ok());
+  REQUIRE(from_text.file->model.size() == polylines * (points + 1));
+  const std::string expected = fingerprint(from_text);
+  for (const unsigned jobs : {1u, 2u, 3u}) CHECK(read_file(text, jobs) == expected);
+
+  // A reference to a missing instance past the first steps: the file's
+  // reads give the text's diagnostics.
+  std::string bad = text;
+  bad.replace(bad.find("#100417,"), 7, "#999999");
+  bad.replace(bad.rfind("#159000="), 7, "#100001");
+  exchange::ModelReadOptions lenient;
+  lenient.strict = false;
+  const std::string bad_expected =
+      fingerprint(exchange::read_model_text(bad, path.string(), stepnc_test::registry(), lenient));
+  CHECK(bad_expected.find("#999999 does not exist") != std::string::npos);
+  CHECK(bad_expected.find("duplicate instance id") != std::string::npos);
+  for (const unsigned jobs : {1u, 2u}) CHECK(read_file(bad, jobs) == bad_expected);
+  fs::remove_all(path.parent_path());
 }

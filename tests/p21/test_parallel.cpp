@@ -40,21 +40,18 @@ ReadResult read(std::string_view bytes, unsigned jobs, bool strict) {
   return read_text(std::string(bytes), "input.stp", options);
 }
 
-// A file of `polylines` polylines whose points follow them (forward
-// references across batches), with strings holding ';', quotes and what
-// looks like records, and comments between records.
+// A file of polylines whose points follow them (see
+// forward_reference_records), the points spelt with spaces and in lower
+// case, and a second DATA section.
 std::string forward_file(int polylines, int points) {
-  std::string text = "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
-                     "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('S'));\nENDSEC;\nDATA;\n";
-  for (int p = 0; p < polylines; ++p) {
-    std::string refs;
-    for (int i = 0; i < points; ++i) refs += fmt::format("{}#{}", i == 0 ? "" : ",", 100000 + p * points + i);
-    text += fmt::format("#{}=POLYLINE('pass {};\n#9=PLANE(''x'',#1);/* not a comment */',({}));\n", p + 1, p, refs);
-    text += "/* a comment; with 'quotes' and #7=X(); */\n";
-  }
-  for (int i = 0; i < polylines * points; ++i)
-    text += fmt::format("#{} = cartesian_point ( 'it''s; #{}=' , ({}.5,2.,-3.) ) ;\n", 100000 + i, i, i);
-  return text + "ENDSEC;\nDATA(('second'),('S'));\n#1000000=X(#1);\nENDSEC;\nEND-ISO-10303-21;\n";
+  return "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\n"
+         "FILE_NAME('','',(''),(''),'','','');\nFILE_SCHEMA(('S'));\nENDSEC;\nDATA;\n" +
+         stepnc_test::forward_reference_records(polylines, points,
+                                                [](int id, int index) {
+                                                  return fmt::format("#{} = cartesian_point ( 'it''s; #{}=' , ({}.5,2.,-3.) ) ;\n",
+                                                                     id, index, index);
+                                                }) +
+         "ENDSEC;\nDATA(('second'),('S'));\n#1000000=X(#1);\nENDSEC;\nEND-ISO-10303-21;\n";
 }
 
 }  // namespace

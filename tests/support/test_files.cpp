@@ -75,4 +75,18 @@ std::size_t check_reads_agree_for_any_jobs(const ReadFingerprint& read) {
                       });
 }
 
+std::string forward_reference_records(int polylines, int points,
+                                      const std::function<std::string(int id, int index)>& point) {
+  constexpr int kFirstPoint = 100000;
+  std::string text;
+  for (int p = 0; p < polylines; ++p) {
+    text.append("#").append(std::to_string(p + 1)).append("=POLYLINE('pass ").append(std::to_string(p));
+    text.append(";\n#9=PLANE(''x'',#1);/* not a comment */',(");
+    for (int i = 0; i < points; ++i) text.append(i == 0 ? "#" : ",#").append(std::to_string(kFirstPoint + p * points + i));
+    text.append("));\n/* a comment; with 'quotes' and #7=X(); */\n");
+  }
+  for (int i = 0; i < polylines * points; ++i) text += point(kFirstPoint + i, i);
+  return text;
+}
+
 }  // namespace stepnc_test

@@ -23,6 +23,14 @@ std::filesystem::path scratch_directory(const std::string& name);
 // Writes `text` to `path`, byte for byte.
 void write_text(const std::filesystem::path& path, std::string_view text);
 
+// The DATA records of `polylines` polylines of `points` points each, the
+// points after the polylines that use them (forward references across a
+// parallel read's batches), with strings holding ';', quotes and what
+// looks like records, and comments between records. `point` writes the
+// record of point number `index` as instance `id`.
+std::string forward_reference_records(int polylines, int points,
+                                      const std::function<std::string(int id, int index)>& point);
+
 // Every Part 21 sample (`*.stp` below samples/), sorted.
 std::vector<std::filesystem::path> sample_part21_files();
 

@@ -19,6 +19,7 @@
 #include <fmt/ranges.h>
 
 #include "instance_index.h"
+#include "mapping.h"
 #include "read_support.h"
 #include "stepnc/io/input.h"
 #include "stepnc/io/output.h"
@@ -31,54 +32,8 @@ namespace {
 
 using detail::IndexedRecord;
 using detail::InstanceIndex;
-
-// A file mapped read-only; empty files are not mapped.
-class Mapping {
- public:
-  Mapping() = default;
-  Mapping(const Mapping&) = delete;
-  Mapping& operator=(const Mapping&) = delete;
-  ~Mapping() { reset(); }
-  void reset() {
-    if (data_ != nullptr) ::munmap(data_, size_);
-    data_ = nullptr;
-    size_ = 0;
-  }
-
-  // Maps `descriptor` of `size` bytes; an error message on failure.
-  std::optional<std::string> map(int descriptor, std::size_t size) {
-    if (size == 0) return std::nullopt;
-    void* data = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, descriptor, 0);
-    if (data == MAP_FAILED) return std::error_code(errno, std::generic_category()).message();
-    data_ = data;
-    size_ = size;
-    return std::nullopt;
-  }
-  std::string_view text() const { return {static_cast<const char*>(data_), size_}; }
-  // Gives the pages of [from, to) back (they are read again from the page
-  // cache when touched), so one pass over a large file does not stay resident.
-  void release(std::size_t from, std::size_t to) const {
-    const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
-    from = (from + page - 1) / page * page;
-    to = to / page * page;
-    if (data_ != nullptr && to > from) ::madvise(static_cast<char*>(data_) + from, to - from, MADV_DONTNEED);
-  }
-  void advise(int advice) const {
-    if (data_ != nullptr) ::madvise(data_, size_, advice);
-  }
-
- private:
-  void* data_ = nullptr;
-  std::size_t size_ = 0;
-};
-
-// Closes a descriptor when it goes out of scope.
-struct Descriptor {
-  int fd = -1;
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
+using detail::Descriptor;
+using detail::Mapping;
 
 // --------------------------------------------------------------- the cache
 //

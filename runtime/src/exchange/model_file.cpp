@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "stepnc/exchange/model_file.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+
 #include <algorithm>
-#include <cstdio>
 #include <limits>
 #include <span>
 #include <thread>
@@ -17,8 +19,9 @@
 #include "stepnc/p21/parameters.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/writer.h"
-#include "read_support.h"
+#include "mapping.h"
 #include "parallel_read.h"
+#include "read_support.h"
 
 namespace stepnc::exchange {
 
@@ -125,8 +128,9 @@ class InstanceTable {
 // header), leaving the reporting to the indexed read.
 class StreamingBuilder final : public p21::RecordHandler, public meta::FillContext {
  public:
-  StreamingBuilder(ModelFile& file, const meta::Registry& registry, std::size_t expected_records)
-      : file_(file), registry_(registry), entities_(registry), instances_(expected_records) {
+  StreamingBuilder(ModelFile& file, const meta::Registry& registry, std::size_t expected_records,
+                   const detail::Mapping* mapping)
+      : file_(file), registry_(registry), entities_(registry), instances_(expected_records), window_(mapping) {
     file_.model.reserve(expected_records);
   }
 
@@ -136,6 +140,7 @@ class StreamingBuilder final : public p21::RecordHandler, public meta::FillConte
   }
 
   bool on_record(const p21::RecordView& record, p21::StreamContext& context) override {
+    window_.advance(record.offset, record.offset);
     if (tree_.parse(record.text, record.offset)) return give_up();
     const meta::EntityInfo* entity = entity_of(record, context);
     if (entity == nullptr || entity->abstract || record.id > std::numeric_limits<std::uint32_t>::max()) {
@@ -183,30 +188,25 @@ class StreamingBuilder final : public p21::RecordHandler, public meta::FillConte
   const meta::Registry& registry_;
   EntityLookup entities_;
   InstanceTable instances_;
+  detail::ReadWindow window_;
   std::vector<std::string_view> parts_;  // of a complex instance
   std::vector<meta::PendingReference> pending_;
   p21::ParamTree tree_;
   bool failed_ = false;
 };
 
-// Small enough that the bytes a read brings in are still in the L2 cache
-// when the scanner and the parser go over them (measured: 4 MB chunks read
-// the benchmark file some 10% slower).
-constexpr std::size_t kChunkSize = std::size_t{256} << 10;
-
-// Streams `input` into a new ModelFile; null when the file has a problem
-// (or cannot be read) and needs the indexed read.
-std::unique_ptr<ModelFile> stream_model(std::FILE* input, std::string file_name, std::size_t size,
-                                        const meta::Registry& registry, unsigned jobs) {
-  if (jobs > 1) return detail::stream_model_parallel(input, std::move(file_name), size, registry, jobs);
+// Streams `text` into a new ModelFile on one thread; null when the file
+// has a problem and needs the indexed read. `mapping`: as for
+// stream_model_parallel.
+std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Mapping* mapping, std::string file_name,
+                                        const meta::Registry& registry) {
   // Typical records are 40-80 bytes; reserving from the size keeps the
   // tables from regrowing (untouched capacity costs no memory).
   auto file = std::make_unique<ModelFile>();
-  StreamingBuilder builder(*file, registry, size / 48);
+  StreamingBuilder builder(*file, registry, text.size() / 48, mapping);
   p21::ReadOptions stop_at_first_problem;
   stop_at_first_problem.error_limit = 1;
-  const p21::Diagnostics diagnostics =
-      p21::stream(input, std::move(file_name), stop_at_first_problem, builder, kChunkSize);
+  const p21::Diagnostics diagnostics = p21::stream_text(text, std::move(file_name), stop_at_first_problem, builder);
   if (!diagnostics.items().empty() || !builder.finish()) return nullptr;
   return file;
 }
@@ -217,6 +217,27 @@ unsigned read_jobs(const ModelReadOptions& options, std::size_t size) {
   constexpr std::size_t kParallelFrom = std::size_t{1} << 20;  // below, starting threads costs more than it saves
   if (size < kParallelFrom) return 1;
   return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Streams `text` into a new ModelFile on the threads `options` ask for;
+// null when it has a problem and needs the indexed read.
+std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Mapping* mapping, std::string file_name,
+                                        const meta::Registry& registry, const ModelReadOptions& options) {
+  if (const unsigned jobs = read_jobs(options, text.size()); jobs > 1)
+    return detail::stream_model_parallel(text, mapping, std::move(file_name), registry, jobs);
+  return stream_model(text, mapping, std::move(file_name), registry);
+}
+
+// Streams the file at `path` from a mapping (no copy of it, and the
+// threads share it); null when it has a problem or cannot be mapped.
+std::unique_ptr<ModelFile> stream_model_file(const std::filesystem::path& path, const meta::Registry& registry,
+                                             const ModelReadOptions& options) {
+  detail::Descriptor input{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  struct stat status {};
+  if (input.fd < 0 || ::fstat(input.fd, &status) != 0 || !S_ISREG(status.st_mode)) return nullptr;
+  detail::Mapping mapping;
+  if (mapping.map(input.fd, static_cast<std::size_t>(status.st_size))) return nullptr;
+  return stream_model(mapping.text(), &mapping, path.string(), registry, options);
 }
 
 // -------------------------------------------------------------- indexed
@@ -405,25 +426,15 @@ ModelReadResult read_model_file(const std::filesystem::path& path, const meta::R
     }
     return read_model_text(std::move(text), io::standard_input_name, registry, options);
   }
-  std::error_code size_error;
-  const std::uintmax_t size = std::filesystem::file_size(path, size_error);
-  if (std::FILE* input = size_error ? nullptr : std::fopen(path.c_str(), "rb")) {
-    std::unique_ptr<ModelFile> file = stream_model(input, path.string(), static_cast<std::size_t>(size), registry,
-                                                   read_jobs(options, static_cast<std::size_t>(size)));
-    std::fclose(input);
-    if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
-  }
+  if (std::unique_ptr<ModelFile> file = stream_model_file(path, registry, options))
+    return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   return build(p21::read_file(path, syntax_options(options)), registry, options);
 }
 
 ModelReadResult read_model_text(std::string text, std::string file_name, const meta::Registry& registry,
                                 const ModelReadOptions& options) {
-  if (std::FILE* input = text.empty() ? nullptr : ::fmemopen(text.data(), text.size(), "rb")) {
-    std::unique_ptr<ModelFile> file =
-        stream_model(input, file_name, text.size(), registry, read_jobs(options, text.size()));
-    std::fclose(input);
-    if (file != nullptr) return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
-  }
+  if (std::unique_ptr<ModelFile> file = stream_model(text, nullptr, file_name, registry, options))
+    return ModelReadResult{std::move(file), p21::Diagnostics(options.error_limit)};
   return build(p21::read_text(std::move(text), std::move(file_name), syntax_options(options)), registry,
                options);
 }

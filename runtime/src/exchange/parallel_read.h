@@ -3,20 +3,23 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
 
+#include "mapping.h"
 #include "stepnc/exchange/model_file.h"
 
 namespace stepnc::exchange::detail {
 
-// Streams `input` into a new ModelFile on `jobs` threads (the caller's
-// among them). Null when the file has a problem of any kind, exactly when
+// Reads `text` into a new ModelFile on `jobs` threads (the caller's among
+// them). When `text` is the whole of `mapping`, its pages are mapped in
+// ahead of the scanner and given back behind the threads, so that the
+// file is never resident as a whole. Null when the file has a problem of any kind, exactly when
 // the sequential streaming read gives up: the caller then reads it again
 // through the indexed read, which reports every problem. A file read
 // without a problem gives the same model as the sequential read.
-std::unique_ptr<ModelFile> stream_model_parallel(std::FILE* input, std::string file_name, std::size_t size,
+std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const Mapping* mapping, std::string file_name,
                                                  const meta::Registry& registry, unsigned jobs);
 
 }  // namespace stepnc::exchange::detail
