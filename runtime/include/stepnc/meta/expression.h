@@ -148,9 +148,10 @@ struct AggregateShape {
   std::int64_t lower = 0;      ///< bounded: the lower bound (index of an ARRAY)
   std::optional<std::int64_t> upper;  ///< bounded: the upper bound; none for `?`
 
-  /// The least and the greatest lower bound, and upper bound, that pack.
-  static constexpr std::int64_t min_lower = -(std::int64_t{1} << 23), max_lower = (std::int64_t{1} << 23) - 1;
-  static constexpr std::int64_t min_upper = -(std::int64_t{1} << 30), max_upper = (std::int64_t{1} << 30) - 2;
+  static constexpr std::int64_t min_lower = -(std::int64_t{1} << 23);    ///< the least lower bound that packs
+  static constexpr std::int64_t max_lower = (std::int64_t{1} << 23) - 1;  ///< the greatest lower bound that packs
+  static constexpr std::int64_t min_upper = -(std::int64_t{1} << 30);    ///< the least upper bound that packs
+  static constexpr std::int64_t max_upper = (std::int64_t{1} << 30) - 2;  ///< the greatest upper bound that packs
   /// Whether these bounds pack (`upper` none for `?`).
   static constexpr bool fits(std::int64_t lower, std::optional<std::int64_t> upper) noexcept {
     return lower >= min_lower && lower <= max_lower && (!upper || (*upper >= min_upper && *upper <= max_upper));
