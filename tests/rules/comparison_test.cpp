@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// Value comparison of entity values (ISO 10303-11 12.2.1.5) in the rule
+// Value comparison of entity values (ISO 10303-11 12.2.1) in the rule
 // evaluator (comparison_schema.exp): `=` and `<>` compare the entity data
 // types and then the attribute values, recursively, with UNKNOWN where an
 // attribute is indeterminate and an end on cycles; `:=:` and `:<>:` stay
-// instance comparison (12.2.2); aggregates (12.2.1.4) and selects holding
+// instance comparison (12.2.2); aggregates and selects holding
 // entities compare their entities the same way; IN is by instance,
 // VALUE_IN and VALUE_UNIQUE by value. WHERE rules using `<>` on entities
 // give the same violations interpreted and replayed from traces.

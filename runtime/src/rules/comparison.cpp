@@ -22,7 +22,7 @@ const void* identity(const Value& v) { return v.kind == Value::Kind::Instance ? 
 
 // The entity data type of an entity value, as the set of named entities it
 // is an instance of (supertypes and the parts of a complex instance
-// included), sorted: what 12.2.1.5 compares first.
+// included), sorted: what entity value comparison (12.2.1) compares first.
 std::vector<const meta::EntityInfo*> entity_types(const Value& v) {
   std::vector<const meta::EntityInfo*> types;
   auto add = [&](const meta::EntityInfo& entity) {
@@ -119,7 +119,7 @@ Truth Equality::equal(const Value& a, const Value& b, Comparison how) {
   }
 }
 
-// Entity value comparison (12.2.1.5): an instance equals itself; two
+// Entity value comparison (12.2.1): an instance equals itself; two
 // entity values of different entity data types differ; otherwise each
 // explicit attribute is compared by value comparison, recursively: FALSE
 // when one differs, else UNKNOWN when one is indeterminate, else TRUE. A
@@ -242,7 +242,7 @@ Truth Equality::aggregate_subset(const Elements& sub, const Elements& super, boo
   return result;
 }
 
-// Aggregate value comparison `=` (12.2.1.4) and instance comparison `:=:`
+// Aggregate value comparison `=` (12.2.1) and instance comparison `:=:`
 // (12.2.2): LISTs and ARRAYs element by element in order (an ARRAY's
 // position counts, not its index), BAGs and SETs by occurrences in any
 // order; elements compare as the aggregates do (entities by value under

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Comparison of EXPRESS values (ISO 10303-11 12.2) and the aggregate
 // operators built on it (12.6): value comparison `=` `<>` (12.2.1),
-// entity instances included (12.2.1.5: same entity data type, attribute
-// values value-equal), and instance comparison `:=:` `:<>:` (12.2.2).
+// entity values included (entity value comparison: the same entity data
+// type, attribute values value-equal), and instance comparison `:=:`
+// `:<>:` (12.2.2).
 #pragma once
 
 #include <cstddef>
@@ -28,8 +29,8 @@ Truth negate(Truth t);
 // Which comparison: `=` (12.2.1), or `:=:` (12.2.2), which is `=` except
 // that entity instances compare by identity and aggregates of different
 // kinds differ. Membership (IN, 12.2.3), SET uniqueness (8.2.4) and the
-// aggregate operators (12.6) use instance comparison; VALUE_IN and
-// VALUE_UNIQUE (15.28, 15.29) value comparison.
+// aggregate operators (12.6) use instance comparison; the built-ins
+// VALUE_IN and VALUE_UNIQUE value comparison.
 enum class Comparison : std::uint8_t { Value, Instance };
 
 // -1, 0, 1, or nullopt when the two do not compare (`?` or other kinds):
@@ -52,7 +53,8 @@ class Equality {
   Truth member(const Value& item, const Elements& elements, Comparison how);
 
   // The comparison operators on two aggregates of the declared kinds
-  // (12.2.1.4, 12.2.2, 12.6.5, 12.6.6); `<` and `>` are not defined on them.
+  // (12.2.1 aggregate value comparison, 12.2.2, 12.6.5, 12.6.6); `<` and `>`
+  // are not defined on them.
   Truth aggregate_comparison(meta::Operator op, const Value& a, meta::AggregateShape::Kind a_kind, const Value& b,
                              meta::AggregateShape::Kind b_kind);
   // Union `+`, difference `-`, intersection `*` (12.6.2-12.6.4) of elements.

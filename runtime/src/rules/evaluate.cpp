@@ -799,7 +799,7 @@ class Interpreter {
     }
   }
 
-  // `item IN aggregate` (12.2.3: instance comparison), VALUE_IN (15.28: value comparison).
+  // `item IN aggregate` (12.2.3: instance comparison), VALUE_IN (value comparison).
   Truth member(const Value& item, const Value& aggregate, Comparison how = Comparison::Instance) {
     if (aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
     return equality_.member(item, *aggregate.elements(), how);
