@@ -68,7 +68,7 @@ std::vector<std::string_view> explicit_attributes(const Value& v) {
 
 Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
 
-std::optional<int> compare(const Value& a, const Value& b) {
+std::optional<int> compare_values(const Value& a, const Value& b) {
   using K = Value::Kind;
   if (a.number() && b.number()) {
     if (a.kind == K::Integer && b.kind == K::Integer) return (a.integer > b.integer) - (a.integer < b.integer);
@@ -96,7 +96,7 @@ std::optional<int> compare(const Value& a, const Value& b) {
 
 // Value comparison (12.2.1) or instance comparison (12.2.2); `?` on either
 // side gives UNKNOWN.
-Truth Equality::equal(const Value& a, const Value& b, Comparison how) {
+Truth Equality::equal_values(const Value& a, const Value& b, Comparison how) {
   using K = Value::Kind;
   if (a.indeterminate() || b.indeterminate()) return Truth::Unknown;
   if (a.number() && b.number()) {

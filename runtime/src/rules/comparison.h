@@ -35,7 +35,11 @@ enum class Comparison : std::uint8_t { Value, Instance };
 
 // -1, 0, 1, or nullopt when the two do not compare (`?` or other kinds):
 // `<` `>` `<=` `>=` of numbers, strings, binaries, LOGICALs, enumerations.
-std::optional<int> compare(const Value& a, const Value& b);
+std::optional<int> compare_values(const Value& a, const Value& b);
+inline std::optional<int> compare(const Value& a, const Value& b) {
+  if (a.kind == Value::Kind::Integer && b.kind == Value::Kind::Integer) return (a.integer > b.integer) - (a.integer < b.integer);
+  return compare_values(a, b);
+}
 
 // Comparison of values for one evaluation. An entity's attributes are read
 // through `read` (the interpreter's reads, so a trace records them).
@@ -44,7 +48,14 @@ class Equality {
   using ReadAttribute = std::function<Value(const Value& entity, std::string_view attribute)>;
   explicit Equality(ReadAttribute read) : read_(std::move(read)) {}
 
-  Truth equal(const Value& a, const Value& b, Comparison how);
+  // (Integers and instances here: rules compare them most, per instance.)
+  Truth equal(const Value& a, const Value& b, Comparison how) {
+    using K = Value::Kind;
+    if (a.kind == K::Integer && b.kind == K::Integer) return a.integer == b.integer ? Truth::True : Truth::False;
+    if (a.kind == K::Instance && b.kind == K::Instance && (how == Comparison::Instance || a.instance == b.instance))
+      return a.instance == b.instance ? Truth::True : Truth::False;
+    return equal_values(a, b, how);
+  }
 
   // Where `v` is in `list` (`how`): its position, or none with FALSE, or
   // UNKNOWN when only an indeterminate comparison could have matched.
@@ -69,6 +80,7 @@ class Equality {
   std::vector<std::pair<const void*, const void*>> assumed_;
   std::uint64_t entity_pairs_ = 0;
 
+  Truth equal_values(const Value& a, const Value& b, Comparison how);
   Truth entity_equal(const Value& a, const Value& b);
   Truth equal_elements(const Elements& a, const Elements& b, Comparison how);
   Truth aggregate_equal(const Value& a, meta::AggregateShape::Kind a_kind, const Value& b,

@@ -682,8 +682,12 @@ class Interpreter {
         return base;
       }
       case NodeKind::Index: {
-        Value scratch;
-        const Value& base = peek(nodes, n.first, frame, scratch);  // `v[i]`: no copy of v
+        if (n.count == 2 && nodes[n.first].kind == NodeKind::Variable) {  // `v[i]`: no copy of v
+          Value at = operand(1);
+          const Value& base = frame.slots.at(nodes[n.first].slot);
+          return index_of(base, first_index(nodes, n.first, base), at, Value{}, false);
+        }
+        Value base = operand(0);
         return index_of(base, first_index(nodes, n.first, base), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
       }
       case NodeKind::Call: {

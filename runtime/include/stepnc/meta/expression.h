@@ -174,10 +174,8 @@ struct AggregateShape {
     s.kind = static_cast<Kind>(packed & 7);
     s.bounded = (packed & 8) != 0;
     if (!s.bounded) return s;
-    const std::int64_t low = (packed >> 8) & 0xFFFFFF;
-    s.lower = low >= (std::int64_t{1} << 23) ? low - (std::int64_t{1} << 24) : low;
-    std::int64_t high = (packed >> 32) & 0x7FFFFFFF;
-    if (high >= (std::int64_t{1} << 30)) high -= std::int64_t{1} << 31;
+    s.lower = static_cast<std::int64_t>(static_cast<std::uint64_t>(packed) << 32) >> 40;  // bits 8-31, sign-extended
+    const std::int64_t high = static_cast<std::int64_t>(static_cast<std::uint64_t>(packed) << 1) >> 33;  // bits 32-62
     if (high > 0) s.upper = high - 1;
     if (high < 0) s.upper = high;
     return s;
