@@ -4,11 +4,17 @@
 // the evaluator indexes the ARRAY from its evaluated lower bound (ISO
 // 10303-11 8.2.1), reports the bounds through LOINDEX, HIINDEX, LOBOUND
 // and HIBOUND (15.10, 15.11, 15.14, 15.15) and gives `?` for an index
-// outside them (12.6.1).
+// outside them (12.6.1); negative bounds are exact for attributes, locals,
+// parameters and FUNCTION results; nested ARRAYs keep their inner bounds.
 #include <catch2/catch.hpp>
 
+#include <memory>
+#include <string>
+
 #include "array_bounds_schema.h"
+#include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/model.h"
+#include "stepnc/meta/registry.h"
 #include "stepnc/rules/evaluate.h"
 
 namespace {
@@ -50,4 +56,42 @@ TEST_CASE("an index outside [lo:hi] gives ?", "[rules][array_bounds]") {
   CHECK(call_text(empty_model(), f::local_element, {"-2", "1", "1"}) == "10");
   CHECK(call_text(empty_model(), f::local_element, {"-2", "1", "-3"}) == "?");
   CHECK(call_text(empty_model(), f::local_element, {"-2", "1", "2"}) == "?");
+}
+
+TEST_CASE("negative bounds of locals, FUNCTION results and parameters are exact", "[rules][array_bounds]") {
+  // ARRAY [-2:2] local: [LOINDEX, HIINDEX, LOBOUND, HIBOUND, res[-2], res[-1], res[2], res[3], res[-3]]
+  CHECK(call_text(empty_model(), f::negative_local, {"10"}) == "[-2,2,-2,2,-20,-10,20,?,?]");
+  // Bounds from parameters, both negative and across 0: [LOINDEX, HIINDEX, LOBOUND, HIBOUND, res[lo], res[hi]]
+  CHECK(call_text(empty_model(), f::local_bounds, {"-5", "-1"}) == "[-5,-1,-5,-1,-50,-10]");
+  CHECK(call_text(empty_model(), f::local_bounds, {"-2", "1"}) == "[-2,1,-2,1,-20,10]");
+  CHECK(call_text(empty_model(), f::result_bounds, {"-3", "-2"}) == "[-3,-2,-3,-2,-30,-20]");
+  // A result declared ARRAY [-1:1] of [7,8,9]: [LOBOUND, HIBOUND, LOINDEX, HIINDEX, [-1], [1], [2]]
+  CHECK(call_text(empty_model(), f::negative_result_bounds, {"7"}) == "[-1,1,-1,1,7,9,?]");
+  // A parameter declared ARRAY [-2:0] given an aggregate initializer.
+  CHECK(call_text(empty_model(), f::parameter_bounds, {"[4,5,6]"}) == "[-2,0,-2,0,4,6,?]");
+}
+
+TEST_CASE("negative bounds of a declared attribute are exact", "[rules][array_bounds]") {
+  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(array_bounds_schema::meta_schema);
+  auto result = stepnc::exchange::read_model_text(
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('ARRAY_BOUNDS_SCHEMA'));\nENDSEC;\nDATA;\n#1=GRID((1,2,3,4,5));\nENDSEC;\nEND-ISO-10303-21;\n",
+      "grid.stp", registry);
+  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
+  REQUIRE(result.ok());
+  // cells : ARRAY [-2:2]: [LOBOUND, HIBOUND, LOINDEX, HIINDEX, cells[-2], cells[2], cells[3]]
+  CHECK(call_text(result.file->model, f::attribute_bounds, {"#1"}) == "[-2,2,-2,2,1,5,?]");
+}
+
+TEST_CASE("the inner ARRAYs of a nested ARRAY keep their declared bounds", "[rules][array_bounds]") {
+  // res[i][j] = 10 i + j: [LOINDEX(res[lo1]), HIINDEX(res[lo1]), LOBOUND(res[hi1]), HIBOUND(res[hi1]),
+  // res[lo1][lo2], res[hi1][hi2], res[lo1][hi2 + 1] (past the end), res[lo1][lo2 - 1] (before it)]
+  CHECK(call_text(empty_model(), f::nested, {"1", "3", "1", "2"}) == "[1,2,1,2,11,32,?,?]");
+  CHECK(call_text(empty_model(), f::nested, {"0", "2", "0", "3"}) == "[0,3,0,3,0,23,?,?]");
+  CHECK(call_text(empty_model(), f::nested, {"-1", "1", "-3", "-2"}) == "[-3,-2,-3,-2,-13,8,?,?]");
+  // A row assigned whole: [LOINDEX(res[n]), HIINDEX(res[n]), res[n][0], res[n][m], res[0][0], res[n][m + 1]]
+  CHECK(call_text(empty_model(), f::nested_row, {"2", "3"}) == "[0,3,2,2,1,?]");
+  // Constant bounds on both levels, ARRAY [0:1] OF ARRAY [-1:0]:
+  // [LOBOUND(res[0]), HIBOUND(res[0]), res[0][-1], res[1][0], res[1][1]]
+  CHECK(call_text(empty_model(), f::constant_nested, {"1"}) == "[-1,0,1,4,?]");
 }

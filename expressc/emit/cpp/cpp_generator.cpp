@@ -126,10 +126,17 @@ bool plain(const TypeRef& type) {
 
 constexpr int64_t kLargestInlineAggregate = 4;
 
+// The most elements an aggregate holds, when few and plain: an ARRAY's
+// upper - lower + 1 (ARRAY [-2:2] holds 5), a LIST's, BAG's or SET's upper.
 std::optional<int64_t> inline_capacity(const TypeRef& aggregate) {
-  if (aggregate.upper.value && *aggregate.upper.value > 0 && *aggregate.upper.value <= kLargestInlineAggregate &&
-      plain(*aggregate.element))
-    return aggregate.upper.value;
+  if (!aggregate.upper.value || *aggregate.upper.value > kLargestInlineAggregate || !plain(*aggregate.element))
+    return std::nullopt;
+  int64_t most = *aggregate.upper.value;
+  if (aggregate.aggregate == model::AggregateKind::Array) {
+    if (!aggregate.lower.value || *aggregate.lower.value < -kLargestInlineAggregate) return std::nullopt;
+    most = *aggregate.upper.value - *aggregate.lower.value + 1;
+  }
+  if (most > 0 && most <= kLargestInlineAggregate) return most;
   return std::nullopt;
 }
 
@@ -198,9 +205,14 @@ std::string aggregate_name(const TypeRef& t) {
   std::transform(name.begin(), name.end(), name.begin(), [](char c) { return static_cast<char>(c - 'A' + 'a'); });
   if (t.unique) name += "_unique";
   name += '_';
-  name += t.lower.value ? std::to_string(*t.lower.value) : std::string("0");
+  auto bound = [](int64_t b) {  // m2 for -2
+    std::string digits = std::to_string(b);
+    if (b < 0) digits[0] = 'm';
+    return digits;
+  };
+  name += t.lower.value ? bound(*t.lower.value) : std::string("0");
   name += '_';
-  name += t.upper.value ? std::to_string(*t.upper.value) : std::string("n");
+  name += t.upper.value ? bound(*t.upper.value) : std::string("n");
   name += "_of_";
   const TypeRef& e = *t.element;
   switch (e.kind) {

@@ -9,6 +9,7 @@
 #include "ast/ast.h"
 #include "emit/cpp/names.h"
 #include "model/names.h"
+#include "stepnc/meta/expression.h"
 
 namespace expressc::emit::cpp {
 
@@ -105,17 +106,16 @@ class RuleEmitter {
     return slot;
   }
 
-  // The declared aggregate kind and constant bounds of a variable, as
-  // meta::aggregate_shape packs them (stepnc/meta/expression.h): what the
-  // evaluator needs for SET union (ISO 10303-11 12.6.3) and HIBOUND/LOBOUND.
+  // The declared aggregate kind and constant bounds of a variable, packed
+  // as the evaluator reads them (meta::AggregateShape): what it needs for
+  // SET union (ISO 10303-11 12.6.3) and HIBOUND/LOBOUND.
   static int64_t pack_shape(model::AggregateKind kind, std::optional<int64_t> lower, std::optional<int64_t> upper,
                             bool upper_unbounded) {
-    int64_t shape = static_cast<int64_t>(kind) + 1;
-    if (lower && *lower >= 0 && *lower < (1 << 23) && (upper_unbounded || (upper && *upper >= 0 && *upper < (1 << 30)))) {
-      shape |= 8 | (*lower << 8);
-      if (!upper_unbounded) shape |= (*upper + 1) << 32;
-    }
-    return shape;
+    using Shape = stepnc::meta::AggregateShape;
+    Shape shape;
+    shape.kind = static_cast<Shape::Kind>(static_cast<int>(kind) + 1);
+    if (lower && (upper_unbounded || upper)) shape = Shape::of(shape.kind, *lower, upper_unbounded ? std::nullopt : upper);
+    return shape.pack();
   }
   static int64_t shape_of(const model::TypeRef& type, int depth = 0) {
     if (type.kind == model::TypeRef::Kind::Aggregate) {
@@ -614,20 +614,25 @@ class RuleEmitter {
     (algorithm.rule ? out_.rules : out_.functions).push_back("&meta_algorithms::" + name);
   }
 
-  // An aggregate type whose bounds are expressions, not constants
-  // (`ARRAY [low:u]` from parameters): the evaluator evaluates them when
-  // the local is initialised (ISO 10303-11 8.2.1: an ARRAY is indexed
-  // low..high). Null when the packed shape already holds the bounds.
+  static bool bounded_aggregate(const ast::TypeSpec* type) {
+    return type && type->is_aggregate() && type->has_bounds && type->lower && type->upper;
+  }
+  // An aggregate local whose bounds the evaluator evaluates where it is
+  // initialised: bounds that are expressions, not constants (`ARRAY
+  // [low:u]` from parameters; ISO 10303-11 8.2.1: an ARRAY is indexed
+  // low..high), or elements that are bounded aggregates themselves (`ARRAY
+  // [1:n] OF ARRAY [1:m]`), whose bounds the elements keep. Null when the
+  // packed shape holds all of it.
   const ast::TypeSpec* evaluated_bounds(const ast::TypeSpec& type) const {
-    using K = ast::TypeSpec::Kind;
-    const bool aggregate = type.kind == K::Array || type.kind == K::List || type.kind == K::Bag || type.kind == K::Set;
-    if (!aggregate || !type.has_bounds || !type.lower || !type.upper) return nullptr;
-    if (shape_of(type) & 8) return nullptr;  // constant bounds (meta::AggregateShape bit 3)
+    if (!bounded_aggregate(&type)) return nullptr;
+    if ((shape_of(type) & 8) && !bounded_aggregate(type.element.get())) return nullptr;  // constant bounds (meta::AggregateShape bit 3)
     return &type;
   }
 
-  // `slot := value` (`?` without one); `bounds`: the local's declared bound
-  // expressions, as the operands of the target Variable node.
+  // `slot := value` (`?` without one); `bounds`: the local's declared type,
+  // whose bound expressions become the operands of the target Variable
+  // node: the two bounds, then for each level of bounded aggregate
+  // elements its packed shape (an Integer node) and its two bounds.
   void initialise(uint32_t at, uint32_t slot, const ast::Expression* value, const ast::TypeSpec* bounds) {
     node(at, "Assign");
     const uint32_t first = reserve(2);
@@ -639,7 +644,20 @@ class RuleEmitter {
       expression(*value, first + 1);
     else
       node(first + 1, "Indeterminate");
-    if (bounds) operands(first, {bounds->lower.get(), bounds->upper.get()});
+    if (!bounds) return;
+    std::vector<const ast::TypeSpec*> levels;
+    for (const ast::TypeSpec* e = bounds->element.get(); bounded_aggregate(e); e = e->element.get()) levels.push_back(e);
+    const uint32_t operand = reserve(2 + 3 * levels.size());
+    nodes_[first].first = operand;
+    nodes_[first].count = static_cast<uint32_t>(2 + 3 * levels.size());
+    expression(*bounds->lower, operand);
+    expression(*bounds->upper, operand + 1);
+    for (size_t k = 0; k < levels.size(); ++k) {
+      const auto level = operand + 2 + 3 * static_cast<uint32_t>(k);
+      node(level, "Integer").integer = std::to_string(shape_of(*levels[k]));
+      expression(*levels[k]->lower, level + 1);
+      expression(*levels[k]->upper, level + 2);
+    }
   }
 
   // ---------------------------------------------------------------- printing

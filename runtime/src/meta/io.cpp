@@ -408,13 +408,14 @@ class Filler {
 
   void read_aggregate(const ValueRef& target, const TypeInfo& type, const p21::Value& v) {
     const std::size_t n = v.size();
-    if (static_cast<std::int64_t>(n) < type.lower || (type.upper >= 0 && static_cast<std::int64_t>(n) > type.upper)) {
+    const auto [fewest, most] = type.size_limits();
+    if (static_cast<std::int64_t>(n) < fewest || (most >= 0 && static_cast<std::int64_t>(n) > most)) {
       const std::string upper = type.upper < 0 ? "?" : std::to_string(type.upper);
       fail(v, fmt::format("{} elements, outside the bounds [{}:{}]", n, type.lower, upper));
     }
     std::size_t kept = n;
     if (!target.resize(n)) {
-      kept = static_cast<std::size_t>(type.upper);
+      kept = static_cast<std::size_t>(most);
       target.resize(kept);
     }
     // Elements are addressed directly, and numbers (the bulk of most

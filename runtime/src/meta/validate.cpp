@@ -78,7 +78,8 @@ class Validator {
   void check_aggregate(const Instance& owner, std::string_view attribute, const ValueRef& value, const TypeInfo& type) {
     const std::size_t n = value.size();
     const auto size = static_cast<std::int64_t>(n);
-    if (size < type.lower || (type.upper >= 0 && size > type.upper)) {
+    const auto [fewest, most] = type.size_limits();
+    if (size < fewest || (most >= 0 && size > most)) {
       const std::string upper = type.upper < 0 ? "?" : std::to_string(type.upper);
       report(owner, attribute,
              fmt::format("{} element{}, outside the bounds [{}:{}]", n, n == 1 ? "" : "s", type.lower, upper));

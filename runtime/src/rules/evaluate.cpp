@@ -31,6 +31,7 @@
 #include "stepnc/p21/document.h"
 #include "stepnc/meta/value.h"
 
+#include "comparison.h"
 #include "references.h"
 #include "trace.h"
 #include "value.h"
@@ -43,42 +44,37 @@ using meta::Builtin;
 using meta::Node;
 using meta::NodeKind;
 using meta::Operator;
+using detail::Comparison;
 using detail::Elements;
+using detail::Equality;
 using detail::Partial;
 using detail::Truth;
+using detail::Unevaluable;
+using detail::negate;
 using detail::Value;
 using detail::truth_of;
 
-// A rule the evaluator cannot finish (a `?` is not one: it is a value).
-struct Unevaluable : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // The shape of a stored aggregate type (its bounds from the metaclass).
 std::int64_t shape_of(const meta::TypeInfo& resolved) {
-  AggregateShape s;
+  AggregateShape::Kind kind = AggregateShape::Kind::None;
   switch (resolved.kind) {
-    case meta::TypeKind::Array: s.kind = AggregateShape::Kind::Array; break;
-    case meta::TypeKind::List: s.kind = AggregateShape::Kind::List; break;
-    case meta::TypeKind::Bag: s.kind = AggregateShape::Kind::Bag; break;
-    case meta::TypeKind::Set: s.kind = AggregateShape::Kind::Set; break;
+    case meta::TypeKind::Array: kind = AggregateShape::Kind::Array; break;
+    case meta::TypeKind::List: kind = AggregateShape::Kind::List; break;
+    case meta::TypeKind::Bag: kind = AggregateShape::Kind::Bag; break;
+    case meta::TypeKind::Set: kind = AggregateShape::Kind::Set; break;
     default: return 0;
   }
-  s.bounded = resolved.lower >= 0 && resolved.lower < (1 << 23) && resolved.upper < (1 << 30);
-  s.lower = resolved.lower;
-  s.upper = resolved.upper < 0 ? -1 : resolved.upper;
-  return s.pack();
+  // The metaclass writes `?` (and a bound it could not fold) as a negative
+  // upper bound, so an ARRAY [-5:-1] attribute reports HIBOUND `?`.
+  const bool open = resolved.upper < 0;
+  return AggregateShape::of(kind, resolved.lower, open ? std::nullopt : std::optional(resolved.upper)).pack();
 }
 
 // A BAG or SET with no declared bounds, [0:?]: what USEDIN, TYPEOF,
 // ROLESOF and an entity extent give.
 std::int64_t unbounded(AggregateShape::Kind kind) {
-  AggregateShape s;
-  s.kind = kind;
-  s.bounded = true;
-  s.lower = 0;
-  s.upper = -1;
-  return s.pack();
+  return AggregateShape::of(kind, 0, std::nullopt).pack();
 }
 
 // -v; the negative of the least INTEGER is past 64 bits, so a REAL.
@@ -87,8 +83,6 @@ Value negative(const Value& v) {
   if (v.number()) return Value::of_real(-v.as_real());
   return {};
 }
-
-Truth negate(Truth t) { return t == Truth::True ? Truth::False : t == Truth::False ? Truth::True : Truth::Unknown; }
 
 std::string upper(std::string_view s) {
   std::string out(s);
@@ -165,190 +159,9 @@ Value from_ref(const meta::ValueRef& ref) {
   return v;
 }
 
-// ---------------------------------------------------------------- equality and order
-
-Truth equal(const Value& a, const Value& b);
-Truth aggregate_equal(const Value& a, AggregateShape::Kind a_kind, const Value& b, AggregateShape::Kind b_kind,
-                      bool instance);
-
-Truth equal_elements(const Elements& a, const Elements& b) {
-  if (a.size() != b.size()) return Truth::False;
-  Truth result = Truth::True;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const Truth t = equal(a[i], b[i]);
-    if (t == Truth::False) return Truth::False;
-    if (t == Truth::Unknown) result = Truth::Unknown;
-  }
-  return result;
-}
-
-// Value equality (ISO 10303-11 12.2.1); entity instances compare by identity.
-Truth equal(const Value& a, const Value& b) {
-  using K = Value::Kind;
-  if (a.indeterminate() || b.indeterminate()) return Truth::Unknown;
-  if (a.number() && b.number()) {
-    if (a.kind == K::Integer && b.kind == K::Integer) return a.integer == b.integer ? Truth::True : Truth::False;
-    return a.as_real() == b.as_real() ? Truth::True : Truth::False;
-  }
-  if (a.kind != b.kind) return Truth::False;
-  switch (a.kind) {
-    case K::Logical: return a.logical == b.logical ? Truth::True : Truth::False;
-    case K::String:
-    case K::Binary: return a.text == b.text ? Truth::True : Truth::False;
-    case K::Enumeration: return meta::equal_names(a.text, b.text) ? Truth::True : Truth::False;
-    case K::Instance: return a.instance == b.instance ? Truth::True : Truth::False;
-    case K::Partial: return a.partial() == b.partial() ? Truth::True : Truth::False;
-    case K::Aggregate:
-      return aggregate_equal(a, AggregateShape::unpack(a.shape).kind, b, AggregateShape::unpack(b.shape).kind, false);
-    default: return Truth::Unknown;
-  }
-}
-
-// -1, 0, 1, or nullopt when the two do not compare (`?` or other kinds).
-std::optional<int> compare(const Value& a, const Value& b) {
-  using K = Value::Kind;
-  if (a.number() && b.number()) {
-    if (a.kind == K::Integer && b.kind == K::Integer) return (a.integer > b.integer) - (a.integer < b.integer);
-    const double x = a.as_real(), y = b.as_real();
-    return (x > y) - (x < y);
-  }
-  if (a.kind != b.kind) return std::nullopt;
-  if (a.kind == K::String || a.kind == K::Binary) return a.text.compare(b.text) < 0 ? -1 : a.text == b.text ? 0 : 1;
-  if (a.kind == K::Logical) {
-    // FALSE < UNKNOWN < TRUE (ISO 10303-11 12.2.1.2)
-    auto rank = [](Truth t) { return t == Truth::False ? 0 : t == Truth::Unknown ? 1 : 2; };
-    return (rank(a.logical) > rank(b.logical)) - (rank(a.logical) < rank(b.logical));
-  }
-  if (a.kind == K::Enumeration && a.type && b.type && &a.type->resolved() == &b.type->resolved()) {
-    const auto& items = a.type->resolved().items;
-    auto index = [&](std::string_view item) {
-      return std::find_if(items.begin(), items.end(), [&](std::string_view i) { return meta::equal_names(i, item); }) -
-             items.begin();
-    };
-    const auto x = index(a.text), y = index(b.text);
-    return (x > y) - (x < y);
-  }
-  return std::nullopt;
-}
-
-// ---------------------------------------------------------------- aggregate operators
-// ISO 10303-11 12.2.1.7, 12.2.2 and 12.6, one helper per operator, over the
-// operands' elements and their declared kinds (None: an aggregate
-// initializer, which takes the other operand's kind).
-
 using AggregateKind = AggregateShape::Kind;
 
 AggregateKind kind_of(std::int64_t shape) { return AggregateShape::unpack(shape).kind; }
-
-// Where `v` is in `list`: its position, or none with FALSE, or UNKNOWN
-// when only an indeterminate comparison could have matched.
-std::pair<std::ptrdiff_t, Truth> find_element(const Elements& list, const Value& v) {
-  Truth result = Truth::False;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const Truth t = equal(list[i], v);
-    if (t == Truth::True) return {static_cast<std::ptrdiff_t>(i), Truth::True};
-    if (t == Truth::Unknown) result = Truth::Unknown;
-  }
-  return {-1, result};
-}
-
-bool contains(const Elements& list, const Value& v) { return find_element(list, v).second == Truth::True; }
-
-// Removes one occurrence of `v` from `pool` (see find_element for the result).
-Truth take_one(Elements& pool, const Value& v) {
-  const auto [at, found] = find_element(pool, v);
-  if (found == Truth::True) pool.erase(pool.begin() + at);
-  return found;
-}
-
-// Union (12.6.3), of the aggregate operand's kind (the left one's when both
-// are): a SET gains only the elements it does not hold, a BAG or a LIST
-// every one; an element on the left goes first.
-Elements aggregate_union(const Elements& left, const Elements& right, bool element_first, bool set) {
-  if (element_first) {
-    Elements result = right;
-    if (!set || !contains(result, left.front())) result.insert(result.begin(), left.front());
-    return result;
-  }
-  Elements result = left;
-  for (const Value& e : right)
-    if (!set || !contains(result, e)) result.push_back(e);
-  return result;
-}
-
-// Difference (12.6.4): each element of the right operand removes one
-// occurrence of it from a BAG, and removes it from a SET.
-Elements aggregate_difference(const Elements& left, const Elements& right, bool set) {
-  Elements result = left;
-  if (set) {
-    std::erase_if(result, [&](const Value& e) { return contains(right, e); });
-    return result;
-  }
-  for (const Value& e : right) take_one(result, e);
-  return result;
-}
-
-// Intersection (12.6.2): of two BAGs, each element as many times as the
-// operand holding it fewer times has it; when either operand is a SET, a
-// SET of the elements both hold.
-Elements aggregate_intersection(const Elements& left, const Elements& right, bool set) {
-  Elements result;
-  if (set) {
-    for (const Value& e : left)
-      if (contains(right, e) && !contains(result, e)) result.push_back(e);
-    return result;
-  }
-  Elements pool = right;
-  for (const Value& e : left)
-    if (take_one(pool, e) == Truth::True) result.push_back(e);
-  return result;
-}
-
-// Subset `<=` (12.6.5; superset `>=`, 12.6.6, is it with the operands
-// swapped): every element of `sub` is in `super`, as many times when both
-// are BAGs, once when either is a SET.
-Truth aggregate_subset(const Elements& sub, const Elements& super, bool set) {
-  Truth result = Truth::True;
-  Elements pool = set ? Elements{} : super;
-  for (const Value& e : sub) {
-    const Truth t = set ? find_element(super, e).second : take_one(pool, e);
-    if (t == Truth::False) return Truth::False;
-    if (t == Truth::Unknown) result = Truth::Unknown;
-  }
-  return result;
-}
-
-// Value comparison `=` of aggregates (12.2.1.7) and instance comparison
-// `:=:` (12.2.2): LISTs and ARRAYs element by element in order (an
-// ARRAY's position counts, not its index), BAGs and SETs by occurrences in
-// any order; instance comparison wants the same kind of aggregate too.
-// Elements compare as `equal` does: entity instances by identity, so here
-// the two coincide (entity value comparison, 12.2.1.5, is not implemented).
-Truth aggregate_equal(const Value& a, AggregateKind a_kind, const Value& b, AggregateKind b_kind, bool instance) {
-  using K = AggregateKind;
-  if (instance && a_kind != K::None && b_kind != K::None && a_kind != b_kind) return Truth::False;
-  const Elements& x = *a.elements();
-  const Elements& y = *b.elements();
-  if (x.size() != y.size()) return Truth::False;
-  const bool unordered = a_kind == K::Bag || a_kind == K::Set || b_kind == K::Bag || b_kind == K::Set;
-  if (!unordered) return equal_elements(x, y);
-  return aggregate_subset(x, y, false);  // as many elements, each as often
-}
-
-// The comparison operators on two aggregates (12.2.1.7, 12.2.2, 12.6.5,
-// 12.6.6); `<` and `>` are not defined on aggregates.
-Truth aggregate_comparison(Operator op, const Value& a, AggregateKind a_kind, const Value& b, AggregateKind b_kind) {
-  const bool set = a_kind == AggregateKind::Set || b_kind == AggregateKind::Set;
-  switch (op) {
-    case Operator::Equal: return aggregate_equal(a, a_kind, b, b_kind, false);
-    case Operator::NotEqual: return negate(aggregate_equal(a, a_kind, b, b_kind, false));
-    case Operator::InstanceEqual: return aggregate_equal(a, a_kind, b, b_kind, true);
-    case Operator::InstanceNotEqual: return negate(aggregate_equal(a, a_kind, b, b_kind, true));
-    case Operator::LessEqual: return aggregate_subset(*a.elements(), *b.elements(), set);
-    case Operator::GreaterEqual: return aggregate_subset(*b.elements(), *a.elements(), set);
-    default: return Truth::Unknown;
-  }
-}
 
 // LIKE (ISO 10303-11 12.2.5): @ letter, ^ upper-case letter, ? any
 // character, & any rest, # digit, $ a word, * any run, \ escapes.
@@ -407,11 +220,16 @@ struct Frame {
   std::vector<Value> slots;
   Value self;
   Value result;
-  // Locals whose declared bounds are expressions (`ARRAY [low:u]`), as
-  // evaluated when each was initialised: its packed shape and lower index.
+  // Locals whose declared bounds are expressions (`ARRAY [low:u]`) or
+  // whose elements are bounded aggregates, as evaluated when each was
+  // initialised: the packed shape and lower index of the local, then of
+  // its elements, their elements, ...
+  struct Level {
+    std::int64_t shape, lower;
+  };
   struct EvaluatedShape {
     std::uint32_t slot;
-    std::int64_t shape, lower;
+    std::vector<Level> levels;
   };
   std::vector<EvaluatedShape> shapes;
 };
@@ -456,7 +274,11 @@ constexpr std::uint64_t max_steps = 50'000'000;  // loop iterations of one top-l
 
 class Interpreter {
  public:
-  explicit Interpreter(Indexes& indexes) : indexes_(indexes) {}
+  explicit Interpreter(Indexes& indexes)
+      : indexes_(indexes), equality_([this](const Value& entity, std::string_view name) { return attribute(entity, name); }) {}
+  // equality_ calls back into this object: it stays where it was made.
+  Interpreter(const Interpreter&) = delete;
+  Interpreter& operator=(const Interpreter&) = delete;
 
   Value evaluate(const meta::DomainRuleInfo& rule, Value self) {
     Frame frame(pool_, rule.frame);
@@ -543,6 +365,7 @@ class Interpreter {
 
  private:
   Indexes& indexes_;
+  Equality equality_;  // reads attributes through attribute(): a trace records them
   SlotPool pool_;
   // The extents this interpreter has read, from indexes_ (no lock for the next read).
   std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
@@ -755,13 +578,13 @@ class Interpreter {
 
   // `v` as a value of the declared aggregate `shape` (an assignment, a
   // RETURN): a SET keeps each element once.
-  static Value shaped(Value v, std::int64_t shape) {
+  Value shaped(Value v, std::int64_t shape) {
     if (!shape || v.kind != Value::Kind::Aggregate) return v;
     const AggregateShape s = AggregateShape::unpack(shape);
     if (s.kind == AggregateShape::Kind::Set && v.aggregate_kind() != AggregateShape::Kind::Set) {
       Elements once;
       for (const Value& e : *v.elements())
-        if (member(e, once) != Truth::True) once.push_back(e);
+        if (equality_.member(e, once, Comparison::Instance) != Truth::True) once.push_back(e);
       if (once.size() != v.elements()->size()) v.heap = std::make_shared<Elements>(std::move(once));
     }
     if (s.kind == AggregateShape::Kind::Array && s.bounded) v.integer = s.lower;
@@ -774,44 +597,80 @@ class Interpreter {
 
   // `v` assigned to `variable`: shaped by its declaration, or by the
   // bounds evaluated for it (evaluate_bounds).
-  static Value shaped(Value v, const Node& variable, const Frame& frame) {
-    for (const Frame::EvaluatedShape& evaluated : frame.shapes)
-      if (evaluated.slot == variable.slot) {
-        if (v.kind != Value::Kind::Aggregate) return v;
-        v = shaped(std::move(v), evaluated.shape);
-        if (v.aggregate_kind() == AggregateShape::Kind::Array) v.integer = evaluated.lower;
-        v.shape = evaluated.shape;
-        return v;
-      }
+  Value shaped(Value v, const Node& variable, const Frame& frame) {
+    if (const Frame::EvaluatedShape* evaluated = evaluated_shape(frame, variable.slot))
+      return shaped(std::move(v), evaluated->levels);
     return shaped(std::move(v), variable.integer);
+  }
+
+  static const Frame::EvaluatedShape* evaluated_shape(const Frame& frame, std::uint32_t slot) {
+    for (const Frame::EvaluatedShape& evaluated : frame.shapes)
+      if (evaluated.slot == slot) return &evaluated;
+    return nullptr;
+  }
+
+  // `v` as a value of `levels.front()`, its elements of the next level and
+  // so on: each nested ARRAY indexed from its own lower bound.
+  Value shaped(Value v, std::span<const Frame::Level> levels) {
+    if (levels.empty() || v.kind != Value::Kind::Aggregate) return v;
+    const Frame::Level& level = levels.front();
+    v = shaped(std::move(v), level.shape);
+    if (v.aggregate_kind() == AggregateShape::Kind::Array) v.integer = level.lower;
+    v.shape = level.shape;
+    if (levels.size() == 1) return v;
+    // Elements already of the next level are left alone (and not copied):
+    // `v := v + e` reshapes v at each step.
+    const bool deeper = levels.size() > 2;
+    auto of_level = [&](const Value& e) {
+      return e.kind != Value::Kind::Aggregate ||
+             (!deeper && e.shape == levels[1].shape &&
+              (e.aggregate_kind() != AggregateShape::Kind::Array || e.integer == levels[1].lower));
+    };
+    if (std::all_of(v.elements()->begin(), v.elements()->end(), of_level)) return v;
+    if (v.heap.use_count() > 1) v.heap = std::make_shared<Elements>(*v.elements());
+    for (Value& e : *v.elements()) e = shaped(std::move(e), levels.subspan(1));
+    return v;
+  }
+
+  // A value assigned to an element of a local (`res[i] := e`, `res[i][j] :=
+  // e`): shaped by the level of the local's declaration it lands on.
+  Value shaped_element(Value v, const Node* nodes, std::uint32_t target, const Frame& frame) {
+    std::size_t depth = 0;
+    while (nodes[target].kind == NodeKind::Index && nodes[target].count == 2) {
+      target = nodes[target].first;
+      ++depth;
+    }
+    if (depth == 0 || nodes[target].kind != NodeKind::Variable) return v;
+    const Frame::EvaluatedShape* evaluated = evaluated_shape(frame, nodes[target].slot);
+    if (!evaluated || depth >= evaluated->levels.size()) return v;
+    return shaped(std::move(v), std::span(evaluated->levels).subspan(depth));
   }
 
   // A local's bound expressions (the operands of its Variable node where it
   // is initialised), evaluated once there: an ARRAY [low:u] is indexed
-  // low..u (ISO 10303-11 8.2.1), and HIBOUND/LOBOUND report them.
-  // Bounds that do not fit the packed shape (a negative one) still give
-  // the ARRAY's lower index; HIBOUND/LOBOUND are then `?`.
+  // low..u (ISO 10303-11 8.2.1), and HIBOUND/LOBOUND report them; so are
+  // the bounds of each level of its elements (`ARRAY [1:n] OF ARRAY
+  // [1:m]`), kept by the elements. Bounds that do not fit the packed shape
+  // (past 2^23 or 2^30) still give the ARRAY's lower index; HIBOUND/LOBOUND
+  // are then `?`.
   void evaluate_bounds(const Node* nodes, const Node& variable, Frame& frame) {
-    const Value low = eval(nodes, variable.first, frame);
-    const Value high = eval(nodes, variable.first + 1, frame);
-    AggregateShape s = AggregateShape::unpack(variable.integer);
-    Frame::EvaluatedShape evaluated{variable.slot, 0, low.kind == Value::Kind::Integer ? low.integer : 1};
-    const bool open = high.indeterminate();
-    const auto fits = [](const Value& b, std::int64_t limit) {
-      return b.kind == Value::Kind::Integer && b.integer >= 0 && b.integer < limit;
+    Frame::EvaluatedShape evaluated{variable.slot, {}};
+    auto level = [&](std::int64_t declared, std::uint32_t bounds) {
+      const Value low = eval(nodes, bounds, frame);
+      const Value high = eval(nodes, bounds + 1, frame);
+      AggregateShape s = AggregateShape::unpack(declared);
+      if (low.kind == Value::Kind::Integer && (high.indeterminate() || high.kind == Value::Kind::Integer))
+        s = AggregateShape::of(s.kind, low.integer, high.indeterminate() ? std::nullopt : std::optional(high.integer));
+      evaluated.levels.push_back({s.pack(), low.kind == Value::Kind::Integer ? low.integer : 1});
     };
-    if (fits(low, std::int64_t{1} << 23) && (open || fits(high, std::int64_t{1} << 30))) {
-      s.bounded = true;
-      s.lower = low.integer;
-      s.upper = open ? -1 : high.integer;
-    }
-    evaluated.shape = s.pack();
+    level(variable.integer, variable.first);
+    for (std::uint32_t k = variable.first + 2; k + 2 < variable.first + variable.count; k += 3) level(nodes[k].integer, k + 1);
     for (Frame::EvaluatedShape& kept : frame.shapes)
       if (kept.slot == variable.slot) {
-        kept = evaluated;
+        kept = std::move(evaluated);
         return;
       }
-    frame.shapes.push_back(evaluated);
+    frame.shapes.push_back(std::move(evaluated));
   }
 
   // A variable's value where it is, anything else evaluated into `scratch`:
@@ -854,12 +713,15 @@ class Interpreter {
         if (base.kind == Value::Kind::Instance && !entity_of(*base.instance).is_a(*n.entity)) return {};
         return base;
       }
-      case NodeKind::Index:
+      case NodeKind::Index: {
         if (n.count == 2 && nodes[n.first].kind == NodeKind::Variable) {  // `v[i]`: no copy of v
           Value at = operand(1);
-          return index_of(frame.slots.at(nodes[n.first].slot), at, Value{}, false);
+          const Value& base = frame.slots.at(nodes[n.first].slot);
+          return index_of(base, first_index(nodes, n.first, base), at, Value{}, false);
         }
-        return index_of(operand(0), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
+        Value base = operand(0);
+        return index_of(base, first_index(nodes, n.first, base), operand(1), n.count > 2 ? operand(2) : Value{}, n.count > 2);
+      }
       case NodeKind::Call: {
         std::vector<Value> arguments = pool_.take(0);
         for (std::uint32_t i = 0; i < n.count; ++i) arguments.push_back(operand(i));
@@ -953,13 +815,13 @@ class Interpreter {
     return Truth::False;
   }
 
-  static Truth relate(Operator op, const Value& a, const Value& b) {
+  Truth relate(Operator op, const Value& a, const Value& b) {
     if (a.indeterminate() || b.indeterminate()) return Truth::Unknown;
     switch (op) {
-      case Operator::Equal:
-      case Operator::InstanceEqual: return equal(a, b);
-      case Operator::NotEqual:
-      case Operator::InstanceNotEqual: return negate(equal(a, b));
+      case Operator::Equal: return equality_.equal(a, b, Comparison::Value);
+      case Operator::InstanceEqual: return equality_.equal(a, b, Comparison::Instance);
+      case Operator::NotEqual: return negate(equality_.equal(a, b, Comparison::Value));
+      case Operator::InstanceNotEqual: return negate(equality_.equal(a, b, Comparison::Instance));
       default: break;
     }
     const auto c = compare(a, b);
@@ -973,19 +835,10 @@ class Interpreter {
     }
   }
 
-  static Truth member(const Value& item, const Value& aggregate) {
+  // `item IN aggregate` (12.2.3: instance comparison), VALUE_IN (value comparison).
+  Truth member(const Value& item, const Value& aggregate, Comparison how = Comparison::Instance) {
     if (aggregate.kind != Value::Kind::Aggregate) return Truth::Unknown;
-    return member(item, *aggregate.elements());
-  }
-  static Truth member(const Value& item, const Elements& elements) {
-    if (item.indeterminate()) return Truth::Unknown;
-    Truth result = Truth::False;
-    for (const Value& e : elements) {
-      const Truth t = equal(item, e);
-      if (t == Truth::True) return Truth::True;
-      if (t == Truth::Unknown) result = Truth::Unknown;
-    }
-    return result;
+    return equality_.member(item, *aggregate.elements(), how);
   }
 
   Value operation(const Node* nodes, const Node& n, Frame& frame) {
@@ -1049,7 +902,7 @@ class Interpreter {
       case Operator::InstanceNotEqual:
       case Operator::InstanceEqual:
         if (a.kind == K::Aggregate && b.kind == K::Aggregate)
-          return Value::of_truth(aggregate_comparison(n.op, a, kind_of(declared(nodes, n.first, a)), b,
+          return Value::of_truth(equality_.aggregate_comparison(n.op, a, kind_of(declared(nodes, n.first, a)), b,
                                                       kind_of(declared(nodes, n.first + 1, b))));
         return Value::of_truth(relate(n.op, a, b));
       default: break;
@@ -1102,7 +955,7 @@ class Interpreter {
   // result has the kind of the left aggregate (of the right when the left
   // is an element; an intersection with a SET is a SET). `a_shape`,
   // `b_shape`: the operands' declared shapes.
-  static Value aggregate_operation(Operator op, const Value& a, const Value& b, std::int64_t a_shape,
+  Value aggregate_operation(Operator op, const Value& a, const Value& b, std::int64_t a_shape,
                                    std::int64_t b_shape) {
     using K = Value::Kind;
     const AggregateKind left = kind_of(a_shape), right_kind = kind_of(b_shape);
@@ -1116,9 +969,9 @@ class Interpreter {
     const Elements& right_elements = b.kind == K::Aggregate ? *b.elements() : single_b;
     Elements result;
     switch (op) {
-      case Operator::Add: result = aggregate_union(left_elements, right_elements, a.kind != K::Aggregate, set); break;
-      case Operator::Subtract: result = aggregate_difference(left_elements, right_elements, set); break;
-      case Operator::Multiply: result = aggregate_intersection(left_elements, right_elements, set); break;
+      case Operator::Add: result = equality_.aggregate_union(left_elements, right_elements, a.kind != K::Aggregate, set); break;
+      case Operator::Subtract: result = equality_.aggregate_difference(left_elements, right_elements, set); break;
+      case Operator::Multiply: result = equality_.aggregate_intersection(left_elements, right_elements, set); break;
       default: return {};
     }
     Value value = Value::of_elements(std::move(result));
@@ -1126,7 +979,16 @@ class Interpreter {
     return value;
   }
 
-  static Value index_of(const Value& base, const Value& low, const Value& high, bool range) {
+  // The index of an aggregate's first element: an ARRAY's lower bound. A
+  // parameter declared `ARRAY [-2:2]` given an aggregate initializer is
+  // indexed from its declared bound, as LOBOUND reports it.
+  static std::int64_t first_index(const Node* nodes, std::uint32_t index, const Value& v) {
+    if (v.shape || nodes[index].kind != NodeKind::Variable) return v.integer;
+    const AggregateShape s = AggregateShape::unpack(nodes[index].integer);
+    return s.kind == AggregateShape::Kind::Array && s.bounded ? s.lower : v.integer;
+  }
+
+  static Value index_of(const Value& base, std::int64_t first, const Value& low, const Value& high, bool range) {
     if (low.kind != Value::Kind::Integer || (range && high.kind != Value::Kind::Integer)) return {};
     if (base.kind == Value::Kind::String) {
       const std::int64_t from = low.integer, to = range ? high.integer : low.integer;
@@ -1135,12 +997,12 @@ class Interpreter {
     }
     if (base.kind != Value::Kind::Aggregate) return {};
     const auto& elements = *base.elements();
-    const std::int64_t i = low.integer - base.integer;
+    const std::int64_t i = low.integer - first;
     if (!range) {
       if (i < 0 || i >= static_cast<std::int64_t>(elements.size())) return {};
       return elements[i];
     }
-    const std::int64_t j = high.integer - base.integer;
+    const std::int64_t j = high.integer - first;
     if (i < 0 || j >= static_cast<std::int64_t>(elements.size()) || i > j) return {};
     return Value::of_elements(Elements(elements.begin() + i, elements.begin() + j + 1));
   }
@@ -1289,11 +1151,11 @@ class Interpreter {
       case Builtin::Sizeof: return Value::of_integer(size);
       case Builtin::Hiindex:
         if (!array) return Value::of_integer(size);
-        return Value::of_integer(s.bounded && s.upper >= 0 ? s.upper : v.integer + size - 1);
+        return Value::of_integer(s.bounded && s.upper ? *s.upper : v.integer + size - 1);
       case Builtin::Loindex: return Value::of_integer(array ? (s.bounded ? s.lower : v.integer) : 1);
       case Builtin::Hibound:
-        if (!s.bounded || s.upper < 0) return {};
-        return Value::of_integer(s.upper);
+        if (!s.bounded || !s.upper) return {};
+        return Value::of_integer(*s.upper);
       case Builtin::Lobound:
         if (!s.bounded) return {};
         return Value::of_integer(s.lower);
@@ -1387,14 +1249,14 @@ class Interpreter {
         if (t == "FALSE" || t == ".F.") return Value::of_bool(false);
         return {};
       }
-      case Builtin::Value_in: return Value::of_truth(member(arg(1), arg(0)));
+      case Builtin::Value_in: return Value::of_truth(member(arg(1), arg(0), Comparison::Value));
       case Builtin::Value_unique: {
         Value v = arg(0);
         if (v.kind != Value::Kind::Aggregate) return Value::of_truth(Truth::Unknown);
         const auto& e = *v.elements();
         for (std::size_t i = 0; i < e.size(); ++i)
           for (std::size_t j = i + 1; j < e.size(); ++j)
-            if (equal(e[i], e[j]) == Truth::True) return Value::of_bool(false);
+            if (equality_.equal(e[i], e[j], Comparison::Value) == Truth::True) return Value::of_bool(false);
         return Value::of_bool(true);
       }
       case Builtin::Format: {
@@ -1441,7 +1303,7 @@ class Interpreter {
       Value at = eval(nodes, n.first + 1, frame);
       if (!base || base->kind != Value::Kind::Aggregate || at.kind != Value::Kind::Integer) return nullptr;
       if (base->heap.use_count() > 1) base->heap = std::make_shared<Elements>(*base->elements());
-      const std::int64_t i = at.integer - base->integer;
+      const std::int64_t i = at.integer - first_index(nodes, n.first, *base);
       if (i < 0 || i >= static_cast<std::int64_t>(base->elements()->size())) return nullptr;
       return &(*base->elements())[i];
     }
@@ -1480,7 +1342,7 @@ class Interpreter {
     if (elements.use_count() > 1) elements = std::make_shared<Elements>(*elements);
     if (kind == AggregateShape::Kind::Set) {  // each element once (ISO 10303-11 12.6.3)
       auto add = [&](const Value& e) {
-        if (member(e, *elements) != Truth::True) elements->push_back(e);
+        if (equality_.member(e, *elements, Comparison::Instance) != Truth::True) elements->push_back(e);
       };
       if (item.kind == Value::Kind::Aggregate)
         for (const Value& e : *item.elements()) add(e);
@@ -1509,10 +1371,13 @@ class Interpreter {
         return Flow::Return;
       case NodeKind::Assign: {
         const Node& variable = nodes[n.first];
-        if (variable.kind == NodeKind::Variable && variable.count == 2) evaluate_bounds(nodes, variable, frame);
+        if (variable.kind == NodeKind::Variable && variable.count >= 2) evaluate_bounds(nodes, variable, frame);
         if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);
-        if (variable.kind == NodeKind::Variable) value = shaped(std::move(value), variable, frame);
+        if (variable.kind == NodeKind::Variable)
+          value = shaped(std::move(value), variable, frame);
+        else
+          value = shaped_element(std::move(value), nodes, n.first, frame);
         Value* target = place(nodes, n.first, frame);
         if (!target) throw Unevaluable("an assignment to something that holds no value");
         *target = std::move(value);
@@ -1531,7 +1396,7 @@ class Interpreter {
         for (std::uint32_t a = 0; a < actions; ++a) {
           const Node& action = nodes[n.first + 1 + a];
           for (std::uint32_t l = 0; l < action.slot; ++l)
-            if (equal(selector, eval(nodes, action.first + l, frame)) == Truth::True)
+            if (equality_.equal(selector, eval(nodes, action.first + l, frame), Comparison::Value) == Truth::True)
               return execute(nodes, action.first + action.slot, frame);
         }
         if (n.slot) return execute(nodes, n.first + n.count - 1, frame);

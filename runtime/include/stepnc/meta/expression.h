@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -132,31 +133,59 @@ enum class Builtin : std::uint8_t {
 
 /// The declared aggregate type of a variable or a FUNCTION's result, packed
 /// into a Node's `integer` (Variable, Return): bits 0-2 the kind (0 none,
-/// 1 ARRAY, 2 LIST, 3 BAG, 4 SET), bit 3 set when the bounds are constants,
-/// bits 8-31 the lower bound, bits 32-62 the upper bound plus one (0: `?`).
-/// What SET union (ISO 10303-11 12.6.3) and HIBOUND/LOBOUND need.
+/// 1 ARRAY, 2 LIST, 3 BAG, 4 SET), bit 3 set when the bounds are known,
+/// bits 8-31 the lower bound (24-bit two's complement), bits 32-62 the
+/// upper bound as u + 1 when u >= 0, u when u < 0 (31-bit two's
+/// complement), 0 for `?`. So an ARRAY [-2:-1] packs, and a bound from 0 up
+/// packs as before negative ones could. What SET union (ISO 10303-11
+/// 12.6.3) and HIBOUND/LOBOUND/HIINDEX/LOINDEX (15.10, 15.11, 15.14,
+/// 15.15) need.
 struct AggregateShape {
   /// The kind of aggregate.
   enum class Kind : std::uint8_t { None, Array, List, Bag, Set };
   Kind kind = Kind::None;      ///< none: not declared (an aggregate initializer)
-  bool bounded = false;        ///< the bounds are known constants
+  bool bounded = false;        ///< the bounds are known
   std::int64_t lower = 0;      ///< bounded: the lower bound (index of an ARRAY)
-  std::int64_t upper = -1;     ///< bounded: the upper bound, -1 for `?`
+  std::optional<std::int64_t> upper;  ///< bounded: the upper bound; none for `?`
+
+  static constexpr std::int64_t min_lower = -(std::int64_t{1} << 23);    ///< the least lower bound that packs
+  static constexpr std::int64_t max_lower = (std::int64_t{1} << 23) - 1;  ///< the greatest lower bound that packs
+  static constexpr std::int64_t min_upper = -(std::int64_t{1} << 30);    ///< the least upper bound that packs
+  static constexpr std::int64_t max_upper = (std::int64_t{1} << 30) - 2;  ///< the greatest upper bound that packs
+  /// Whether these bounds pack (`upper` none for `?`).
+  static constexpr bool fits(std::int64_t lower, std::optional<std::int64_t> upper) noexcept {
+    return lower >= min_lower && lower <= max_lower && (!upper || (*upper >= min_upper && *upper <= max_upper));
+  }
+  /// A shape of `kind` with these bounds, unbounded when they do not pack.
+  static constexpr AggregateShape of(Kind kind, std::int64_t lower, std::optional<std::int64_t> upper) noexcept {
+    AggregateShape s;
+    s.kind = kind;
+    if (fits(lower, upper)) {
+      s.bounded = true;
+      s.lower = lower;
+      s.upper = upper;
+    }
+    return s;
+  }
 
   /// Unpacks a Node's `integer`.
   static constexpr AggregateShape unpack(std::int64_t packed) noexcept {
     AggregateShape s;
     s.kind = static_cast<Kind>(packed & 7);
     s.bounded = (packed & 8) != 0;
-    s.lower = (packed >> 8) & 0xFFFFFF;
-    s.upper = ((packed >> 32) & 0x7FFFFFFF) - 1;
+    if (!s.bounded) return s;
+    s.lower = static_cast<std::int64_t>(static_cast<std::uint64_t>(packed) << 32) >> 40;  // bits 8-31, sign-extended
+    const std::int64_t high = static_cast<std::int64_t>(static_cast<std::uint64_t>(packed) << 1) >> 33;  // bits 32-62
+    if (high > 0) s.upper = high - 1;
+    if (high < 0) s.upper = high;
     return s;
   }
-  /// Packs it (see unpack).
+  /// Packs it (see unpack); bounds that do not fit pack as not bounded.
   constexpr std::int64_t pack() const noexcept {
     std::int64_t packed = static_cast<std::int64_t>(kind);
-    if (bounded) packed |= 8 | ((lower & 0xFFFFFF) << 8) | ((upper + 1) << 32);
-    return packed;
+    if (!bounded || !fits(lower, upper)) return packed;
+    const std::int64_t high = !upper ? 0 : *upper >= 0 ? *upper + 1 : *upper;
+    return packed | 8 | ((lower & 0xFFFFFF) << 8) | ((high & 0x7FFFFFFF) << 32);
   }
 };
 

@@ -146,6 +146,14 @@ struct TypeInfo {
     return kind == TypeKind::Array || kind == TypeKind::List || kind == TypeKind::Bag ||
            kind == TypeKind::Set;
   }
+  /// Aggregates: the fewest and the most elements a value holds (most < 0:
+  /// no limit). An ARRAY holds one per index, upper - lower + 1 (ISO
+  /// 10303-11 8.2.1: ARRAY [-2:2] holds 5); a LIST, BAG or SET from lower
+  /// to upper.
+  std::pair<std::int64_t, std::int64_t> size_limits() const noexcept {
+    if (kind == TypeKind::Array && upper >= lower) return {upper - lower + 1, upper - lower + 1};
+    return {lower, upper};
+  }
   /// Follows Alias chains to the type that decides the storage.
   const TypeInfo& resolved() const noexcept {
     const TypeInfo* t = this;
