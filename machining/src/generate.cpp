@@ -16,6 +16,12 @@
 namespace stepnc::machining {
 
 std::string Source::label() const { return id ? fmt::format("#{}", *id) : std::string(); }
+std::string Source::labelled(std::string_view text) const {
+  return id ? fmt::format("{} #{}", text, *id) : std::string(text);
+}
+std::string Source::labelled_in_brackets(std::string_view text) const {
+  return id ? fmt::format("{} (#{})", text, *id) : std::string(text);
+}
 
 std::string Diagnostic::to_string() const {
   const std::string at = where.id             ? fmt::format("{} '{}': ", where.label(), where.name)
@@ -583,8 +589,7 @@ GenerateResult Generator::run() {
   program_.machine_safe = turning() ? Vec3{turning_safe().x + options_.machine_safe_margin, 0,
                                             turning_safe().z + options_.machine_safe_margin}
                                      : Vec3{0, 0, program_.clear_z + options_.machine_safe_margin};
-  emit(Comment{project_.source.id ? fmt::format("{} ({})", project_.source.name, project_.source.label())
-                                  : project_.source.name});
+  emit(Comment{project_.source.labelled_in_brackets(project_.source.name)});
   // No move here: the first tool change starts with the machine-safe
   // retract, and the first move comes after the tool and its offset.
   at_machine_safe_ = options_.tool_ready;
@@ -621,9 +626,9 @@ void Generator::visit(const Executable& executable) {
     case ExecutableKind::parallel:
     case ExecutableKind::selective:
       error(executable.source,
-            fmt::format("{} {} with {} branches is not posted: choosing their order or one of them needs a "
+            fmt::format("{} with {} branches is not posted: choosing their order or one of them needs a "
                         "scheduler",
-                        executable.kind == ExecutableKind::parallel ? "parallel" : "selective", executable.source.label(),
+                        executable.source.labelled(executable.kind == ExecutableKind::parallel ? "parallel" : "selective"),
                         executable.children.size()));
       return;
     case ExecutableKind::program_stop:
@@ -730,9 +735,10 @@ bool Generator::sizes_make_sense(const Job& job) {
   if (explicit_motion) return true;
   // A region's surface is free: no generated pass knows where it lies.
   if (std::holds_alternative<machining::Region>(f.shape))
-    return refuse(op.source, fmt::format("{} has no explicit toolpath: region '{}' ({}) is machined only by "
+    return refuse(op.source, fmt::format("{} has no explicit toolpath: {} is machined only by "
                                          "explicit toolpaths (a freeform_operation, or its_toolpath)",
-                                         to_string(op.kind), f.source.name, f.source.label()));
+                                         to_string(op.kind),
+                                         f.source.labelled_in_brackets(fmt::format("region '{}'", f.source.name))));
   if (!turning() && job.tool->diameter <= eps)
     return refuse(job.tool->source, "milling and drilling tools need a positive diameter");
   if (op.axial_cutting_depth && *op.axial_cutting_depth <= eps)
@@ -840,9 +846,9 @@ void Generator::workingstep(const Executable& executable) {
   ++workingstep_count_;
   program_.provenance.push_back({executable.source, job.op->source, job.feature->source});
   provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
-  emit(Comment{fmt::format("WS({}) {} {}: {} {} on {} {}", workingstep_count_, executable.source.name,
-                           executable.source.label(), to_string(job.op->kind), job.op->source.label(),
-                           job.feature->source.name, job.feature->source.label())});
+  emit(Comment{fmt::format("WS({}) {}: {} on {}", workingstep_count_, executable.source.labelled(executable.source.name),
+                           job.op->source.labelled(to_string(job.op->kind)),
+                           job.feature->source.labelled(job.feature->source.name))});
   const bool explicit_motion = job.op->kind == OperationKind::freeform || !job.op->toolpaths.empty();
   // After an explicit toolpath the tool stays where it ended; generated
   // motion with the same tool starts from the security plane. (A tool
@@ -881,8 +887,9 @@ void Generator::workingstep(const Executable& executable) {
         area_clearing(job, region->region, region->offset);
       }
     } else {
-      error(job.op->source, fmt::format("{} cannot machine feature '{}' ({})", to_string(kind),
-                                         job.feature->source.name, job.feature->source.label()));
+      error(job.op->source, fmt::format("{} cannot machine {}", to_string(kind),
+                                         job.feature->source.labelled_in_brackets(
+                                             fmt::format("feature '{}'", job.feature->source.name))));
     }
   }
   if (program_.blocks.size() == blocks_before) return;
@@ -1423,7 +1430,7 @@ void Generator::rapid_movement(const Executable& executable) {
   }
   program_.provenance.push_back({executable.source, executable.source, {}});  // both workingstep and operation
   provenance_ = static_cast<std::uint32_t>(program_.provenance.size() - 1);
-  emit(Comment{fmt::format("rapid movement {} {}", executable.source.name, executable.source.label())});
+  emit(Comment{"rapid movement " + executable.source.labelled(executable.source.name)});
   const double clear = security_plane(executable.step.security_plane);
   bool first = true;
   for (const Toolpath& path : executable.toolpaths) {
@@ -1471,8 +1478,9 @@ void Generator::turning_step(const Job& job) {
              hole_shape && (kind == OperationKind::lathe_drilling || is_hole_making(kind))) {
     axial_drilling(job, job.op->cutting_depth.value_or(hole_shape->depth));
   } else {
-    error(job.op->source, fmt::format("{} cannot machine turning feature '{}' ({})", to_string(kind),
-                                       job.feature->source.name, job.feature->source.label()));
+    error(job.op->source, fmt::format("{} cannot machine {}", to_string(kind),
+                                       job.feature->source.labelled_in_brackets(
+                                           fmt::format("turning feature '{}'", job.feature->source.name))));
     return;
   }
   rapid(turning_safe());

@@ -285,11 +285,11 @@ class Planner {
       } else if (tool.kind == machining::ToolKind::grooving_insert) {
         line.note = "n/a: a grooving insert's edge angles are not in the model";
       } else if (!has_nose_radius(tool.source)) {
-        error(tool.source, fmt::format("turning tool has no nose_radius: the roughness of {} ({}) cannot be computed",
-                                       e->source.name, e->source.label()));
+        error(tool.source, fmt::format("turning tool has no nose_radius: the roughness of {} cannot be computed",
+                                       e->source.labelled_in_brackets(e->source.name)));
         continue;
       } else if (const std::string problem = machining::roughness_input_problem(in); !problem.empty()) {
-        error(op.source, fmt::format("cannot compute the roughness with tool {}: {}", tool.source.label(), problem));
+        error(op.source, fmt::format("cannot compute the roughness with {}: {}", tool.source.labelled("tool"), problem));
         continue;
       } else {
         if (!op.technology->feed_per_revolution)

@@ -181,6 +181,13 @@ TEST_CASE("diagnostics name the instance and stop the program") {
                                     [](const Diagnostic& d) { return d.severity == Diagnostic::Severity::error; });
     REQUIRE(error != made_up.diagnostics.end());
     CHECK(error->to_string() == "'ROUGH POCKET1': error: unknown machining strategy 'CENTER_MILLING'");
+    // Text about an item: its label where it has one, no stray space or brackets where not.
+    Source source{std::nullopt, "POCKET1"};
+    CHECK(source.labelled("feature") == "feature");
+    CHECK(source.labelled_in_brackets("feature 'POCKET1'") == "feature 'POCKET1'");
+    source.id = 0;
+    CHECK(source.labelled("feature") == "feature #0");
+    CHECK(source.labelled_in_brackets("feature 'POCKET1'") == "feature 'POCKET1' (#0)");
   }
   SECTION("numbers in messages are rounded") {
     project.operations[3].strategy = ContourBidirectional{1 - 2.2};  // -1.2000000000000002

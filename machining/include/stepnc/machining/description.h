@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -28,6 +29,11 @@ struct Source {
 
   /// "#12" for messages and comments; "" when made up.
   std::string label() const;
+  /// `text` followed by " #12", or `text` alone when made up: no stray
+  /// space or empty brackets in a message about an item with no instance.
+  std::string labelled(std::string_view text) const;
+  /// `text` followed by " (#12)", or `text` alone when made up.
+  std::string labelled_in_brackets(std::string_view text) const;
 };
 
 /// A point or vector in a plane, mm.
