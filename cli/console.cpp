@@ -3,6 +3,9 @@
 // diagnostics and output files.
 #include <fmt/format.h>
 
+#include <cstdio>
+#include <iterator>
+
 #include "command.h"
 #include "stepnc/io/input.h"
 
@@ -61,11 +64,22 @@ CLI::Option* add_output_option(CLI::App& command, std::string& output, const std
 }
 
 void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file) {
+  // stderr is unbuffered: a line at a time would be a system call each (a
+  // million rule violations: 1.4 s of system time), so lines go out in blocks.
+  constexpr std::size_t block = std::size_t{64} << 10;
+  fmt::memory_buffer text;
+  const auto flush = [&text] {
+    std::fwrite(text.data(), 1, text.size(), stderr);
+    text.clear();
+  };
   for (const p21::Diagnostic& diagnostic : diagnostics.items()) {
     if (diagnostic.severity == p21::Severity::warning && verbosity() == Verbosity::quiet) continue;
-    fmt::print(stderr, "{}\n", diagnostic.to_string());
+    fmt::format_to(std::back_inserter(text), "{}\n", diagnostic.to_string());
+    if (text.size() >= block) flush();
   }
-  if (diagnostics.limit_reached()) fmt::print(stderr, "{}: stopped after {} errors\n", file, diagnostics.error_count());
+  if (diagnostics.limit_reached())
+    fmt::format_to(std::back_inserter(text), "{}: stopped after {} errors\n", file, diagnostics.error_count());
+  flush();
 }
 
 int write_outputs(std::initializer_list<io::Output> outputs) {
