@@ -27,8 +27,6 @@ struct PlanCommandOptions {
   bool remainder_first = false;
 };
 
-std::string where(const machining::Source& source) { return fmt::format("{} '{}'", source.label(), source.name); }
-
 std::string report_json(const planning::PlanResult& result) {
   const auto source = [](const machining::Source& s) {
     return nlohmann::ordered_json{{"id", s.id ? nlohmann::ordered_json(*s.id) : nlohmann::ordered_json()}, {"name", s.name}};
@@ -98,14 +96,14 @@ int run_plan(const PlanCommandOptions& options) {
   if (!result.ok()) return exit_invalid_input;
   if (verbosity() != Verbosity::quiet) {
     for (const planning::WorkingstepRoughness& line : result.roughness) {
-      fmt::print(stderr, "{}{}: ", where(line.workingstep), line.finishing ? " (finishing)" : "");
+      fmt::print(stderr, "{}{}: ", line.workingstep.quoted_name(), line.finishing ? " (finishing)" : "");
       if (line.roughness)
         fmt::print(stderr, "feed {:g} mm/rev, Rt {:.6g} mm, Ra {:.6g} mm, regime {}\n", *line.feed, line.roughness->rt,
                    line.roughness->ra, machining::to_string(line.roughness->regime));
       else
         fmt::print(stderr, "{}\n", line.note);
     }
-    for (const planning::Change& change : result.changes) fmt::print(stderr, "{}: {}\n", where(change.where), change.what);
+    for (const planning::Change& change : result.changes) fmt::print(stderr, "{}: {}\n", change.where.quoted_name(), change.what);
   }
   const std::string planned = exchange::to_text(*read.file);
   if (options.report.empty()) return write_outputs({{options.output, planned}});

@@ -23,11 +23,15 @@ std::string Source::labelled_in_brackets(std::string_view text) const {
   return id ? fmt::format("{} (#{})", text, *id) : std::string(text);
 }
 
+std::string Source::quoted_name() const {
+  if (id) return fmt::format("#{} '{}'", *id, name);
+  return name.empty() ? std::string() : fmt::format("'{}'", name);
+}
+
 std::string Diagnostic::to_string() const {
-  const std::string at = where.id             ? fmt::format("{} '{}': ", where.label(), where.name)
-                         : !where.name.empty() ? fmt::format("'{}': ", where.name)
-                                               : std::string();
-  return fmt::format("{}{}: {}", at, severity == Severity::error ? "error" : "warning", message);
+  const std::string item = where.quoted_name();
+  return fmt::format("{}{}{}: {}", item, item.empty() ? "" : ": ", severity == Severity::error ? "error" : "warning",
+                     message);
 }
 
 bool GenerateResult::ok() const {

@@ -185,7 +185,10 @@ TEST_CASE("diagnostics name the instance and stop the program") {
     Source source{std::nullopt, "POCKET1"};
     CHECK(source.labelled("feature") == "feature");
     CHECK(source.labelled_in_brackets("feature 'POCKET1'") == "feature 'POCKET1'");
+    CHECK(source.quoted_name() == "'POCKET1'");
+    CHECK(Source{}.quoted_name().empty());
     source.id = 0;
+    CHECK(source.quoted_name() == "#0 'POCKET1'");
     CHECK(source.labelled("feature") == "feature #0");
     CHECK(source.labelled_in_brackets("feature 'POCKET1'") == "feature 'POCKET1' (#0)");
   }

@@ -34,6 +34,9 @@ struct Source {
   std::string labelled(std::string_view text) const;
   /// `text` followed by " (#12)", or `text` alone when made up.
   std::string labelled_in_brackets(std::string_view text) const;
+  /// "#12 'NAME'" where messages say which item; "'NAME'" when made up,
+  /// "" when made up without a name.
+  std::string quoted_name() const;
 };
 
 /// A point or vector in a plane, mm.
