@@ -5,12 +5,15 @@
 // when the read fails.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 #include <fmt/format.h>
 
 #include "stepnc/p21/document.h"
+#include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 #include "test_helpers.h"
 
@@ -160,4 +163,12 @@ TEST_CASE("round_trip_file writes what read_file and write_file write, and nothi
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(directory)) ++files;
   CHECK(files == 5);  // in.stp, out1-3.stp, kept.stp
   fs::remove_all(directory);
+}
+
+TEST_CASE("jobs: as given, else the core count from the work where threads pay", "[p21][parallel]") {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  CHECK(stepnc::p21::threads_for(3, 10, 100) == 3);  // given: even for little work
+  CHECK(stepnc::p21::threads_for(1, 1000, 100) == 1);
+  CHECK(stepnc::p21::threads_for(0, 99, 100) == 1);
+  CHECK(stepnc::p21::threads_for(0, 100, 100) == cores);
 }

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <limits>
 #include <span>
-#include <thread>
 #include <unordered_map>
 
 #include <fmt/format.h>
@@ -18,6 +17,7 @@
 #include "stepnc/meta/io.h"
 #include "stepnc/p21/parameters.h"
 #include "stepnc/p21/stream.h"
+#include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 #include "mapping.h"
 #include "parallel_read.h"
@@ -213,10 +213,7 @@ std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Map
 
 // The threads a read of `size` bytes uses (ModelReadOptions::jobs).
 unsigned read_jobs(const ModelReadOptions& options, std::size_t size) {
-  if (options.jobs != 0) return options.jobs;
-  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;  // below, starting threads costs more than it saves
-  if (size < kParallelFrom) return 1;
-  return std::max(1u, std::thread::hardware_concurrency());
+  return p21::threads_for(options.jobs, size, std::size_t{1} << 20);
 }
 
 // Streams `text` into a new ModelFile on the threads `options` ask for;

@@ -9,7 +9,6 @@
 #include <bit>
 #include <cstdio>
 #include <random>
-#include <thread>
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -21,6 +20,7 @@
 #include "round_trip.h"
 #include "scanner.h"
 #include "stepnc/io/input.h"
+#include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 
 namespace stepnc::p21 {
@@ -442,9 +442,7 @@ class DocumentBuilder final : public RecordHandler {
 
   unsigned parallel_jobs() const {
     if (!options_.validate_parameters) return 1;  // the scan alone is not worth splitting
-    if (options_.jobs != 0) return options_.jobs;
-    constexpr std::size_t kParallelFrom = std::size_t{1} << 20;  // below, starting threads costs more than it saves
-    return doc_.size_ < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
+    return threads_for(options_.jobs, doc_.size_, std::size_t{1} << 20);
   }
 
   void check_forward_references() {

@@ -13,6 +13,7 @@
 #include "lexical.h"
 #include "round_trip.h"
 #include "stepnc/p21/text_codec.h"
+#include "stepnc/p21/threads.h"
 
 namespace stepnc::p21 {
 
@@ -329,7 +330,7 @@ constexpr std::size_t kMaxItemsPerPart = 32768;
 }  // namespace
 
 void write_in_parts(Writer& writer, std::size_t count, unsigned jobs, const PartFormatter& format) {
-  if (jobs == 0) jobs = count >= kParallelWriteMinimum ? std::max(1u, std::thread::hardware_concurrency()) : 1;
+  jobs = threads_for(jobs, count, kParallelWriteMinimum);
   if (jobs <= 1 || count < 2) {
     format(0, count, writer);
     return;

@@ -29,6 +29,7 @@
 #include "stepnc/io/output.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
+#include "stepnc/p21/threads.h"
 #include "stepnc/meta/value.h"
 
 #include "comparison.h"
@@ -1911,9 +1912,7 @@ class Checker {
   Findings findings_;
 
   unsigned jobs_for(std::size_t instances) const {
-    if (options_.jobs != 0) return options_.jobs;
-    if (instances < kParallelCheckMinimum) return 1;
-    return std::max(1u, std::thread::hardware_concurrency());
+    return p21::threads_for(options_.jobs, instances, kParallelCheckMinimum);
   }
 
   // The instances cut into ranges, taken in order by `jobs` threads (this
