@@ -194,12 +194,7 @@ std::optional<std::string> write_cache(const std::filesystem::path& path, const 
 // The header and index of a usable cache, which stays mapped in `mapping`.
 std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::filesystem::path& path,
                                                                 const FileStamp& stamp, Mapping& mapping) {
-  Descriptor cache{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  struct stat status{};
-  if (cache.fd < 0 || ::fstat(cache.fd, &status) != 0 || !S_ISREG(status.st_mode) ||
-      static_cast<std::uint64_t>(status.st_size) < sizeof(CacheHead))
-    return std::nullopt;
-  if (mapping.map(cache.fd, static_cast<std::size_t>(status.st_size))) return std::nullopt;
+  if (!detail::map_regular_file(path, mapping) || mapping.text().size() < sizeof(CacheHead)) return std::nullopt;
   const std::span<const std::byte> bytes = std::as_bytes(std::span(mapping.text()));
   CacheHead head{};
   std::memcpy(&head, bytes.data(), sizeof head);

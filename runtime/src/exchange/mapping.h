@@ -3,13 +3,16 @@
 // read and the parallel read map the file they read).
 #pragma once
 
+#include <fcntl.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -115,5 +118,14 @@ struct Descriptor {
     if (fd >= 0) ::close(fd);
   }
 };
+
+// Maps the regular file at `path` into `mapping`; false when it cannot be
+// opened, is not a regular file or cannot be mapped.
+inline bool map_regular_file(const std::filesystem::path& path, Mapping& mapping) {
+  Descriptor input{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  struct stat status {};
+  if (input.fd < 0 || ::fstat(input.fd, &status) != 0 || !S_ISREG(status.st_mode)) return false;
+  return !mapping.map(input.fd, static_cast<std::size_t>(status.st_size));
+}
 
 }  // namespace stepnc::exchange::detail

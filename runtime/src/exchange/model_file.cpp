@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "stepnc/exchange/model_file.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <limits>
 #include <span>
@@ -229,11 +226,8 @@ std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Map
 // threads share it); null when it has a problem or cannot be mapped.
 std::unique_ptr<ModelFile> stream_model_file(const std::filesystem::path& path, const meta::Registry& registry,
                                              const ModelReadOptions& options) {
-  detail::Descriptor input{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  struct stat status {};
-  if (input.fd < 0 || ::fstat(input.fd, &status) != 0 || !S_ISREG(status.st_mode)) return nullptr;
   detail::Mapping mapping;
-  if (mapping.map(input.fd, static_cast<std::size_t>(status.st_size))) return nullptr;
+  if (!detail::map_regular_file(path, mapping)) return nullptr;
   return stream_model(mapping.text(), &mapping, path.string(), registry, options);
 }
 
