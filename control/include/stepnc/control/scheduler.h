@@ -65,7 +65,7 @@ struct Decision {
 struct Candidate {
   int node = -1;              ///< graph node
   std::string_view tool;      ///< its tool's name ("" for NC functions)
-  int setup = 0;              ///< its setup
+  int setup = -1;             ///< its setup (as Node::setup)
   int order = 0;              ///< its place in the listed order
 };
 
