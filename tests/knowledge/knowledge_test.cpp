@@ -2,8 +2,9 @@
 // The knowledge room: capitalising (idempotent, accepted programs only),
 // seed 004's Q1 ordering on Example 1 and the Fig. 10 program, the type
 // closure from reflection, scenarios 1-4, schema migrations, refusing
-// foreign files, two writers at once, a writer killed mid-write, and the
-// seed 000 log join on a synthesised million-row log.
+// foreign files, two writers at once, a writer killed mid-write, the
+// seed 000 log join on a synthesised million-row log, and #0 against no
+// instance (NULL) in the log tables, version-2 files migrated.
 #include <fmt/format.h>
 #include <signal.h>
 #include <sqlite3.h>
