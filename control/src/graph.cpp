@@ -47,7 +47,7 @@ struct Builder {
     out.errors.push_back({machining::Diagnostic::Severity::error, e.source, std::move(message)});
   }
 
-  void add(const Executable& e, int parent, int setup) {
+  void add(const Executable& e, int parent, std::optional<std::uint32_t> setup) {
     const int index = static_cast<int>(out.graph.nodes.size());
     Node node;
     node.source = e.source;
@@ -85,8 +85,11 @@ struct Builder {
     out.graph.nodes.push_back(std::move(node));
     if (parent >= 0) out.graph.nodes[static_cast<std::size_t>(parent)].children.push_back(index);
     if (leaf) return;
-    const int inner_setup =
-        e.kind == ExecutableKind::workplan && e.setup_security_plane && e.source.id ? static_cast<int>(*e.source.id) : setup;
+    // Typed-model ids are 32-bit (meta::Entity::id), so the cast keeps them.
+    const std::optional<std::uint32_t> inner_setup =
+        e.kind == ExecutableKind::workplan && e.setup_security_plane && e.source.id
+            ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(*e.source.id))
+            : setup;
     for (const Executable& child : e.children) add(child, index, inner_setup);
   }
 };
@@ -168,7 +171,7 @@ bool same_structure(const Graph& ga, int a, const Graph& gb, int b) {
 
 GraphResult build_graph(const Executable& main_workplan) {
   GraphResult result;
-  Builder{result}.add(main_workplan, -1, -1);
+  Builder{result}.add(main_workplan, -1, std::nullopt);
   return result;
 }
 

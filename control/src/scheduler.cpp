@@ -54,9 +54,10 @@ namespace detail {
 // of those four, so a step costs a few lookups however many nodes are ready.
 struct ReadyIndex {
   using Ordered = std::set<std::pair<int, int>>;  // (order, node)
-  std::map<std::pair<std::string, int>, Ordered> by_tool_setup;
+  using Setup = std::optional<std::uint32_t>;  // as Node::setup
+  std::map<std::pair<std::string, Setup>, Ordered> by_tool_setup;
   std::map<std::string, Ordered, std::less<>> by_tool;
-  std::map<int, Ordered> by_setup;
+  std::map<Setup, Ordered> by_setup;
   Ordered all;
   std::vector<char> member;
 
@@ -105,7 +106,7 @@ std::optional<int> Scheduler::best(int exclude) const {
     return it == map.end() ? nullptr : &it->second;
   };
   if (!now_tool_.empty()) {
-    if (auto n = first(find(index_->by_tool_setup, std::pair<std::string, int>{now_tool_, now_.setup}))) return n;
+    if (auto n = first(find(index_->by_tool_setup, std::pair<std::string, detail::ReadyIndex::Setup>{now_tool_, now_.setup}))) return n;
     if (auto n = first(find(index_->by_tool, now_tool_))) return n;
   }
   if (auto n = first(find(index_->by_setup, now_.setup))) return n;

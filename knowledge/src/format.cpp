@@ -207,11 +207,16 @@ std::string format_log_report(const LogReport& report, bool json) {
   std::string out = fmt::format("run {}: {} ({} rows of {})\n", report.run_id, report.program, report.rows, report.log_file);
   fmt::format_to(std::back_inserter(out), "{:<24} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7}  {}\n", "feature", "samples",
                  "time s", "max load", "mean", "max f.err", "feed", "flags");
-  for (const FeatureFigures& f : report.features)
-    fmt::format_to(std::back_inserter(out), "{:<24} {:>9} {:>9.1f} {:>8.1f} {:>8.1f} {:>10.4f} {:>7}  {}\n",
-                   f.feature_id ? fmt::format("#{} {}", *f.feature_id, f.feature) : f.feature, f.samples, f.time,
-                   f.max_load, f.mean_load, f.max_following_error, shown(f.mean_feed_ratio, 1, "{:.2f}"),
+  for (const FeatureFigures& f : report.features) {
+    // A feature without an #id (made up by the poster, or the untraced
+    // samples) by its name; "-" when it has none.
+    const std::string feature = f.feature_id        ? fmt::format("#{} {}", *f.feature_id, f.feature)
+                                : f.feature.empty() ? std::string("-")
+                                                    : f.feature;
+    fmt::format_to(std::back_inserter(out), "{:<24} {:>9} {:>9.1f} {:>8.1f} {:>8.1f} {:>10.4f} {:>7}  {}\n", feature,
+                   f.samples, f.time, f.max_load, f.mean_load, f.max_following_error, shown(f.mean_feed_ratio, 1, "{:.2f}"),
                    f.flags.empty() ? "-" : fmt::format("{}", fmt::join(f.flags, "; ")));
+  }
   return out;
 }
 

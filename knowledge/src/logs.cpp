@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -26,8 +27,10 @@ namespace {
 
 using detail::Statement;
 
+// One block of the trace map. An id is empty for an item the poster made
+// up (`"id": null`), stored as NULL: #0 is an instance name.
 struct TracedStep {
-  std::int64_t workingstep_id = 0, operation_id = 0, feature_id = 0;
+  std::optional<std::int64_t> workingstep_id, operation_id, feature_id;
   std::string workingstep, operation, feature;
   std::size_t first_line = 0, last_line = 0;
 };
@@ -53,11 +56,15 @@ std::pair<std::string, std::vector<TracedStep>> read_trace(const std::filesystem
       TracedStep step;
       step.first_line = block.at("first_line").get<std::size_t>();
       step.last_line = block.at("last_line").get<std::size_t>();
-      // null: made up by the poster (a rapid movement has no feature); the
-      // store keeps 0 for it, as before ids were optional.
-      const auto id_of = [&](const char* key) {
+      // null: made up by the poster (a rapid movement has no feature).
+      const auto id_of = [&](const char* key) -> std::optional<std::int64_t> {
         const nlohmann::json& id = block.at(key).at("id");
-        return id.is_null() ? std::int64_t{0} : id.get<std::int64_t>();
+        if (id.is_null()) return std::nullopt;
+        if (!id.is_number_unsigned() || id.get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max())
+          throw Error(ErrorKind::invalid_input,
+                      fmt::format("{}: block {}: {} id {} is not an instance name (#0 to #{})", file, index, key,
+                                  id.dump(), std::numeric_limits<std::uint32_t>::max()));
+        return id.get<std::int64_t>();
       };
       step.workingstep_id = id_of("workingstep");
       step.workingstep = block.at("workingstep").at("name").get<std::string>();
@@ -275,16 +282,32 @@ LogImportResult import_log(Store& store, const LogImportOptions& options) {
   LogImportResult result;
   result.run_id = run.integer(0);
   run.reset();
+  // One row per workingstep (its first block's line), and one per block of
+  // a workingstep the poster made up: with no #id, blocks cannot be told
+  // to be the same. Samples refer to the row (step_id).
   Statement step_row = database.prepare(
       "INSERT INTO log_workingsteps (run_id, workingstep_id, workingstep, operation_id, operation, feature_id, feature, "
-      "first_line) VALUES (?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT DO NOTHING");
-  for (const TracedStep& s : steps)
+      "first_line) VALUES (?, ?, ?, ?, ?, ?, ?, ?) RETURNING id");
+  std::vector<std::int64_t> row_of_step(steps.size());
+  std::map<std::int64_t, std::int64_t> row_of_workingstep;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const TracedStep& s = steps[i];
+    if (s.workingstep_id)
+      if (auto known = row_of_workingstep.find(*s.workingstep_id); known != row_of_workingstep.end()) {
+        row_of_step[i] = known->second;
+        continue;
+      }
     step_row.bind(1, result.run_id).bind(2, s.workingstep_id).bind(3, s.workingstep).bind(4, s.operation_id)
-        .bind(5, s.operation).bind(6, s.feature_id).bind(7, s.feature).bind(8, s.first_line).run();
+        .bind(5, s.operation).bind(6, s.feature_id).bind(7, s.feature).bind(8, s.first_line);
+    step_row.step();
+    row_of_step[i] = step_row.integer(0);
+    step_row.reset();
+    if (s.workingstep_id) row_of_workingstep.emplace(*s.workingstep_id, row_of_step[i]);
+  }
 
   Statement insert = database.prepare(
       "INSERT INTO log_samples (run_id, id, time, duration, line, x, y, z, following_error, feed, "
-      "programmed_feed, spindle_speed, spindle_load, workingstep_id) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "programmed_feed, spindle_speed, spindle_load, step_id) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   std::optional<Sample> previous;
   std::vector<std::string_view> cells(fields);
   const auto store_sample = [&](const Sample& sample, double duration) {
@@ -296,7 +319,7 @@ LogImportResult import_log(Store& store, const LogImportOptions& options) {
     for (int c = 2; c < 7; ++c) insert.bind(4 + c, sample.values[static_cast<std::size_t>(c)]);
     insert.bind(11, feeds[nc_line]).bind(12, sample.values[7]).bind(13, sample.values[8]);
     if (step >= 0) {
-      insert.bind(14, steps[static_cast<std::size_t>(step)].workingstep_id);
+      insert.bind(14, row_of_step[static_cast<std::size_t>(step)]);
       ++result.traced_rows;
     } else {
       insert.bind(14, std::nullopt);
@@ -371,46 +394,44 @@ LogReport log_report(const Store& store, const LogReportOptions& options) {
   report.max_spindle_load = options.max_spindle_load.value_or(store.setting("max_spindle_load"));
   report.min_feed_ratio = options.min_feed_ratio.value_or(store.setting("min_feed_ratio"));
 
-  // One pass over the run's id range; figures per workingstep, then per
-  // feature in machining order (the order of their first workingstep).
-  struct Step {
-    std::int64_t feature_id;
-    std::string feature, name;
-  };
-  std::map<std::int64_t, Step> steps;
-  std::vector<std::int64_t> feature_order;
+  // One pass over the run's id range; figures per feature in machining
+  // order (the order of their first workingstep). A feature is its #id, or
+  // for one the poster made up (NULL, e.g. a rapid movement's) its name.
   Statement step_rows = database.prepare(
-      "SELECT workingstep_id, feature_id, feature, workingstep FROM log_workingsteps WHERE run_id = ? ORDER BY first_line");
+      "SELECT id, feature_id, feature, workingstep FROM log_workingsteps WHERE run_id = ? ORDER BY first_line");
   step_rows.bind(1, report.run_id);
-  std::map<std::int64_t, std::size_t> feature_index;
+  std::map<std::int64_t, std::size_t> feature_of_step;  // log_workingsteps row -> index in report.features
+  std::map<std::pair<std::optional<std::int64_t>, std::string>, std::size_t> feature_index;
   while (step_rows.step()) {
-    const std::int64_t feature_id = step_rows.integer(1);
-    steps[step_rows.integer(0)] = Step{feature_id, step_rows.text(2), step_rows.text(3)};
-    auto [where, added] = feature_index.emplace(feature_id, report.features.size());
+    const std::optional<std::int64_t> feature_id = step_rows.optional_integer(1);
+    const std::string feature = step_rows.text(2);
+    auto [where, added] = feature_index.emplace(std::pair(feature_id, feature_id ? std::string() : feature),
+                                                report.features.size());
     if (added) {
       FeatureFigures& f = report.features.emplace_back();
-      f.feature_id = static_cast<std::uint32_t>(feature_id);
-      f.feature = step_rows.text(2);
+      if (feature_id) f.feature_id = static_cast<std::uint32_t>(*feature_id);
+      f.feature = feature;
     }
     report.features[where->second].workingsteps.push_back(step_rows.text(3));
+    feature_of_step.emplace(step_rows.integer(0), where->second);
   }
-  FeatureFigures untraced;
-  untraced.feature = "(untraced)";
+  report.features.emplace_back().feature = "(untraced)";  // samples outside every workingstep, last
+  const std::size_t untraced = report.features.size() - 1;
   struct Sums {
     double load = 0, ratio = 0;
     std::size_t ratios = 0;
   };
-  std::vector<Sums> sums(report.features.size() + 1);
+  std::vector<Sums> sums(report.features.size());
   Statement samples = database.prepare(
-      "SELECT workingstep_id, duration, spindle_load, following_error, feed, programmed_feed FROM log_samples "
+      "SELECT step_id, duration, spindle_load, following_error, feed, programmed_feed FROM log_samples "
       "WHERE id BETWEEN (SELECT first_sample FROM log_runs WHERE id = ?) AND (SELECT last_sample FROM log_runs WHERE "
       "id = ?)");
   samples.bind(1, report.run_id).bind(2, report.run_id);
   while (samples.step()) {
-    std::size_t index = report.features.size();
+    std::size_t index = untraced;
     if (!samples.is_null(0))
-      if (auto step = steps.find(samples.integer(0)); step != steps.end()) index = feature_index.at(step->second.feature_id);
-    FeatureFigures& f = index < report.features.size() ? report.features[index] : untraced;
+      if (auto step = feature_of_step.find(samples.integer(0)); step != feature_of_step.end()) index = step->second;
+    FeatureFigures& f = report.features[index];
     Sums& sum = sums[index];
     const double load = samples.real(2);
     f.max_load = f.samples == 0 ? load : std::max(f.max_load, load);
@@ -425,10 +446,10 @@ LogReport log_report(const Store& store, const LogReportOptions& options) {
       ++sum.ratios;
     }
   }
-  if (untraced.samples > 0) report.features.push_back(std::move(untraced));
-  std::erase_if(report.features, [](const FeatureFigures& f) { return f.samples == 0; });
-  for (FeatureFigures& f : report.features) {
-    const Sums& sum = sums[f.feature_id ? feature_index.at(*f.feature_id) : sums.size() - 1];
+  for (std::size_t index = 0; index < report.features.size(); ++index) {
+    FeatureFigures& f = report.features[index];
+    if (f.samples == 0) continue;
+    const Sums& sum = sums[index];
     f.mean_load = sum.load / static_cast<double>(f.samples);
     if (sum.ratios > 0) f.mean_feed_ratio = sum.ratio / static_cast<double>(sum.ratios);
     // The trigger rule (seed 000 §5: "excessive following errors", spindle
@@ -440,6 +461,7 @@ LogReport log_report(const Store& store, const LogReportOptions& options) {
     if (f.min_feed_ratio && *f.min_feed_ratio < report.min_feed_ratio)
       f.flags.push_back(fmt::format("feed {:.3g} of programmed < {:.3g}", *f.min_feed_ratio, report.min_feed_ratio));
   }
+  std::erase_if(report.features, [](const FeatureFigures& f) { return f.samples == 0; });
   return report;
 }
 

@@ -150,6 +150,41 @@ CREATE TABLE log_samples (
   spindle_load    REAL NOT NULL,
   workingstep_id  INTEGER);
 )sql",
+    // 3: "no instance" is NULL, not 0: #0 is an instance name (ISO
+    // 10303-21:2016 5.4), and version 2 kept 0 for a workingstep, operation
+    // or feature the poster made up (trace map `"id": null`). Such a
+    // workingstep has no #id to join samples by, so log_workingsteps gets
+    // its own row id and samples refer to it (step_id). A version-2 0
+    // becomes NULL: that file cannot tell #0 from none, and none is what
+    // the stepnc that wrote it meant by 0. A run's workingsteps keep
+    // distinct first lines (the trace map's ranges are disjoint), which
+    // maps each old row to its new one.
+    R"sql(
+ALTER TABLE log_workingsteps RENAME TO log_workingsteps_v2;
+CREATE TABLE log_workingsteps (
+  id             INTEGER PRIMARY KEY,
+  run_id         INTEGER NOT NULL REFERENCES log_runs (id),
+  workingstep_id INTEGER,
+  workingstep    TEXT NOT NULL,
+  operation_id   INTEGER,
+  operation      TEXT NOT NULL,
+  feature_id     INTEGER,
+  feature        TEXT NOT NULL,
+  first_line     INTEGER NOT NULL,
+  UNIQUE (run_id, workingstep_id),
+  UNIQUE (run_id, first_line));
+INSERT INTO log_workingsteps (run_id, workingstep_id, workingstep, operation_id, operation, feature_id, feature,
+                              first_line)
+  SELECT run_id, NULLIF(workingstep_id, 0), workingstep, NULLIF(operation_id, 0), operation, NULLIF(feature_id, 0),
+         feature, first_line
+  FROM log_workingsteps_v2 ORDER BY run_id, first_line;
+ALTER TABLE log_samples RENAME COLUMN workingstep_id TO step_id;
+UPDATE log_samples SET step_id = (
+  SELECT n.id FROM log_workingsteps_v2 o JOIN log_workingsteps n ON n.run_id = o.run_id AND n.first_line = o.first_line
+  WHERE o.run_id = log_samples.run_id AND o.workingstep_id = log_samples.step_id)
+WHERE step_id IS NOT NULL;
+DROP TABLE log_workingsteps_v2;
+)sql",
 };
 
 // The R*Tree of the dimension vectors, when the SQLite build has the module

@@ -187,3 +187,86 @@ TEST_CASE("The indexed default tie-break decides as the same rule scanned", "[co
 
 }  // namespace
 }  // namespace stepnc_control_test
+
+namespace stepnc_control_test {
+namespace {
+
+// #0 is an instance name (ISO 10303-21:2016 5.4: "#" DIGIT { DIGIT }), so a
+// workplan #0 with its own setup is a setup of its own, not the project's. Main workplan #9 holds a non_sequential #8:
+// C (#3, tool T1) and E (#5, T4) in the project's setup, then workplan #0
+// (own setup) with a non_sequential #4 of A (#1, T1) and D (#2, T3).
+machining::Executable setup_zero_workplan() {
+  using machining::Executable;
+  using machining::ExecutableKind;
+  auto step = [](std::uint64_t id, std::string name) {
+    Executable e;
+    e.kind = ExecutableKind::workingstep;
+    e.source = {id, std::move(name)};
+    return e;
+  };
+  Executable inner;
+  inner.kind = ExecutableKind::non_sequential;
+  inner.source = {4, "ANY ORDER"};
+  inner.children = {step(1, "A"), step(2, "D")};
+  Executable setup;
+  setup.kind = ExecutableKind::workplan;
+  setup.source = {0, "SETUP ZERO"};
+  setup.setup_security_plane = 50;
+  setup.children = {inner};
+  Executable split;
+  split.kind = ExecutableKind::non_sequential;
+  split.source = {8, "SPLIT"};
+  split.children = {step(3, "C"), step(5, "E"), setup};
+  Executable main;
+  main.kind = ExecutableKind::workplan;
+  main.source = {9, "MAIN"};
+  main.children = {split};
+  return main;
+}
+
+TEST_CASE("A workplan #0 with its own setup is a setup, not the project's", "[control][scheduler]") {
+  control::GraphResult built = control::build_graph(setup_zero_workplan());
+  REQUIRE(built.ok());
+  std::map<std::string, std::optional<std::uint32_t>> setups;
+  for (int leaf : built.graph.leaves) setups[built.graph.label(leaf)] = built.graph.nodes[static_cast<std::size_t>(leaf)].setup;
+  const std::map<std::string, std::optional<std::uint32_t>> expected = {
+      {"A", 0u}, {"D", 0u}, {"C", std::nullopt}, {"E", std::nullopt}};
+  CHECK(setups == expected);
+
+  // The rule itself: setup #0 in force prefers a node of #0 over an
+  // earlier-listed one of the project's setup, and the project's setup the other way.
+  const control::Candidate in_zero{1, "T3", 0u, 5}, in_project{2, "T4", std::nullopt, 1};
+  CHECK(control::default_tie_break(in_zero, in_project, {"T1", 0u}));
+  CHECK_FALSE(control::default_tie_break(in_zero, in_project, {"T1", std::nullopt}));
+
+  // C first (listed first of the project's setup, as E), A for the tool in the
+  // spindle, then D before E: #0's setup is now the current one.
+  const std::map<std::string, std::string> tools = {{"A", "T1"}, {"C", "T1"}, {"D", "T3"}, {"E", "T4"}};
+  const control::TieBreak scanned = [](const control::Candidate& a, const control::Candidate& b,
+                                       const control::TieBreakContext& now) {
+    return control::default_tie_break(a, b, now);
+  };
+  for (const control::TieBreak& tie_break : {control::TieBreak(control::default_tie_break), scanned}) {
+    control::Scheduler scheduler(built.graph, [](int) { return true; }, tie_break);
+    for (int leaf : scheduler.graph().leaves) scheduler.set_tool(leaf, tools.at(scheduler.graph().label(leaf)));
+    std::vector<control::Decision> decisions;
+    std::vector<std::string> executed;
+    while (auto node = scheduler.select(decisions)) {
+      scheduler.start(*node, decisions);
+      scheduler.complete(*node, decisions);
+      executed.push_back(scheduler.graph().label(*node));
+    }
+    CHECK(executed == std::vector<std::string>{"C", "A", "D", "E"});
+    std::vector<std::string> selections;
+    for (const control::Decision& d : decisions)
+      if (d.rule == control::Rule::forward) selections.push_back(d.text);
+    CHECK(selections == std::vector<std::string>{
+                            "select C: resources available; tie-break: listed order (before E)",
+                            "select A: resources available; tie-break: same tool T1 (before E)",
+                            "select D: resources available; tie-break: same setup (before E)",
+                            "select E: resources available"});
+  }
+}
+
+}  // namespace
+}  // namespace stepnc_control_test

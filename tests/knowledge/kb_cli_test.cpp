@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // stepnc kb as a user runs it: exit codes, messages, tables and JSON.
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "cli_run.h"
@@ -88,4 +89,41 @@ TEST_CASE("stepnc kb log import and report", "[cli][kb]") {
   Run bad = shell("{} kb log import " + (dir / "bad.csv").string() + join + db + " 2>&1");
   CHECK(bad.exit_code == 1);
   CHECK(bad.out.find("bad.csv:2: 5 fields, the header has 9") != std::string::npos);
+}
+
+TEST_CASE("stepnc kb log report: a rapid movement's made-up feature is null, not #0", "[cli][kb]") {
+  const auto dir = scratch_directory("kb-cli-log-null");
+  const std::string db = " --db " + (dir / "cases.db").string();
+  const std::string ngc = (dir / "p.ngc").string(), trace = (dir / "p.json").string();
+  Run posted = shell("{} post " + sample_path("milling/nested_setup_functions.stp") + " -d rs274ngc -o " + ngc +
+                     " --trace " + trace);
+  REQUIRE(posted.exit_code == 0);
+  // One sample on each line of the program.
+  const std::string program = stepnc_test::read_file(ngc);
+  const auto lines = static_cast<std::size_t>(std::count(program.begin(), program.end(), '\n'));
+  std::string log = "timestamp,line,x,y,z,following_error,feed,spindle_speed,spindle_load\n";
+  for (std::size_t line = 1; line <= lines; ++line) log += std::to_string(line) + "," + std::to_string(line) + ",0,0,0,0,100,1000,10\n";
+  stepnc_test::write_text(dir / "run.csv", log);
+  REQUIRE(shell("{} kb log import " + (dir / "run.csv").string() + " --program " + ngc + " --trace " + trace + db)
+              .exit_code == 0);
+
+  Run json = shell("{} kb log report --json" + db);
+  REQUIRE(json.exit_code == 0);
+  const nlohmann::json features = nlohmann::json::parse(json.out).at("features");
+  std::vector<nlohmann::json> ids;
+  std::vector<std::string> names;
+  for (const nlohmann::json& f : features) {
+    ids.push_back(f.at("feature"));
+    names.push_back(f.at("name").get<std::string>());
+  }
+  CHECK(ids == std::vector<nlohmann::json>{40, nullptr, 80, 81, nullptr});
+  CHECK(names == std::vector<std::string>{"TOP FACE", "", "HOLE 1 D=10MM", "HOLE 2 D=10MM", "(untraced)"});
+  CHECK(features[1]["workingsteps"] == nlohmann::json::array({"RAPID OVER HOLE 1"}));
+  CHECK(features[1]["samples"] == 3);
+
+  Run text = shell("{} kb log report" + db);
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("\n#40 TOP FACE ") != std::string::npos);
+  CHECK(text.out.find("\n-                                3 ") != std::string::npos);
+  CHECK(text.out.find("#0") == std::string::npos);
 }

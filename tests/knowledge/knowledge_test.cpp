@@ -2,8 +2,9 @@
 // The knowledge room: capitalising (idempotent, accepted programs only),
 // seed 004's Q1 ordering on Example 1 and the Fig. 10 program, the type
 // closure from reflection, scenarios 1-4, schema migrations, refusing
-// foreign files, two writers at once, a writer killed mid-write, and the
-// seed 000 log join on a synthesised million-row log.
+// foreign files, two writers at once, a writer killed mid-write, the
+// seed 000 log join on a synthesised million-row log, and #0 against no
+// instance (NULL) in the log tables, version-2 files migrated.
 #include <fmt/format.h>
 #include <signal.h>
 #include <sqlite3.h>
@@ -14,6 +15,7 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "seed004_project.h"
 #include "stepnc/knowledge/cases.h"
@@ -64,6 +66,27 @@ void sql(const std::filesystem::path& file, const char* statement) {
   REQUIRE(sqlite3_open(file.c_str(), &db) == SQLITE_OK);
   REQUIRE(sqlite3_exec(db, statement, nullptr, nullptr, nullptr) == SQLITE_OK);
   sqlite3_close(db);
+}
+
+// The rows of a query, columns joined by '|', NULL spelt out.
+std::vector<std::string> rows(const std::filesystem::path& file, const char* query) {
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open(file.c_str(), &db) == SQLITE_OK);
+  sqlite3_stmt* statement = nullptr;
+  REQUIRE(sqlite3_prepare_v2(db, query, -1, &statement, nullptr) == SQLITE_OK);
+  std::vector<std::string> out;
+  while (sqlite3_step(statement) == SQLITE_ROW) {
+    std::string row;
+    for (int c = 0; c < sqlite3_column_count(statement); ++c) {
+      if (c > 0) row += '|';
+      const auto* text = sqlite3_column_text(statement, c);
+      row += text == nullptr ? "NULL" : reinterpret_cast<const char*>(text);
+    }
+    out.push_back(row);
+  }
+  sqlite3_finalize(statement);
+  sqlite3_close(db);
+  return out;
 }
 
 }  // namespace
@@ -281,7 +304,7 @@ TEST_CASE("schema migrations, and corrupt, foreign and newer files refused") {
     CHECK_THROWS(old.count("log_runs"));
   }
   kb::Store migrated = kb::Store::open(dir / "old.db");
-  CHECK(migrated.version() == 2);
+  CHECK(migrated.version() == kb::schema_version);
   CHECK(migrated.count("cases") == 3);
   CHECK(migrated.count("log_runs") == 0);
 
@@ -522,4 +545,142 @@ TEST_CASE("a process killed mid-write leaves the file as it was") {
   CHECK(store.count("cases") == 3);
   // And the file takes the import afterwards.
   CHECK(kb::import_log(store, example1_log(dir / "log.csv")).rows == 400'000);
+}
+
+namespace {
+
+// A trace map block: lines, then (id, name) of the workingstep, operation
+// and feature; an id below 0 is written null (made up by the poster).
+std::string block(int first, int last, int ws, const char* ws_name, int op, const char* op_name, int feature,
+                  const char* feature_name) {
+  const auto id = [](int value) { return value < 0 ? std::string("null") : std::to_string(value); };
+  return fmt::format(R"({{"first_line": {}, "last_line": {}, "workingstep": {{"id": {}, "name": "{}"}}, )"
+                     R"("operation": {{"id": {}, "name": "{}"}}, "feature": {{"id": {}, "name": "{}"}}}})",
+                     first, last, id(ws), ws_name, id(op), op_name, id(feature), feature_name);
+}
+
+}  // namespace
+
+TEST_CASE("a log line about #0 keeps 0, one about no instance NULL") {
+  const auto dir = scratch_directory("kb-log-zero");
+  write_text(dir / "p.ngc", "G0 X0\nG1 X1 F100\nX2\nG0 Z5\nG1 X3\nX4\nM30\n");
+  // Lines 2-3: workingstep, operation and feature #0. Line 4: a rapid
+  // movement (no feature). Lines 5 and 6: two workingsteps the poster made
+  // up, the second on a made-up feature with a name.
+  write_text(dir / "p.json", "{\"program\": \"P\", \"blocks\": [" + block(2, 3, 0, "WS ZERO", 0, "OP ZERO", 0, "F ZERO") +
+                                 ",\n" + block(4, 4, 9, "RAPID", 9, "RAPID", -1, "") + ",\n" +
+                                 block(5, 5, -1, "MADE UP", -1, "", -1, "") + ",\n" +
+                                 block(6, 6, -1, "MADE UP 2", -1, "", -1, "EXTRA") + "]}");
+  write_text(dir / "log.csv",
+             "timestamp,line,x,y,z,following_error,feed,spindle_speed,spindle_load\n"
+             "0,1,0,0,0,0,5000,0,1\n1,2,0,0,0,0,100,1000,20\n2,3,0,0,0,0,100,1000,30\n3,4,0,0,0,0,5000,1000,4\n"
+             "4,5,0,0,0,0,100,1000,50\n5,6,0,0,0,0,100,1000,60\n6,7,0,0,0,0,0,0,7\n");
+  kb::Store store = kb::Store::open(dir / "cases.db");
+  const kb::LogImportResult imported = kb::import_log(store, {dir / "log.csv", dir / "p.ngc", dir / "p.json", {}});
+  CHECK(imported.rows == 7);
+  CHECK(imported.traced_rows == 5);
+
+  // #0 is stored as the integer 0, no instance as NULL; each made-up
+  // workingstep has a row of its own.
+  CHECK(rows(dir / "cases.db",
+             "SELECT workingstep_id, typeof(workingstep_id), operation_id, typeof(operation_id), feature_id, "
+             "typeof(feature_id), workingstep, first_line FROM log_workingsteps ORDER BY first_line") ==
+        std::vector<std::string>{"0|integer|0|integer|0|integer|WS ZERO|2", "9|integer|9|integer|NULL|null|RAPID|4",
+                                 "NULL|null|NULL|null|NULL|null|MADE UP|5",
+                                 "NULL|null|NULL|null|NULL|null|MADE UP 2|6"});
+  // Samples refer to those rows; outside every workingstep: NULL.
+  CHECK(rows(dir / "cases.db",
+             "SELECT s.line, w.workingstep FROM log_samples s LEFT JOIN log_workingsteps w ON w.id = s.step_id "
+             "ORDER BY s.id") == std::vector<std::string>{"1|NULL", "2|WS ZERO", "3|WS ZERO", "4|RAPID", "5|MADE UP",
+                                                           "6|MADE UP 2", "7|NULL"});
+
+  // The report: #0 is a feature like any other; a made-up feature has no
+  // #id and is told apart by its name.
+  const kb::LogReport report = kb::log_report(store, {});
+  REQUIRE(report.features.size() == 4);
+  CHECK(report.features[0].feature_id == std::optional<std::uint32_t>(0));
+  CHECK(report.features[0].feature == "F ZERO");
+  CHECK(report.features[0].samples == 2);
+  CHECK(report.features[0].max_load == 30);
+  CHECK_FALSE(report.features[1].feature_id);
+  CHECK(report.features[1].feature.empty());
+  CHECK(report.features[1].workingsteps == std::vector<std::string>{"RAPID", "MADE UP"});
+  CHECK(report.features[1].samples == 2);
+  CHECK(report.features[1].max_load == 50);
+  CHECK_FALSE(report.features[2].feature_id);
+  CHECK(report.features[2].feature == "EXTRA");
+  CHECK(report.features[2].samples == 1);
+  CHECK_FALSE(report.features[3].feature_id);
+  CHECK(report.features[3].feature == "(untraced)");
+  CHECK(report.features[3].samples == 2);
+  CHECK(report.features[3].max_load == 7);
+
+  // JSON: 0 and null; text: "#0 NAME", "-" for a made-up feature without a name.
+  const nlohmann::json json = nlohmann::json::parse(kb::format_log_report(report, true));
+  std::vector<nlohmann::json> ids;
+  for (const nlohmann::json& f : json.at("features")) ids.push_back(f.at("feature"));
+  CHECK(ids == std::vector<nlohmann::json>{0, nullptr, nullptr, nullptr});
+  const std::string text = kb::format_log_report(report, false);
+  std::vector<std::string> first_cells;  // the feature column of each row, after the two heading lines
+  for (std::size_t start = text.find('\n', text.find('\n') + 1) + 1; start < text.size();) {
+    const std::size_t end = text.find('\n', start);
+    first_cells.push_back(text.substr(start, text.find("  ", start) - start));
+    start = end + 1;
+  }
+  CHECK(first_cells == std::vector<std::string>{"#0 F ZERO", "-", "EXTRA", "(untraced)"});
+
+  // An id that is no instance name is refused, naming the block.
+  write_text(dir / "bad.json",
+             R"({"program": "P", "blocks": [{"first_line": 2, "last_line": 3, "workingstep": {"id": 1, "name": "WS"},)"
+             R"( "operation": {"id": -5, "name": "OP"}, "feature": {"id": 1, "name": "F"}}]})");
+  CHECK_THROWS_WITH(kb::import_log(store, {dir / "log.csv", dir / "p.ngc", dir / "bad.json", {}}),
+                    Catch::Contains("bad.json: block 0: operation id -5 is not an instance name"));
+}
+
+TEST_CASE("a version-2 store migrates: its 0 for no instance becomes NULL, samples keep their workingsteps") {
+  const auto dir = scratch_directory("kb-log-v2");
+  const auto file = dir / "v2.db";
+  { CHECK(kb::Store::open(file, {.migrate_to = 2}).version() == 2); }
+  // Two runs as version 2 wrote them: run 1 with workingstep #5 (feature
+  // #7) and a rapid movement whose ids were kept as 0; run 2 with the same
+  // workingstep #5 on other lines (feature #8). Samples name workingstep #ids.
+  sql(file,
+      "INSERT INTO log_runs VALUES (1, 'a', 'run1.csv', 'n', 'p.ngc', 'P', 5, 1, 5, '2026-11-20T00:00:00Z'),"
+      "  (2, 'b', 'run2.csv', 'n', 'p.ngc', 'P', 2, 6, 7, '2026-11-21T00:00:00Z');"
+      "INSERT INTO log_workingsteps VALUES (1, 5, 'WS', 6, 'OP', 7, 'F', 2), (1, 0, 'RAPID', 0, 'RAPID', 0, '', 4),"
+      "  (2, 5, 'WS', 6, 'OP', 8, 'G', 3);"
+      "INSERT INTO log_samples VALUES (1, 1, 0, 1, 1, 0, 0, 0, 0, 1, NULL, 0, 10, NULL),"
+      "  (2, 1, 1, 1, 2, 0, 0, 0, 0, 1, 1, 0, 20, 5), (3, 1, 2, 1, 3, 0, 0, 0, 0, 1, 1, 0, 30, 5),"
+      "  (4, 1, 3, 1, 4, 0, 0, 0, 0, 1, NULL, 0, 40, 0), (5, 1, 4, 0, 5, 0, 0, 0, 0, 1, NULL, 0, 50, NULL),"
+      "  (6, 2, 0, 1, 3, 0, 0, 0, 0, 1, 1, 0, 60, 5), (7, 2, 1, 0, 3, 0, 0, 0, 0, 1, 1, 0, 70, 5);");
+  const auto report_of = [](const kb::Store& store, std::int64_t run) {
+    std::vector<std::string> out;
+    kb::LogReportOptions options;
+    options.run_id = run;
+    for (const kb::FeatureFigures& f : kb::log_report(store, options).features)
+      out.push_back(fmt::format("{}|{}|{}|{}", f.feature_id ? std::to_string(*f.feature_id) : "-", f.feature,
+                                f.samples, f.max_load));
+    return out;
+  };
+
+  kb::Store store = kb::Store::open(file);
+  CHECK(store.version() == 3);
+  CHECK(store.integrity_check() == "ok");
+  CHECK(rows(file,
+             "SELECT run_id, workingstep_id, operation_id, feature_id, feature, first_line FROM log_workingsteps "
+             "ORDER BY run_id, first_line") ==
+        std::vector<std::string>{"1|5|6|7|F|2", "1|NULL|NULL|NULL||4", "2|5|6|8|G|3"});
+  // Each sample refers to its own run's row of the workingstep.
+  CHECK(rows(file,
+             "SELECT s.id, w.run_id, w.first_line FROM log_samples s LEFT JOIN log_workingsteps w ON w.id = s.step_id "
+             "ORDER BY s.id") == std::vector<std::string>{"1|NULL|NULL", "2|1|2", "3|1|2", "4|1|4", "5|NULL|NULL",
+                                                          "6|2|3", "7|2|3"});
+  CHECK(rows(file, "SELECT count(*) FROM sqlite_master WHERE name = 'log_workingsteps_v2'") ==
+        std::vector<std::string>{"0"});
+  CHECK(report_of(store, 1) == std::vector<std::string>{"7|F|2|30", "-||1|40", "-|(untraced)|2|50"});
+  CHECK(report_of(store, 2) == std::vector<std::string>{"8|G|2|70"});
+  // Opening again changes nothing.
+  store = kb::Store::open(file);
+  CHECK(store.version() == 3);
+  CHECK(report_of(store, 1) == std::vector<std::string>{"7|F|2|30", "-||1|40", "-|(untraced)|2|50"});
 }

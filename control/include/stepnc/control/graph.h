@@ -42,7 +42,9 @@ struct Node {
   std::vector<int> children;           ///< structures: indices of the children, in listed order
   machining::Executable executable;    ///< leaves: the workingstep or NC function (children cleared)
   int order = 0;                       ///< leaves: position in the workplan's listed order (tie-break rule 3)
-  int setup = -1;                      ///< leaves: `#id` of the innermost workplan with its own setup, -1 = the project's (#0 is a name)
+  /// Leaves: `#id` of the innermost workplan with its own setup; empty for
+  /// the project's setup (an optional, not a number, because #0 is a name).
+  std::optional<std::uint32_t> setup;
 };
 
 /// A process sequence graph. Node 0 is the root (the main workplan); node

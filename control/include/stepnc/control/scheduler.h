@@ -8,6 +8,7 @@
 /// pluggable tie-break. Every decision names the rule that made it.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -65,14 +66,14 @@ struct Decision {
 struct Candidate {
   int node = -1;              ///< graph node
   std::string_view tool;      ///< its tool's name ("" for NC functions)
-  int setup = -1;             ///< its setup (as Node::setup)
+  std::optional<std::uint32_t> setup;  ///< its setup (as Node::setup: empty = the project's)
   int order = 0;              ///< its place in the listed order
 };
 
 /// The controller's state the tie-break compares against.
 struct TieBreakContext {
   std::string_view tool;  ///< the tool in the spindle ("" at the start)
-  int setup = -1;         ///< the current setup (-1: the project's, as Node::setup)
+  std::optional<std::uint32_t> setup;  ///< the current setup (as Node::setup: empty = the project's)
 };
 
 /// True when `a` should run before `b`. Must be a strict weak order.

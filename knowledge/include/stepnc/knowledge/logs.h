@@ -56,8 +56,11 @@ struct LogReportOptions {
 
 /// Per-feature figures of one run.
 struct FeatureFigures {
-  std::optional<std::uint32_t> feature_id;  ///< `#id`; empty for samples outside every workingstep
-  std::string feature;                      ///< name (`(untraced)` for those samples)
+  /// `#id`; empty (not 0: #0 is a name) for samples outside every
+  /// workingstep and for a feature the poster made up (a rapid movement's,
+  /// trace map `"id": null`), which is told apart by its name.
+  std::optional<std::uint32_t> feature_id;
+  std::string feature;  ///< name (`(untraced)` for samples outside every workingstep)
   std::vector<std::string> workingsteps;    ///< the workingsteps that machined it, in order
   std::size_t samples = 0;       ///< rows
   double time = 0;               ///< s, sum of the sample intervals

@@ -45,7 +45,7 @@ class Error : public std::runtime_error {
 
 /// The schema version this build writes; older files are migrated to it,
 /// newer ones are refused.
-inline constexpr int schema_version = 2;
+inline constexpr int schema_version = 3;
 
 /// The `application_id` stamped in every knowledge base ("STKB"), which
 /// tells it from any other SQLite file.
