@@ -14,6 +14,8 @@
 // (GENERIC, aggregates of selects of simple types, ...) nothing is claimed.
 #include <algorithm>
 #include <cctype>
+#include <optional>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -469,12 +471,18 @@ class Checker {
       case K::Integer:
       case K::Real: return Shape::of(Family::Number);
       case K::String:
-        check_qualified_name(e);
+        check_qualified_name(e, e.text);
         return Shape::of(Family::String);
       case K::BinaryLiteral: return Shape::of(Family::Binary);
       case K::Logical: return Shape::of(Family::Logical);
       case K::Unary: return check_unary(e, check(*e.operands[0]));
       case K::Binary: {
+        // 'IFC2X3.' + 'IFCTERMINATORSYMBOL.ANNOTATEDCURVE' (IFC2X3 TC1) is
+        // one name split over two lines: check it whole, not its parts.
+        if (const std::optional<std::string> joined = joined_literal(e)) {
+          check_qualified_name(e, *joined);
+          return Shape::of(Family::String);
+        }
         const Shape left = check(*e.operands[0]);
         const Shape right = check(*e.operands[1]);
         return check_binary(e, left, right);
@@ -710,14 +718,25 @@ class Checker {
     return {};
   }
 
+  // The value of string literals joined with `+` (ISO 10303-11 12.7.2), or
+  // nothing when any part is not a literal.
+  static std::optional<std::string> joined_literal(const ast::Expression& e) {
+    if (e.kind == ast::Expression::Kind::String) return e.text;
+    if (e.kind != ast::Expression::Kind::Binary || e.op != ast::Operator::Add) return std::nullopt;
+    std::optional<std::string> left = joined_literal(*e.operands[0]);
+    if (!left) return std::nullopt;
+    const std::optional<std::string> right = joined_literal(*e.operands[1]);
+    if (!right) return std::nullopt;
+    return *left + *right;
+  }
+
   // A string 'schema.type' or 'schema.entity.attribute' naming this
   // schema: what TYPEOF returns and USEDIN and ROLESOF take (ISO 10303-11
   // 15.20, 15.25, 15.26) is a type's name qualified by a schema, so a name
   // this schema neither declares nor interfaces never matches (IFC2X4 RC2's
   // 'IFC2X4_RC2.IFCTRANFORMERTYPE'). Strings naming another schema are
   // left alone: that schema may not be part of the compilation.
-  void check_qualified_name(const ast::Expression& e) {
-    const std::string_view text = e.text;
+  void check_qualified_name(const ast::Expression& e, std::string_view text) {
     const bool name_characters = std::all_of(text.begin(), text.end(), [](char c) {
       return c == '.' || c == '_' || std::isalnum(static_cast<unsigned char>(c));
     });
