@@ -45,14 +45,12 @@ constexpr TypeInfo list_1_n_of_composite_curve_segment{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::composite_curve_segment,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::composite_curve_segment*>>};
 // BAG [1:?] OF composite_curve
 constexpr TypeInfo bag_1_n_of_composite_curve{
     .kind = TypeKind::Bag,
     .underlying = &machining_schema::type_info::composite_curve,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::composite_curve*>>};
 // LIST [3:3] OF direction
 constexpr TypeInfo list_3_3_of_direction{
@@ -66,42 +64,36 @@ constexpr TypeInfo list_2_n_of_cartesian_point{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::cartesian_point,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cartesian_point*>>};
 // ARRAY [0:upper_index_on_control_points] OF cartesian_point
 constexpr TypeInfo array_0_n_of_cartesian_point{
     .kind = TypeKind::Array,
     .underlying = &machining_schema::type_info::cartesian_point,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cartesian_point*>>};
 // LIST [2:?] OF LIST [2:?] OF cartesian_point
 constexpr TypeInfo list_2_n_of_list_2_n_of_cartesian_point{
     .kind = TypeKind::List,
     .underlying = &meta_tables::list_2_n_of_cartesian_point,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<machining_schema::cartesian_point*>>>};
 // ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF cartesian_point
 constexpr TypeInfo array_0_n_of_array_0_n_of_cartesian_point{
     .kind = TypeKind::Array,
     .underlying = &meta_tables::array_0_n_of_cartesian_point,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<machining_schema::cartesian_point*>>>};
 // LIST [2:?] OF INTEGER
 constexpr TypeInfo list_2_n_of_integer{
     .kind = TypeKind::List,
     .underlying = &stepnc::meta::integer_type,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::int64_t>>};
 // LIST [2:?] OF parameter_value
 constexpr TypeInfo list_2_n_of_parameter_value{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::parameter_value,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::parameter_value>>};
 // LIST [1:3] OF length_measure
 constexpr TypeInfo list_1_3_of_length_measure{
@@ -122,49 +114,42 @@ constexpr TypeInfo set_1_n_of_representation{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::representation,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::representation*>>};
 // LIST [2:?] OF REAL
 constexpr TypeInfo list_2_n_of_real{
     .kind = TypeKind::List,
     .underlying = &stepnc::meta::real_type,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<double>>};
 // ARRAY [0:upper_index_on_control_points] OF REAL
 constexpr TypeInfo array_0_n_of_real{
     .kind = TypeKind::Array,
     .underlying = &stepnc::meta::real_type,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<double>>};
 // LIST [2:?] OF LIST [2:?] OF REAL
 constexpr TypeInfo list_2_n_of_list_2_n_of_real{
     .kind = TypeKind::List,
     .underlying = &meta_tables::list_2_n_of_real,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<double>>>};
 // ARRAY [0:u_upper] OF ARRAY [0:v_upper] OF REAL
 constexpr TypeInfo array_0_n_of_array_0_n_of_real{
     .kind = TypeKind::Array,
     .underlying = &meta_tables::array_0_n_of_real,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<std::vector<double>>>};
 // SET [1:?] OF face
 constexpr TypeInfo set_1_n_of_face{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::face,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::face*>>};
 // LIST [1:?] OF UNIQUE oriented_edge
 constexpr TypeInfo list_unique_1_n_of_oriented_edge{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::oriented_edge,
     .lower = 1,
-    .upper = -1,
     .unique = true,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::oriented_edge*>>};
 // SET [1:?] OF face_bound
@@ -172,14 +157,12 @@ constexpr TypeInfo set_1_n_of_face_bound{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::face_bound,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::face_bound*>>};
 // LIST [3:?] OF UNIQUE cartesian_point
 constexpr TypeInfo list_unique_3_n_of_cartesian_point{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::cartesian_point,
     .lower = 3,
-    .upper = -1,
     .unique = true,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cartesian_point*>>};
 // SET [1:?] OF representation_item
@@ -187,63 +170,54 @@ constexpr TypeInfo set_1_n_of_representation_item{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::representation_item,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::representation_item*>>};
 // SET [1:?] OF mapped_item
 constexpr TypeInfo set_1_n_of_mapped_item{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::mapped_item,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::mapped_item*>>};
 // LIST [1:?] OF label
 constexpr TypeInfo list_1_n_of_label{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::label,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::label>>};
 // SET [0:?] OF workpiece
 constexpr TypeInfo set_0_n_of_workpiece{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::workpiece,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::workpiece*>>};
 // SET [0:?] OF cartesian_point
 constexpr TypeInfo set_0_n_of_cartesian_point{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::cartesian_point,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cartesian_point*>>};
 // SET [0:?] OF property_parameter
 constexpr TypeInfo set_0_n_of_property_parameter{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::property_parameter,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::property_parameter*>>};
 // SET [0:?] OF machining_operation
 constexpr TypeInfo set_0_n_of_machining_operation{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::machining_operation,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::machining_operation*>>};
 // LIST [1:?] OF bounded_surface
 constexpr TypeInfo list_1_n_of_bounded_surface{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::bounded_surface,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::bounded_surface*>>};
 // SET [0:?] OF boss
 constexpr TypeInfo set_0_n_of_boss{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::boss,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::boss*>>};
 // LIST [0:2] OF slot_end_type
 constexpr TypeInfo list_0_2_of_slot_end_type{
@@ -257,63 +231,54 @@ constexpr TypeInfo set_2_n_of_compound_feature_select{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::compound_feature_select,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::compound_feature_select>>};
 // SET [0:?] OF circular_offset
 constexpr TypeInfo set_0_n_of_circular_offset{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::circular_offset,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::circular_offset*>>};
 // SET [0:?] OF circular_omit
 constexpr TypeInfo set_0_n_of_circular_omit{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::circular_omit,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::circular_omit*>>};
 // SET [0:?] OF rectangular_offset
 constexpr TypeInfo set_0_n_of_rectangular_offset{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::rectangular_offset,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::rectangular_offset*>>};
 // SET [0:?] OF rectangular_omit
 constexpr TypeInfo set_0_n_of_rectangular_omit{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::rectangular_omit,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::rectangular_omit*>>};
 // LIST [2:?] OF axis2_placement_3d
 constexpr TypeInfo list_2_n_of_axis2_placement_3d{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::axis2_placement_3d,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::axis2_placement_3d*>>};
 // SET [1:?] OF machining_feature
 constexpr TypeInfo set_1_n_of_machining_feature{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::machining_feature,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::machining_feature*>>};
 // SET [0:?] OF specification_usage_constraint
 constexpr TypeInfo set_0_n_of_specification_usage_constraint{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::specification_usage_constraint,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::specification_usage_constraint*>>};
 // SET [1:?] OF machined_surface
 constexpr TypeInfo set_1_n_of_machined_surface{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::machined_surface,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::machined_surface*>>};
 // LIST [3:3] OF nc_variable
 constexpr TypeInfo list_3_3_of_nc_variable{
@@ -327,77 +292,66 @@ constexpr TypeInfo list_1_n_of_cutting_component{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::cutting_component,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cutting_component*>>};
 // LIST [0:?] OF executable
 constexpr TypeInfo list_0_n_of_executable{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::executable,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::executable*>>};
 // LIST [0:?] OF workpiece_setup
 constexpr TypeInfo list_0_n_of_workpiece_setup{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::workpiece_setup,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::workpiece_setup*>>};
 // LIST [0:?] OF setup_instruction
 constexpr TypeInfo list_0_n_of_setup_instruction{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::setup_instruction,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::setup_instruction*>>};
 // SET [2:?] OF executable
 constexpr TypeInfo set_2_n_of_executable{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::executable,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::executable*>>};
 // LIST [2:?] OF boolean_expression
 constexpr TypeInfo list_2_n_of_boolean_expression{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::boolean_expression,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::boolean_expression*>>};
 // LIST [1:?] OF toolpath
 constexpr TypeInfo list_1_n_of_toolpath{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::toolpath,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::toolpath*>>};
 // LIST [1:?] OF identifier
 constexpr TypeInfo list_1_n_of_identifier{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::identifier,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::identifier>>};
 // LIST [1:?] OF bounded_curve
 constexpr TypeInfo list_1_n_of_bounded_curve{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::bounded_curve,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::bounded_curve*>>};
 // LIST [0:?] OF reversible_topology_item
 constexpr TypeInfo list_0_n_of_reversible_topology_item{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::reversible_topology_item,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::reversible_topology_item>>};
 // SET [0:?] OF reversible_topology_item
 constexpr TypeInfo set_0_n_of_reversible_topology_item{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::reversible_topology_item,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::reversible_topology_item>>};
 
 // Expression and statement trees (stepnc/meta/expression.h): a node's operands are the

@@ -8,8 +8,12 @@
 // parameters and FUNCTION results; nested ARRAYs keep their inner bounds.
 #include <catch2/catch.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "array_bounds_schema.h"
 #include "stepnc/exchange/model_file.h"
@@ -25,6 +29,15 @@ using stepnc::rules::call_text;
 const stepnc::meta::Model& empty_model() {
   static const stepnc::meta::Model model;
   return model;
+}
+
+// A Part 21 file of array_bounds_schema with `data` as its DATA section, read.
+stepnc::exchange::ModelReadResult read_data(const std::string& data) {
+  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(array_bounds_schema::meta_schema);
+  return stepnc::exchange::read_model_text(
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('ARRAY_BOUNDS_SCHEMA'));\nENDSEC;\nDATA;\n" + data + "\nENDSEC;\nEND-ISO-10303-21;\n",
+      "array_bounds.stp", registry);
 }
 
 }  // namespace
@@ -72,15 +85,40 @@ TEST_CASE("negative bounds of locals, FUNCTION results and parameters are exact"
 }
 
 TEST_CASE("negative bounds of a declared attribute are exact", "[rules][array_bounds]") {
-  static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(array_bounds_schema::meta_schema);
-  auto result = stepnc::exchange::read_model_text(
-      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-      "FILE_SCHEMA(('ARRAY_BOUNDS_SCHEMA'));\nENDSEC;\nDATA;\n#1=GRID((1,2,3,4,5));\nENDSEC;\nEND-ISO-10303-21;\n",
-      "grid.stp", registry);
+  auto result = read_data("#1=GRID((1,2,3,4,5));");
   for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
   REQUIRE(result.ok());
   // cells : ARRAY [-2:2]: [LOBOUND, HIBOUND, LOINDEX, HIINDEX, cells[-2], cells[2], cells[3]]
   CHECK(call_text(result.file->model, f::attribute_bounds, {"#1"}) == "[-2,2,-2,2,1,5,?]");
+}
+
+TEST_CASE("an attribute ARRAY [-5:-1] reports its bounds and indexes from -5", "[rules][array_bounds]") {
+  auto result = read_data("#1=HISTORY((1.5,2.5,3.5,4.5,5.5));\n#2=HISTORY((5.,4.,3.,2.,1.));");
+  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
+  REQUIRE(result.ok());
+  const stepnc::meta::Model& model = result.file->model;
+  // The metaclass keeps the upper bound -1 (it once read as `?`).
+  const stepnc::meta::TypeInfo& readings = array_bounds_schema::history::meta_entity.find_attribute("readings")->type->resolved();
+  CHECK(readings.lower == -5);
+  CHECK(readings.upper == std::optional<std::int64_t>(-1));
+  CHECK(readings.size_limits() == std::pair<std::int64_t, std::int64_t>(5, 5));
+  // [LOBOUND, HIBOUND, LOINDEX, HIINDEX, SIZEOF, [-5], [-1], [0] and [-6] outside]
+  CHECK(call_text(model, f::negative_attribute, {"#1"}) == "[-5,-1,-5,-1,5,1.5,5.5,?,?]");
+  CHECK(call_text(model, f::negative_attribute, {"#2"}) == "[-5,-1,-5,-1,5,5,1,?,?]");
+  // Through SELF in WHERE rules: #2 decreases, so wr1 (readings[-1] >=
+  // readings[-5]) is FALSE; with HIBOUND `?` it was UNKNOWN and passed.
+  std::vector<std::string> violations;
+  for (const auto& v : stepnc::rules::check(model)) violations.push_back(v.to_string());
+  CHECK(violations == std::vector<std::string>{"#2: history.wr1 violated"});
+}
+
+TEST_CASE("an attribute ARRAY [-5:-1] with the wrong number of elements is refused", "[rules][array_bounds]") {
+  auto result = read_data("#1=HISTORY((1.,2.,3.,4.));");
+  CHECK_FALSE(result.ok());
+  std::string messages;
+  for (const auto& d : result.diagnostics.items()) messages += d.to_string() + "\n";
+  // The bounds as declared (the upper one was written `?`).
+  CHECK_THAT(messages, Catch::Contains("4 elements, outside the bounds [-5:-1]"));
 }
 
 TEST_CASE("the inner ARRAYs of a nested ARRAY keep their declared bounds", "[rules][array_bounds]") {

@@ -66,10 +66,7 @@ std::int64_t shape_of(const meta::TypeInfo& resolved) {
     case meta::TypeKind::Set: kind = AggregateShape::Kind::Set; break;
     default: return 0;
   }
-  // The metaclass writes `?` (and a bound it could not fold) as a negative
-  // upper bound, so an ARRAY [-5:-1] attribute reports HIBOUND `?`.
-  const bool open = resolved.upper < 0;
-  return AggregateShape::of(kind, resolved.lower, open ? std::nullopt : std::optional(resolved.upper)).pack();
+  return AggregateShape::of(kind, resolved.lower, resolved.upper).pack();
 }
 
 // A BAG or SET with no declared bounds, [0:?]: what USEDIN, TYPEOF,
