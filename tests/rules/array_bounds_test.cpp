@@ -6,6 +6,9 @@
 // and HIBOUND (15.10, 15.11, 15.14, 15.15) and gives `?` for an index
 // outside them (12.6.1); negative bounds are exact for attributes, locals,
 // parameters and FUNCTION results; nested ARRAYs keep their inner bounds.
+// Parameters whose bounds are other parameters (`a : ARRAY [1:n]`) have
+// them evaluated on entry, and an argument that does not fit them makes
+// the call not evaluated (ISO 10303-11 12.8: assignment compatible).
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -132,4 +135,66 @@ TEST_CASE("the inner ARRAYs of a nested ARRAY keep their declared bounds", "[rul
   // Constant bounds on both levels, ARRAY [0:1] OF ARRAY [-1:0]:
   // [LOBOUND(res[0]), HIBOUND(res[0]), res[0][-1], res[1][0], res[1][1]]
   CHECK(call_text(empty_model(), f::constant_nested, {"1"}) == "[-1,0,1,4,?]");
+}
+
+TEST_CASE("a parameter ARRAY [1:n] takes n from the earlier parameter", "[rules][array_bounds]") {
+  // An aggregate initializer takes the parameter's bounds: [LOBOUND, HIBOUND,
+  // LOINDEX, HIINDEX, SIZEOF, a[1], a[n], a[n + 1]]
+  CHECK(call_text(empty_model(), f::counted, {"3", "[1.5,2.5,3.5]"}) == "[1,3,1,3,3,1.5,3.5,?]");
+  CHECK(call_text(empty_model(), f::counted, {"1", "[7.0]"}) == "[1,1,1,1,1,7,7,?]");
+  // ARRAY [lo:hi] OF GENERIC : T, bounds from two parameters, negative ones too:
+  // [LOBOUND, HIBOUND, LOINDEX, HIINDEX, SIZEOF, arr[lo], arr[hi], arr[lo - 1]]
+  CHECK(call_text(empty_model(), f::spanned, {"4", "6", "['a','b','c']"}) == "[4,6,4,6,3,'a','c',?]");
+  CHECK(call_text(empty_model(), f::spanned, {"-3", "-2", "[10,20]"}) == "[-3,-2,-3,-2,2,10,20,?]");
+  // LIST [lo:hi]: its size within them; [LOBOUND, HIBOUND, LOINDEX, HIINDEX, SIZEOF]
+  CHECK(call_text(empty_model(), f::limited, {"1", "4", "[5,6]"}) == "[1,4,1,2,2]");
+  // Nested: ARRAY [1:n] OF ARRAY [0:m], each level from the parameters:
+  // [HIBOUND(a), LOBOUND(a[1]), HIBOUND(a[1]), a[n][m], a[1][m + 1]]
+  CHECK(call_text(empty_model(), f::matrix, {"2", "1", "[[1,2],[3,4]]"}) == "[2,0,1,4,?]");
+}
+
+TEST_CASE("an argument with declared bounds keeps them and must match the parameter's", "[rules][array_bounds]") {
+  auto result = read_data("#1=HISTORY((1.,2.,3.,4.,5.));\n#2=WINDOW(1,3,(1.,2.,3.));\n#3=WINDOW(1,3,(3.,2.,1.));\n"
+                          "#4=WINDOW(0,2,(1.,2.,3.));");
+  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
+  REQUIRE(result.ok());
+  const stepnc::meta::Model& model = result.file->model;
+  // readings : ARRAY [-5:-1] given to ARRAY [lo:hi] with lo = -5, hi = -1.
+  CHECK(call_text(model, f::readings_spanned, {"#1", "-5", "-1"}) == "[-5,-1,-5,-1,5,1,5,?]");
+  // Other bounds: the call is not valid EXPRESS (the argument is not
+  // assignment compatible, ISO 10303-11 12.8), so nothing is evaluated.
+  CHECK(call_text(model, f::readings_spanned, {"#1", "1", "5"}) ==
+        "not evaluated: argument 3 of spanned does not fit its parameter: indices [-5:-1], not those of ARRAY [1:5]");
+  // In a WHERE rule (window.wr1: increasing(first, last, samples), samples ARRAY [1:3]):
+  // #2 holds, #3 decreases (violated), #4 declares [0:2] (not evaluated, a warning, never a violation).
+  std::vector<std::string> violations;
+  for (const auto& v : stepnc::rules::check(model)) violations.push_back(v.to_string());
+  REQUIRE(violations.size() == 2);
+  CHECK(violations[0] == "#3: window.wr1 violated");
+  CHECK_THAT(violations[1], Catch::StartsWith("#4: window.wr1") &&
+                                Catch::Contains("argument 3 of increasing does not fit its parameter: indices [1:3], "
+                                                "not those of ARRAY [0:2]"));
+}
+
+TEST_CASE("an argument that does not fit the parameter's bounds is not evaluated", "[rules][array_bounds]") {
+  // Too few and too many elements for ARRAY [1:n].
+  CHECK(call_text(empty_model(), f::counted, {"3", "[1.5,2.5]"}) ==
+        "not evaluated: argument 2 of counted does not fit its parameter: 2 elements, outside ARRAY [1:3]");
+  CHECK(call_text(empty_model(), f::counted, {"0", "[1.5]"}) ==
+        "not evaluated: argument 2 of counted does not fit its parameter: 1 element, outside ARRAY [1:0]");
+  // A LIST [2:3] given one element, and an inner ARRAY [0:1] given three.
+  CHECK(call_text(empty_model(), f::limited, {"2", "3", "[5]"}) ==
+        "not evaluated: argument 3 of limited does not fit its parameter: 1 element, outside LIST [2:3]");
+  CHECK(call_text(empty_model(), f::matrix, {"2", "1", "[[1,2],[3,4,5]]"}) ==
+        "not evaluated: argument 3 of matrix does not fit its parameter: an element has 3 elements, outside ARRAY [0:1]");
+}
+
+TEST_CASE("an indeterminate bound checks nothing and reports ?", "[rules][array_bounds]") {
+  // n = ?: ARRAY [1:?]; the initializer is indexed from 1, HIBOUND is `?`
+  // and so is a[n]: [LOBOUND, HIBOUND, LOINDEX, HIINDEX, SIZEOF, a[1], a[n], a[n + 1]]
+  CHECK(call_text(empty_model(), f::counted, {"?", "[1.5,2.5]"}) == "[1,?,1,2,2,1.5,?,?]");
+  // LIST [lo:?] with lo = 1: no upper limit.
+  CHECK(call_text(empty_model(), f::limited, {"1", "?", "[5,6,7]"}) == "[1,?,1,3,3]");
+  // A `?` lower bound: nothing is known of the bounds.
+  CHECK(call_text(empty_model(), f::limited, {"?", "2", "[5,6,7]"}) == "[?,?,1,3,3]");
 }
