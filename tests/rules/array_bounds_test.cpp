@@ -122,6 +122,12 @@ TEST_CASE("an attribute ARRAY [-5:-1] with the wrong number of elements is refus
   for (const auto& d : result.diagnostics.items()) messages += d.to_string() + "\n";
   // The bounds as declared (the upper one was written `?`).
   CHECK_THAT(messages, Catch::Contains("4 elements, outside the bounds [-5:-1]"));
+  // The same for a model built in code (meta::validate).
+  stepnc::meta::Model model;
+  model.create<array_bounds_schema::history>().readings = {1., 2., 3., 4., 5., 6.};
+  const stepnc::rules::Validation validation = stepnc::rules::validate(model);
+  REQUIRE(validation.structure.size() == 1);
+  CHECK_THAT(validation.messages().front(), Catch::Contains("6 elements, outside the bounds [-5:-1]"));
 }
 
 TEST_CASE("the inner ARRAYs of a nested ARRAY keep their declared bounds", "[rules][array_bounds]") {
