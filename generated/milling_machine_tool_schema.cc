@@ -32,7 +32,6 @@ constexpr TypeInfo list_1_n_of_cutting_component{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::cutting_component,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::cutting_component*>>};
 
 // Expression and statement trees (stepnc/meta/expression.h): a node's operands are the

@@ -32,21 +32,18 @@ constexpr TypeInfo list_0_n_of_identifier{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::identifier,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::identifier>>};
 // SET [0:?] OF property_parameter
 constexpr TypeInfo set_0_n_of_property_parameter{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::property_parameter,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::property_parameter*>>};
 // LIST [1:?] OF process_model
 constexpr TypeInfo list_1_n_of_process_model{
     .kind = TypeKind::List,
     .underlying = &milling_schema::type_info::process_model,
     .lower = 1,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<milling_schema::process_model*>>};
 
 // Expression and statement trees (stepnc/meta/expression.h): a node's operands are the

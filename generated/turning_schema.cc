@@ -32,35 +32,30 @@ constexpr TypeInfo set_0_n_of_machining_operation{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::machining_operation,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::machining_operation*>>};
 // LIST [2:?] OF manufacturing_feature
 constexpr TypeInfo list_2_n_of_manufacturing_feature{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::manufacturing_feature,
     .lower = 2,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::manufacturing_feature*>>};
 // LIST [0:?] OF identifier
 constexpr TypeInfo list_0_n_of_identifier{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::identifier,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::identifier>>};
 // SET [0:?] OF property_parameter
 constexpr TypeInfo set_0_n_of_property_parameter{
     .kind = TypeKind::Set,
     .underlying = &machining_schema::type_info::property_parameter,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::property_parameter*>>};
 // LIST [0:?] OF length_measure
 constexpr TypeInfo list_0_n_of_length_measure{
     .kind = TypeKind::List,
     .underlying = &machining_schema::type_info::length_measure,
     .lower = 0,
-    .upper = -1,
     .aggregate = &stepnc::meta::aggregate_ops<std::vector<machining_schema::length_measure>>};
 
 // Expression and statement trees (stepnc/meta/expression.h): a node's operands are the

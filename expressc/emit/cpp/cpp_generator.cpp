@@ -653,11 +653,11 @@ std::string SchemaEmitter::register_aggregate(const TypeRef& t) {
       "constexpr TypeInfo $name${\n"
       "    .kind = $kind$,\n"
       "    .underlying = $element$,\n"
-      "    .lower = $lower$,\n"
-      "    .upper = $upper$,\n",
+      "    .lower = $lower$,\n",
       {{"express", express_text(t)}, {"name", name}, {"kind", aggregate_kind_cpp(t.aggregate)}, {"element", element},
-       {"lower", t.lower.value ? std::to_string(*t.lower.value) : "0"},
-       {"upper", t.upper.value ? std::to_string(*t.upper.value) : "-1"}});
+       {"lower", t.lower.value ? std::to_string(*t.lower.value) : "0"}});
+  // `?` (or a bound that did not fold) is no upper bound: an ARRAY's may be negative.
+  if (t.upper.value) p.print("    .upper = $upper$,\n", {{"upper", std::to_string(*t.upper.value)}});
   if (t.unique) p.print("    .unique = true,\n");
   p.print("    .aggregate = &stepnc::meta::aggregate_ops<$storage$>};\n", {{"storage", storage}});
   return name;

@@ -543,13 +543,19 @@ class RuleEmitter {
     populations_.clear();
     uint32_t parameters = 0, var_parameters = 0;
     std::string entities, where;
+    // The body: the parameters' entry checks, local initialisations
+    // (constants and initialised locals, in order), then the statements.
+    std::vector<std::function<void(uint32_t)>> steps;
     if (algorithm.function || algorithm.procedure) {
       const auto& syntax = algorithm.function ? algorithm.function->parameters : algorithm.procedure->parameters;
       for (const ast::Parameter& group : syntax)
         for (const ast::Name& parameter : group.names) {
           if (group.var && parameters < 32) var_parameters |= 1u << parameters;
-          bind(parameter.text, parameters < algorithm.parameters.size() ? shape_of(algorithm.parameters[parameters].type)
-                                                                       : shape_of(group.type));
+          const uint32_t slot =
+              bind(parameter.text, parameters < algorithm.parameters.size() ? shape_of(algorithm.parameters[parameters].type)
+                                                                            : shape_of(group.type));
+          if (checked_parameter(group.type))
+            steps.push_back([this, slot, &group](uint32_t at) { check_parameter(at, slot, group.type); });
           ++parameters;
         }
       body = algorithm.function ? &algorithm.function->body : &algorithm.procedure->body;
@@ -564,9 +570,6 @@ class RuleEmitter {
         entities += "    " + entity_ref(e) + ",\n";
       }
     }
-    // The body: local initialisations (constants and initialised locals,
-    // in order), then the statements.
-    std::vector<std::function<void(uint32_t)>> steps;
     for (const ast::ConstantDecl& constant : body->constants) {
       const uint32_t slot = bind(constant.name.text);
       steps.push_back([this, slot, &constant](uint32_t at) { initialise(at, slot, constant.value.get(), nullptr); });
@@ -627,6 +630,29 @@ class RuleEmitter {
     if (!bounded_aggregate(&type)) return nullptr;
     if ((shape_of(type) & 8) && !bounded_aggregate(type.element.get())) return nullptr;  // constant bounds (meta::AggregateShape bit 3)
     return &type;
+  }
+
+  // A parameter whose declared bounds the evaluator checks its actual
+  // argument against on entry (ISO 10303-11 9.5.3, 12.8, 13.8: the actual
+  // parameter is assignment compatible with the formal one): an aggregate
+  // with bounds, expressions of earlier parameters or constants, that can
+  // refuse something: not a LIST, BAG or SET [0:?] (whose elements'
+  // bounds may still).
+  static bool checked_parameter(const ast::TypeSpec& type) {
+    if (!bounded_aggregate(&type)) return false;
+    const bool open = type.kind != ast::TypeSpec::Kind::Array && literal(type.lower.get()) == 0 &&
+                      type.upper->kind == ast::Expression::Kind::Indeterminate;
+    return !open || (type.element && checked_parameter(*type.element));
+  }
+
+  // The entry check of parameter `slot` declared `type` (checked_parameter):
+  // an Assign marked `integer` 1 whose target Variable carries the bound
+  // expressions (as a local's, see initialise) and whose value is the
+  // parameter itself.
+  void check_parameter(uint32_t at, uint32_t slot, const ast::TypeSpec& type) {
+    initialise(at, slot, nullptr, &type);
+    nodes_[at].integer = "1";
+    node(nodes_[at].first + 1, "Variable").slot = slot;
   }
 
   // `slot := value` (`?` without one); `bounds`: the local's declared type,

@@ -410,7 +410,7 @@ class Filler {
     const std::size_t n = v.size();
     const auto [fewest, most] = type.size_limits();
     if (static_cast<std::int64_t>(n) < fewest || (most >= 0 && static_cast<std::int64_t>(n) > most)) {
-      const std::string upper = type.upper < 0 ? "?" : std::to_string(type.upper);
+      const std::string upper = type.upper ? std::to_string(*type.upper) : "?";
       fail(v, fmt::format("{} elements, outside the bounds [{}:{}]", n, type.lower, upper));
     }
     std::size_t kept = n;

@@ -80,7 +80,7 @@ class Validator {
     const auto size = static_cast<std::int64_t>(n);
     const auto [fewest, most] = type.size_limits();
     if (size < fewest || (most >= 0 && size > most)) {
-      const std::string upper = type.upper < 0 ? "?" : std::to_string(type.upper);
+      const std::string upper = type.upper ? std::to_string(*type.upper) : "?";
       report(owner, attribute,
              fmt::format("{} element{}, outside the bounds [{}:{}]", n, n == 1 ? "" : "s", type.lower, upper));
     }

@@ -66,10 +66,7 @@ std::int64_t shape_of(const meta::TypeInfo& resolved) {
     case meta::TypeKind::Set: kind = AggregateShape::Kind::Set; break;
     default: return 0;
   }
-  // The metaclass writes `?` (and a bound it could not fold) as a negative
-  // upper bound, so an ARRAY [-5:-1] attribute reports HIBOUND `?`.
-  const bool open = resolved.upper < 0;
-  return AggregateShape::of(kind, resolved.lower, open ? std::nullopt : std::optional(resolved.upper)).pack();
+  return AggregateShape::of(kind, resolved.lower, resolved.upper).pack();
 }
 
 // A BAG or SET with no declared bounds, [0:?]: what USEDIN, TYPEOF,
@@ -221,6 +218,7 @@ struct Frame {
   std::vector<Value> slots;
   Value self;
   Value result;
+  const meta::AlgorithmInfo* algorithm = nullptr;  // the FUNCTION or PROCEDURE running, for messages
   // Locals whose declared bounds are expressions (`ARRAY [low:u]`) or
   // whose elements are bounded aggregates, as evaluated when each was
   // initialised: the packed shape and lower index of the local, then of
@@ -672,6 +670,50 @@ class Interpreter {
         return;
       }
     frame.shapes.push_back(std::move(evaluated));
+  }
+
+  // A parameter declared with bounds (constants, or expressions of the
+  // other parameters: `a : ARRAY [1:n] OF REAL`), on entry. The bounds are
+  // evaluated as a local's are (evaluate_bounds), and the actual argument
+  // must fit them, being assignment compatible with the formal parameter
+  // (ISO 10303-11 9.5.3, 12.8, 13.8): an ARRAY argument with the same
+  // indices, an aggregate initializer with as many elements, a LIST, BAG
+  // or SET with as many as the bounds allow, at each level. An argument
+  // that does not fit makes the call invalid: the rule is not evaluated
+  // (never violated, never passed as UNKNOWN). The parameter keeps the
+  // bounds the argument was declared with (HIBOUND of an attribute is its
+  // declaration's, 15.10); an aggregate initializer, which has none, takes
+  // the parameter's. A bound that is `?`, or that is not an INTEGER,
+  // checks nothing, and HIBOUND/LOBOUND of an initializer given there are `?`.
+  void enter_parameter(const Node* nodes, const Node& variable, Frame& frame) {
+    evaluate_bounds(nodes, variable, frame);
+    Value& argument = frame.slots.at(variable.slot);
+    const std::span<const Frame::Level> levels = evaluated_shape(frame, variable.slot)->levels;
+    if (const std::optional<std::string> misfit = misfit_of(argument, levels))
+      throw Unevaluable(fmt::format("argument {} of {} does not fit its parameter: {}", variable.slot + 1,
+                                    frame.algorithm ? frame.algorithm->name : std::string_view("a call"), *misfit));
+    if (!argument.shape) argument = shaped(std::move(argument), levels);
+  }
+
+  // Why the aggregate `v` does not fit `levels` (enter_parameter), if it does not.
+  static std::optional<std::string> misfit_of(const Value& v, std::span<const Frame::Level> levels) {
+    if (levels.empty() || v.kind != Value::Kind::Aggregate) return std::nullopt;
+    const AggregateShape s = AggregateShape::unpack(levels.front().shape);
+    const auto size = static_cast<std::int64_t>(v.elements()->size());
+    if (s.bounded) {
+      static constexpr std::string_view keywords[] = {"", "ARRAY", "LIST", "BAG", "SET"};
+      const std::string declared = fmt::format("{} [{}:{}]", keywords[static_cast<int>(s.kind)], s.lower,
+                                               s.upper ? std::to_string(*s.upper) : std::string("?"));
+      if (s.kind == AggregateShape::Kind::Array && s.upper && v.shape && v.aggregate_kind() == AggregateShape::Kind::Array &&
+          (v.integer != s.lower || v.integer + size - 1 != *s.upper))
+        return fmt::format("indices [{}:{}], not those of {}", v.integer, v.integer + size - 1, declared);
+      const bool fits = s.kind == AggregateShape::Kind::Array ? !s.upper || size == *s.upper - s.lower + 1
+                                                              : size >= s.lower && (!s.upper || size <= *s.upper);
+      if (!fits) return fmt::format("{} element{}, outside {}", size, size == 1 ? "" : "s", declared);
+    }
+    for (const Value& e : *v.elements())
+      if (std::optional<std::string> inner = misfit_of(e, levels.subspan(1))) return "an element has " + *inner;
+    return std::nullopt;
   }
 
   // A variable's value where it is, anything else evaluated into `scratch`:
@@ -1275,6 +1317,7 @@ class Interpreter {
   Value invoke(const meta::AlgorithmInfo& algorithm, std::vector<Value>& arguments) {
     const Nesting nesting(depth_, "calls", algorithm.name);
     Frame frame(pool_, std::max<std::size_t>(algorithm.frame, arguments.size()));
+    frame.algorithm = &algorithm;
     // Moved: a caller reads back only VAR parameters, which are copied back below.
     for (std::size_t i = 0; i < arguments.size() && i < algorithm.parameters; ++i) frame.slots[i] = std::move(arguments[i]);
     execute(algorithm.body.nodes, algorithm.body.root, frame);
@@ -1372,6 +1415,10 @@ class Interpreter {
         return Flow::Return;
       case NodeKind::Assign: {
         const Node& variable = nodes[n.first];
+        if (n.integer == 1) {  // a parameter's entry check (expressc's check_parameter)
+          enter_parameter(nodes, variable, frame);
+          return Flow::Next;
+        }
         if (variable.kind == NodeKind::Variable && variable.count >= 2) evaluate_bounds(nodes, variable, frame);
         if (append_in_place(nodes, n, frame)) return Flow::Next;
         Value value = eval(nodes, n.first + 1, frame);

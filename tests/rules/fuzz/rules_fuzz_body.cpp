@@ -129,7 +129,8 @@ void fill(const meta::ValueRef& target, const meta::Model& model, Bytes& in, int
       // Mostly within the bounds, sometimes outside them (a model built in
       // code can be anything); shallow, so inputs stay small.
       std::size_t n = depth >= 3 ? 0 : in.next() % 6;
-      if (type.upper >= 0 && n > static_cast<std::size_t>(type.upper) && (in.next() & 1)) n = type.upper;
+      if (type.upper && *type.upper >= 0 && n > static_cast<std::size_t>(*type.upper) && (in.next() & 1))
+        n = static_cast<std::size_t>(*type.upper);
       if (!target.resize(n)) return;
       for (std::size_t i = 0; i < n; ++i) fill(target.element(i), model, in, depth + 1);
       return;

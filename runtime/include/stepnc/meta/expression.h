@@ -52,7 +52,7 @@ enum class NodeKind : std::uint8_t {
   // ---- statements
   Null,             ///< `;`
   Alias,            ///< ALIAS slot FOR operand 0; operands 1.. the body
-  Assign,           ///< operand 0 := operand 1
+  Assign,           ///< operand 0 := operand 1; `integer` 1: a parameter's entry check (operand 0 its Variable with its bounds)
   Case,             ///< CASE operand 0 OF actions (operands 1..); `slot` != 0: the last is OTHERWISE
   CaseAction,       ///< labels (the first `slot` operands) : the last operand
   Block,            ///< BEGIN operands END

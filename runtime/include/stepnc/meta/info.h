@@ -130,9 +130,11 @@ struct TypeInfo {
   const TypeInfo* underlying = nullptr;  ///< Alias: the named type; aggregates: elements
   const EntityInfo* entity = nullptr;    ///< Entity
 
-  /// Aggregates. `upper` < 0 means unbounded (`?`).
+  /// Aggregates: the declared bounds. An ARRAY's may be negative (ISO
+  /// 10303-11 8.2.1: ARRAY [-5:-1]), so `?` (or a bound the generator
+  /// could not fold) is an empty `upper`, never a negative one.
   std::int64_t lower = 0;
-  std::int64_t upper = -1;  ///< aggregates: upper bound, < 0 for `?`
+  std::optional<std::int64_t> upper{};  ///< aggregates: upper bound, none for `?`
   bool unique = false;  ///< aggregates: UNIQUE elements (SET, or LIST/ARRAY OF UNIQUE)
   const AggregateOps* aggregate = nullptr;  ///< aggregates: access to the C++ container
 
@@ -151,8 +153,9 @@ struct TypeInfo {
   /// 10303-11 8.2.1: ARRAY [-2:2] holds 5); a LIST, BAG or SET from lower
   /// to upper.
   std::pair<std::int64_t, std::int64_t> size_limits() const noexcept {
-    if (kind == TypeKind::Array && upper >= lower) return {upper - lower + 1, upper - lower + 1};
-    return {lower, upper};
+    if (!upper) return {lower, -1};
+    if (kind == TypeKind::Array && *upper >= lower) return {*upper - lower + 1, *upper - lower + 1};
+    return {lower, *upper};
   }
   /// Follows Alias chains to the type that decides the storage.
   const TypeInfo& resolved() const noexcept {
