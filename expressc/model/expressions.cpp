@@ -483,8 +483,14 @@ class Checker {
           check_qualified_name(e, *joined);
           return Shape::of(Family::String);
         }
-        const Shape left = check(*e.operands[0]);
-        const Shape right = check(*e.operands[1]);
+        // A literal joined to a value known only at run time is a part of a
+        // name ('AUTOMOTIVE_DESIGN.' + c_items[i] in AP214 e3), not a name.
+        const auto operand = [&](const ast::Expression& side) {
+          const bool part = e.op == ast::Operator::Add && side.kind == K::String;
+          return part ? Shape::of(Family::String) : check(side);
+        };
+        const Shape left = operand(*e.operands[0]);
+        const Shape right = operand(*e.operands[1]);
         return check_binary(e, left, right);
       }
       case K::Aggregate: return check_initializer(e);
