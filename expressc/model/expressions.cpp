@@ -751,6 +751,9 @@ class Checker {
     if (first == std::string_view::npos || !same_name(text.substr(0, first), work_.schema->name)) return;
     const size_t second = text.find('.', first + 1);
     const std::string_view type = text.substr(first + 1, second == std::string_view::npos ? text.npos : second - first - 1);
+    // 'SCHEMA.' alone is a prefix kept for joining at run time (AP210 e3's
+    // CONSTANT schema_prefix), not a name.
+    if (type.empty() && second == std::string_view::npos) return;
     const Symbol* symbol = work_.find(type);
     if (!symbol || (symbol->kind != Symbol::Kind::Entity && symbol->kind != Symbol::Kind::Type)) {
       warning(e.position, fmt::format("'{}' names no entity or type of schema {}", text, work_.schema->name));
