@@ -104,8 +104,8 @@ int main(int argc, char** argv) {
   const double rules_two_wall =
       best_wall_time(runs, [&] { found_on_two = stepnc::rules::check(result.file->model, all_rules); });
   const auto same = [](const stepnc::rules::Violation& a, const stepnc::rules::Violation& b) {
-    return a.kind == b.kind && a.id == b.id && a.owner == b.owner && a.label == b.label && a.attribute == b.attribute &&
-           a.other == b.other && a.message == b.message;
+    return a.kind == b.kind && a.id == b.id && a.owner() == b.owner() && a.label() == b.label() &&
+           a.attribute() == b.attribute() && a.other == b.other && a.message() == b.message();
   };
   if (!std::equal(found.begin(), found.end(), found_on_two.begin(), found_on_two.end(), same)) {
     fmt::print(stderr, "rules on 2 threads differ from rules on 1\n");

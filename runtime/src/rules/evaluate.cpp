@@ -1578,15 +1578,6 @@ class FusedRules {
   }
 };
 
-Violation violation_of(Violation::Kind kind, std::optional<std::uint32_t> id, std::string_view owner, std::string_view attribute = {}) {
-  Violation v;
-  v.kind = kind;
-  v.id = id;
-  v.owner = owner;
-  v.attribute = attribute;
-  return v;
-}
-
 // What checking found, in the order a check of the instances one after
 // another finds it: the violations up to the limit, the schemas whose
 // rules were met (their global rules run in that order), and the fused
@@ -1676,14 +1667,10 @@ class InstanceChecker {
     try {
       if (truth_of(interpreter_.evaluate(rule, std::move(self))) != Truth::False) return;
     } catch (const Unevaluable& reason) {
-      violation.kind = Violation::Kind::Unevaluated;
-      violation.message = reason.what();
+      violation = std::move(violation).unevaluated(reason.what());
     } catch (const std::out_of_range&) {
-      violation.kind = Violation::Kind::Unevaluated;
-      violation.message = "a variable outside its frame";
+      violation = std::move(violation).unevaluated("a variable outside its frame");
     }
-    violation.label = rule.label;
-    violation.text = rule.text;
     findings_->report(std::move(violation));
   }
 
@@ -1808,12 +1795,8 @@ class InstanceChecker {
     for (const Plan::Where& where : plan.where) {
       const Outcome& o = outcomes[i++];
       if (!o.unevaluable && o.truth != Truth::False) continue;
-      Violation v = violation_of(o.unevaluable ? Violation::Kind::Unevaluated : Violation::Kind::Where, instance.id(),
-                                 where.owner->name);
-      v.message = o.reason;
-      v.label = where.rule->label;
-      v.text = where.rule->text;
-      findings_->report(std::move(v));
+      Violation v = Violation::where(instance.id(), *where.owner, *where.rule);
+      findings_->report(o.unevaluable ? std::move(v).unevaluated(o.reason) : std::move(v));
     }
     for (const meta::AttributeInfo* attribute : plan.typed)
       if (auto ref = meta::get(instance, *attribute)) check_value(instance, *attribute, *ref);
@@ -1865,7 +1848,7 @@ class InstanceChecker {
     findings_->note_schema(type.schema);
     const Value value = make();
     for (const meta::DomainRuleInfo& rule : type.where)
-      judge(rule, value, violation_of(Violation::Kind::TypeWhere, instance.id(), type.name, attribute.name));
+      judge(rule, value, Violation::type_where(instance.id(), type, rule, attribute));
   }
 };
 
@@ -2028,10 +2011,7 @@ class Checker {
           if (any_indeterminate) continue;  // `?` is never equal to anything
           auto [it, fresh] = first.try_emplace(std::move(key), instance->id());
           if (!fresh) {
-            Violation v = violation_of(Violation::Kind::Unique, instance->id(), entity->name);
-            v.label = rule.label;
-            v.other = it->second;
-            findings_.report(std::move(v));
+            findings_.report(Violation::unique(instance->id(), *entity, rule, it->second));
           }
         }
       }
@@ -2042,21 +2022,13 @@ class Checker {
     for (const meta::SchemaInfo* schema : findings_.schemas())
       for (const meta::AlgorithmInfo* rule : schema->rules) {
         if (findings_.full()) return;
-        Violation base = violation_of(Violation::Kind::GlobalRule, std::nullopt, rule->name);
         try {
           const std::vector<Truth> results =
               interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
           for (std::size_t i = 0; i < results.size(); ++i)
-            if (results[i] == Truth::False) {
-              Violation v = base;
-              v.label = rule->where[i].label;
-              v.text = rule->where[i].text;
-              findings_.report(std::move(v));
-            }
+            if (results[i] == Truth::False) findings_.report(Violation::global_rule(*rule, &rule->where[i]));
         } catch (const Unevaluable& reason) {
-          base.kind = Violation::Kind::Unevaluated;
-          base.message = reason.what();
-          findings_.report(std::move(base));
+          findings_.report(Violation::global_rule(*rule).unevaluated(reason.what()));
         }
       }
   }
@@ -2129,17 +2101,89 @@ Value parse_argument(const meta::Model& model, std::string_view text) {
 
 }  // namespace
 
+static_assert(sizeof(void*) != 8 || sizeof(Violation) == 48, "a million violations are listed: keep them small");
+
+Violation Violation::where(std::uint32_t id, const meta::EntityInfo& owner, const meta::DomainRuleInfo& rule) {
+  Violation v;
+  v.id = id;
+  v.owner_ = &owner.name;
+  v.rule_ = &rule;
+  return v;
+}
+
+Violation Violation::type_where(std::uint32_t id, const meta::TypeInfo& type, const meta::DomainRuleInfo& rule,
+                                const meta::AttributeInfo& attribute) {
+  Violation v;
+  v.kind = Kind::TypeWhere;
+  v.id = id;
+  v.owner_ = &type.name;
+  v.rule_ = &rule;
+  v.attribute_ = &attribute;
+  return v;
+}
+
+Violation Violation::unique(std::uint32_t id, const meta::EntityInfo& owner, const meta::UniqueRuleInfo& rule,
+                            std::uint32_t other) {
+  Violation v;
+  v.kind = Kind::Unique;
+  v.id = id;
+  v.other = other;
+  v.owner_ = &owner.name;
+  v.unique_ = &rule;
+  return v;
+}
+
+Violation Violation::global_rule(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo* where) {
+  Violation v;
+  v.kind = Kind::GlobalRule;
+  v.owner_ = &rule.name;
+  v.rule_ = where;
+  return v;
+}
+
+Violation Violation::unevaluated(std::string reason) && {
+  // A UNIQUE clause's values are read, not evaluated (never unevaluated):
+  // were it marked, it would lose its label, not read the wrong member.
+  if (kind == Kind::Unique) rule_ = nullptr;
+  kind = Kind::Unevaluated;
+  message_ = std::make_unique<const std::string>(std::move(reason));
+  return std::move(*this);
+}
+
+Violation::Violation(const Violation& from) { *this = from; }
+
+Violation& Violation::operator=(const Violation& from) {
+  if (this == &from) return *this;
+  kind = from.kind;
+  id = from.id;
+  other = from.other;
+  owner_ = from.owner_;
+  if (from.kind == Kind::Unique)
+    unique_ = from.unique_;
+  else
+    rule_ = from.rule_;
+  attribute_ = from.attribute_;
+  message_ = from.message_ ? std::make_unique<const std::string>(*from.message_) : nullptr;
+  return *this;
+}
+
+std::string_view Violation::label() const noexcept {
+  if (kind == Kind::Unique) return unique_ ? unique_->label : std::string_view();
+  return rule_ ? rule_->label : std::string_view();
+}
+
 std::string Violation::to_string() const {
-  const std::string rule = std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+  const std::string_view label = this->label();
+  const std::string rule = std::string(owner()) + "." + std::string(label.empty() ? "unlabelled" : label);
   const std::string at = id ? fmt::format("#{}: ", *id) : std::string();
   switch (kind) {
     case Kind::Where: return fmt::format("{}{} violated", at, rule);
-    case Kind::TypeWhere: return fmt::format("{}{} violated (by {})", at, rule, attribute);
+    case Kind::TypeWhere: return fmt::format("{}{} violated (by {})", at, rule, attribute());
     case Kind::Unique: return fmt::format("{}{} violated: the same values as #{}", at, rule, other);
     case Kind::GlobalRule: return fmt::format("rule {} violated", rule);
     case Kind::Unevaluated:
-      return id ? fmt::format("{}{} not evaluated: {}", at, rule, message)
-                : fmt::format("rule {} not evaluated: {}", rule, message);
+      return id ? fmt::format("{}{} not evaluated: {}", at, rule, message())
+                : fmt::format("rule {} not evaluated: {}", rule, message());
   }
   return rule;
 }
@@ -2206,7 +2250,7 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
     std::string message = v.to_string();
     const std::string prefix = v.id ? fmt::format("#{}: ", *v.id) : std::string();
     if (v.id && message.starts_with(prefix)) message.erase(0, prefix.size());  // the diagnostic prints `#id`
-    if (with_text && !v.text.empty()) message += fmt::format(": {}", v.text);
+    if (with_text && !v.text().empty()) message += fmt::format(": {}", v.text());
     d.message = std::move(message);
     if (document && v.id)
       if (const p21::RecordEntry* record = document->find(*v.id)) d.location = document->location(record->offset);
