@@ -2192,20 +2192,47 @@ std::string_view Violation::label() const noexcept {
   return rule_ ? rule_->label : std::string_view();
 }
 
-std::string Violation::to_string() const {
-  const std::string_view label = this->label();
-  const std::string rule = std::string(owner()) + "." + std::string(label.empty() ? "unlabelled" : label);
-  const std::string at = id ? fmt::format("#{}: ", *id) : std::string();
-  switch (kind) {
-    case Kind::Where: return fmt::format("{}{} violated", at, rule);
-    case Kind::TypeWhere: return fmt::format("{}{} violated (by {})", at, rule, attribute());
-    case Kind::Unique: return fmt::format("{}{} violated: the same values as #{}", at, rule, other);
-    case Kind::GlobalRule: return fmt::format("rule {} violated", rule);
+namespace {
+
+// "owner.label"; "owner.unlabelled" for a rule without a label.
+void append_rule_name(std::string& out, std::string_view owner, std::string_view label) {
+  out += owner;
+  out += '.';
+  out += label.empty() ? std::string_view("unlabelled") : label;
+}
+
+// What a violation says after its instance's "#id: ", which a diagnostic
+// prints itself: appended, for a million of them in `stepnc validate`.
+void append_message(std::string& out, const Violation& v) {
+  using Kind = Violation::Kind;
+  if (v.kind == Kind::GlobalRule || (v.kind == Kind::Unevaluated && !v.id)) out += "rule ";
+  append_rule_name(out, v.owner(), v.label());
+  switch (v.kind) {
+    case Kind::Where:
+    case Kind::GlobalRule: out += " violated"; break;
+    case Kind::TypeWhere:
+      out += " violated (by ";
+      out += v.attribute();
+      out += ')';
+      break;
+    case Kind::Unique:
+      out += " violated: the same values as #";
+      out += std::to_string(v.other);
+      break;
     case Kind::Unevaluated:
-      return id ? fmt::format("{}{} not evaluated: {}", at, rule, message())
-                : fmt::format("rule {} not evaluated: {}", rule, message());
+      out += " not evaluated: ";
+      out += v.message();
+      break;
   }
-  return rule;
+}
+
+}  // namespace
+
+std::string Violation::to_string() const {
+  std::string out;
+  if (id && kind != Kind::GlobalRule) out += "#" + std::to_string(*id) + ": ";
+  append_message(out, *this);
+  return out;
 }
 
 std::vector<Violation> check(const meta::Model& model, const CheckOptions& options) { return Checker(model, options).run(); }
@@ -2260,18 +2287,19 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
     options.validate_parameters = false;
     document = std::move(p21::read_file(path, options).document);
   }
+  const std::string file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
   std::size_t count = 0;
   for (const Violation& v : violations) {
     p21::Diagnostic d;
-    d.file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
+    d.file = file;
     if (v.id) d.instance_id = *v.id;  // none for a global RULE
     d.severity = v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
     if (v.kind != Violation::Kind::Unevaluated) ++count;
-    std::string message = v.to_string();
-    const std::string prefix = v.id ? fmt::format("#{}: ", *v.id) : std::string();
-    if (v.id && message.starts_with(prefix)) message.erase(0, prefix.size());  // the diagnostic prints `#id`
-    if (with_text && !v.text().empty()) message += fmt::format(": {}", v.text());
-    d.message = std::move(message);
+    append_message(d.message, v);  // the diagnostic prints `#id`
+    if (with_text && !v.text().empty()) {
+      d.message += ": ";
+      d.message += v.text();
+    }
     if (document && v.id)
       if (const p21::RecordEntry* record = document->find(*v.id)) d.location = document->location(record->offset);
     diagnostics.add(std::move(d));
@@ -2282,7 +2310,9 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
 std::vector<std::string> list_rules(const meta::SchemaInfo& schema) {
   std::vector<std::string> out;
   auto name = [](std::string_view owner, std::string_view label) {
-    return std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+    std::string text;
+    append_rule_name(text, owner, label);
+    return text;
   };
   for (const meta::TypeInfo* type : schema.types)
     for (const meta::DomainRuleInfo& rule : type->where) out.push_back(name(type->name, rule.label));
