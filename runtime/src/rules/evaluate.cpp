@@ -271,6 +271,23 @@ class Indexes {
   std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
 };
 
+// A USEDIN role, 'SCHEMA.ENTITY.ATTRIBUTE' (the schema part optional),
+// split; an empty role is every role.
+struct Role {
+  std::string_view entity, attribute;
+  bool valid = true;  // false: no attribute part, no role at all
+};
+Role role_of(std::string_view r) {
+  Role role;
+  if (r.empty()) return role;
+  const auto dot = r.rfind('.');
+  if (dot == std::string_view::npos) return {{}, {}, false};
+  role.attribute = r.substr(dot + 1);
+  role.entity = r.substr(0, dot);
+  if (const auto d = role.entity.find('.'); d != std::string_view::npos) role.entity = role.entity.substr(d + 1);
+  return role;
+}
+
 constexpr int max_depth = 256;              // nested calls
 constexpr std::uint64_t max_steps = 50'000'000;  // loop iterations of one top-level evaluation
 
@@ -1085,19 +1102,12 @@ class Interpreter {
   // Each instance USEDIN(target, r) gives, once, in order, to `found`
   // (which returns false to stop); false when `r` names no role.
   template <class Found>
-  bool each_user(const meta::Instance& target, std::string_view r, Found found) {
-    std::string_view entity_part, attribute_part;
-    if (!r.empty()) {
-      const auto dot = r.rfind('.');
-      if (dot == std::string_view::npos) return false;
-      attribute_part = r.substr(dot + 1);
-      entity_part = r.substr(0, dot);
-      if (const auto d = entity_part.find('.'); d != std::string_view::npos) entity_part = entity_part.substr(d + 1);
-    }
+  bool each_user(const meta::Instance& target, std::string_view r, const Role& role, Found found) {
+    if (!role.valid) return false;
     const meta::Instance* last = nullptr;
     for (const auto& use : references().uses(target)) {
-      if (!r.empty() && (!meta::equal_names(use.attribute->name, attribute_part) ||
-                         !meta::equal_names(use.attribute->owner->name, entity_part)))
+      if (!r.empty() && (!meta::equal_names(use.attribute->name, role.attribute) ||
+                         !meta::equal_names(use.attribute->owner->name, role.entity)))
         continue;
       if (use.user == last) continue;
       last = use.user;
@@ -1108,7 +1118,7 @@ class Interpreter {
 
   Value read_used_in(const Value& target, std::string_view r) {
     Elements users;
-    if (!each_user(*target.instance, r, [&](meta::Instance* user) {
+    if (!each_user(*target.instance, r, role_of(r), [&](meta::Instance* user) {
           users.push_back(Value::of_instance(user));
           return true;
         }))
@@ -1126,7 +1136,7 @@ class Interpreter {
     const Elements& expected = *recorded.elements();
     std::size_t matched = 0;
     bool same = true;
-    if (!each_user(target, r, [&](meta::Instance* user) {
+    if (!each_user(target, r, replayed_role(r), [&](meta::Instance* user) {
           same = matched < expected.size() && detail::same_under(expected[matched], Value::of_instance(user), traced, self);
           ++matched;
           return same;
@@ -1134,6 +1144,20 @@ class Interpreter {
       return recorded.shape == 0 && expected.empty();
     return same && matched == expected.size() && recorded.shape == unbounded(AggregateShape::Kind::Bag);
   }
+
+  // A replayed role is a name kept in a trace (never one made at run time):
+  // the same text at the same place while this interpreter lives, so the
+  // last few split are found by their address.
+  const Role& replayed_role(std::string_view r) {
+    for (const auto& [text, role] : replayed_roles_)
+      if (text.data() == r.data() && text.size() == r.size()) return role;
+    auto& [text, role] = replayed_roles_[next_replayed_role_++ % replayed_roles_.size()];
+    text = r;
+    role = role_of(r);
+    return role;
+  }
+  std::array<std::pair<std::string_view, Role>, 4> replayed_roles_{};
+  std::size_t next_replayed_role_ = 0;
 
   Value roles_of(const Value& target) {
     if (target.kind != Value::Kind::Instance) return {};
