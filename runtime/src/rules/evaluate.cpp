@@ -276,6 +276,15 @@ class Indexes {
 struct Role {
   std::string_view entity, attribute;
   bool valid = true;  // false: no attribute part, no role at all
+  const meta::AttributeInfo* seen = nullptr;  // the last attribute found to be this role
+
+  // Whether `a` is this role (a non-empty one).
+  bool is(const meta::AttributeInfo& a) {
+    if (&a == seen) return true;
+    if (!meta::equal_names(a.name, attribute) || !meta::equal_names(a.owner->name, entity)) return false;
+    seen = &a;
+    return true;
+  }
 };
 Role role_of(std::string_view r) {
   Role role;
@@ -1102,13 +1111,11 @@ class Interpreter {
   // Each instance USEDIN(target, r) gives, once, in order, to `found`
   // (which returns false to stop); false when `r` names no role.
   template <class Found>
-  bool each_user(const meta::Instance& target, std::string_view r, const Role& role, Found found) {
+  bool each_user(const meta::Instance& target, std::string_view r, Role& role, Found found) {
     if (!role.valid) return false;
     const meta::Instance* last = nullptr;
     for (const auto& use : references().uses(target)) {
-      if (!r.empty() && (!meta::equal_names(use.attribute->name, role.attribute) ||
-                         !meta::equal_names(use.attribute->owner->name, role.entity)))
-        continue;
+      if (!r.empty() && !role.is(*use.attribute)) continue;
       if (use.user == last) continue;
       last = use.user;
       if (!found(use.user)) break;
@@ -1118,7 +1125,8 @@ class Interpreter {
 
   Value read_used_in(const Value& target, std::string_view r) {
     Elements users;
-    if (!each_user(*target.instance, r, role_of(r), [&](meta::Instance* user) {
+    Role role = role_of(r);
+    if (!each_user(*target.instance, r, role, [&](meta::Instance* user) {
           users.push_back(Value::of_instance(user));
           return true;
         }))
@@ -1148,8 +1156,8 @@ class Interpreter {
   // A replayed role is a name kept in a trace (never one made at run time):
   // the same text at the same place while this interpreter lives, so the
   // last few split are found by their address.
-  const Role& replayed_role(std::string_view r) {
-    for (const auto& [text, role] : replayed_roles_)
+  Role& replayed_role(std::string_view r) {
+    for (auto& [text, role] : replayed_roles_)
       if (text.data() == r.data() && text.size() == r.size()) return role;
     auto& [text, role] = replayed_roles_[next_replayed_role_++ % replayed_roles_.size()];
     text = r;
@@ -2029,9 +2037,14 @@ class Checker {
 
   void check_unique() {
     std::map<const meta::EntityInfo*, bool> seen;
-    for (meta::Instance* instance : model_.instances())
-      for (const meta::Upcast& up : instance->entity_info().upcasts)
+    const meta::EntityInfo* last = nullptr;  // instances of one entity mostly come together
+    for (meta::Instance* instance : model_.instances()) {
+      const meta::EntityInfo& entity = instance->entity_info();
+      if (&entity == last) continue;
+      last = &entity;
+      for (const meta::Upcast& up : entity.upcasts)
         if (!up.entity->unique.empty()) seen[up.entity] = true;
+    }
     for (const auto& [entity, unused] : seen) {
       for (const meta::UniqueRuleInfo& rule : entity->unique) {
         std::unordered_map<std::string, std::uint32_t> first;
