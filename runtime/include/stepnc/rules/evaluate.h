@@ -79,18 +79,18 @@ struct Violation {
   /// violated: the same values as #3", "rule compatible_dimension.wr1 violated".
   std::string to_string() const;
 
-  Violation() = default;
-  Violation(const Violation& other);
-  Violation& operator=(const Violation& other);
-  Violation(Violation&&) noexcept = default;
-  Violation& operator=(Violation&&) noexcept = default;
+  Violation() = default;                         ///< a WHERE rule of nothing: made by the builders above
+  Violation(const Violation& from);              ///< a copy (of the message too)
+  Violation& operator=(const Violation& from);   ///< a copy (of the message too)
+  Violation(Violation&&) noexcept = default;             ///< moved
+  Violation& operator=(Violation&&) noexcept = default;  ///< moved
   ~Violation() = default;
 
  private:
   const std::string_view* owner_ = nullptr;  // the declaring metadata's `name`
   union {
-    const meta::DomainRuleInfo* rule_ = nullptr;  // every kind but Unique
-    const meta::UniqueRuleInfo* unique_;          // Unique
+    const meta::DomainRuleInfo* rule_ = nullptr;  ///< every kind but Unique: the rule
+    const meta::UniqueRuleInfo* unique_;          ///< Unique: the clause
   };
   const meta::AttributeInfo* attribute_ = nullptr;
   std::unique_ptr<const std::string> message_;  // Unevaluated only: nothing to allocate or free otherwise
