@@ -1672,6 +1672,16 @@ class Findings {
     violations_.reserve(n);
     p21::back_with_huge_pages(violations_.data(), violations_.capacity() * sizeof(Violation));
   }
+  // The list's storage, emptied, for the findings of another range: its
+  // pages are in memory already (a range's list is below the huge page).
+  std::vector<Violation> storage() && {
+    violations_.clear();
+    return std::move(violations_);
+  }
+  void reuse(std::vector<Violation>&& storage) {
+    violations_ = std::move(storage);
+    violations_.clear();
+  }
   std::vector<Violation> take() {
     if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
     return std::move(violations_);
@@ -1961,6 +1971,7 @@ class Checker {
     const std::size_t ranges = (instances.size() + per_range - 1) / per_range;
     std::vector<std::optional<Findings>> done(ranges);
     std::size_t appended = 0;  // ranges appended to findings_, under `merging`
+    std::vector<std::vector<Violation>> spare;  // the lists of ranges appended, under `merging`
     std::mutex merging;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
@@ -1972,6 +1983,13 @@ class Checker {
           const std::size_t range = next.fetch_add(1);
           if (range >= ranges) break;
           Findings found(options_.limit, fused_.size());
+          {
+            const std::lock_guard<std::mutex> lock(merging);
+            if (!spare.empty()) {
+              found.reuse(std::move(spare.back()));
+              spare.pop_back();
+            }
+          }
           const std::size_t first = range * per_range;
           const std::size_t size = std::min(per_range, instances.size() - first);
           found.reserve(std::min(options_.limit, size));
@@ -1980,6 +1998,7 @@ class Checker {
           done[range] = std::move(found);
           for (; appended < ranges && done[appended]; ++appended) {
             findings_.append(std::move(*done[appended]));
+            spare.push_back(std::move(*done[appended]).storage());
             done[appended].reset();
           }
           if (findings_.full()) stop = true;
