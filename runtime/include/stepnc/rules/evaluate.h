@@ -47,7 +47,7 @@ struct Violation {
     GlobalRule,   ///< a RULE's domain rule (no `id`)
     Unevaluated,  ///< the rule could not be evaluated: `message()` says why
   };
-  Kind kind = Kind::Where;          ///< which kind of rule
+  Kind kind = Kind::Where;          ///< which kind of rule (as the builders below set it: it says which rule is pointed to)
   std::optional<std::uint32_t> id;  ///< the instance's `#id`; empty for a global rule (#0 is a name)
   std::uint32_t other = 0;          ///< Unique: the instance with the same values
 
