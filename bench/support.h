@@ -26,30 +26,35 @@ extern char** environ;
 
 namespace stepnc_bench {
 
-// Best of `runs` times, in seconds of this process's CPU time: on a shared
-// machine wall time also counts the time other processes hold the core.
-// (Parallel work is timed with best_wall_time.)
-inline double best_time(int runs, const std::function<void()>& body) {
-  double best = 1e300;
+// CPU time (this process's, all its threads: std::clock) and wall time of
+// the same runs, the best of `runs` of each, in seconds. Comparing the two
+// means timing the same runs: the first reads of a process run while its
+// heap grows into fresh memory, whose page faults (the kernel zeroing
+// huge pages) make them slower than later ones.
+struct Times {
+  double cpu = 1e300;
+  double wall = 1e300;
+};
+inline Times best_times(int runs, const std::function<void()>& body) {
+  Times best;
   for (int i = 0; i < runs; ++i) {
-    const std::clock_t start = std::clock();
+    const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     body();
-    best = std::min(best, static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+    best.cpu = std::min(best.cpu, static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+    best.wall = std::min(best.wall, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   return best;
 }
 
+// Best of `runs` times, in seconds of this process's CPU time: on a shared
+// machine wall time also counts the time other processes hold the core.
+// (Parallel work is timed with best_wall_time.)
+inline double best_time(int runs, const std::function<void()>& body) { return best_times(runs, body).cpu; }
+
 // Best of `runs` times, in seconds of wall time: for work on several
 // threads, whose CPU times add up.
-inline double best_wall_time(int runs, const std::function<void()>& body) {
-  double best = 1e300;
-  for (int i = 0; i < runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    body();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return best;
-}
+inline double best_wall_time(int runs, const std::function<void()>& body) { return best_times(runs, body).wall; }
 
 // Peak resident set size so far (VmHWM), in bytes.
 inline std::size_t peak_rss() {

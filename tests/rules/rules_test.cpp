@@ -103,6 +103,44 @@ TEST_CASE("a global RULE over the populations", "[rules]") {
   CHECK_FALSE(found[1].id);
 }
 
+// A violation points into the schema's metadata for its names and text;
+// only a rule not evaluated holds a message, which a copy copies.
+TEST_CASE("a violation reads its names and the rule's text from the schema", "[rules]") {
+  const stepnc::meta::EntityInfo& part = rules_schema::part::meta_entity;
+  const stepnc::meta::AttributeInfo& length = *part.find_attribute("length");
+  const stepnc::meta::TypeInfo& positive_length = *length.type;
+  const Violation by_length = Violation::type_where(2, positive_length, positive_length.where[0], length);
+  CHECK(by_length.kind == Violation::Kind::TypeWhere);
+  CHECK(by_length.id == std::optional<std::uint32_t>(2));
+  CHECK(by_length.owner() == "positive_length");
+  CHECK(by_length.label() == "wr1");
+  CHECK(by_length.text() == "(SELF > 0.0)");
+  CHECK(by_length.attribute() == "length");
+  CHECK(by_length.message().empty());
+  CHECK(by_length.to_string() == "#2: positive_length.wr1 violated (by length)");
+
+  const Violation same_code = Violation::unique(4, part, part.unique[0], 1);
+  CHECK(same_code.label() == "ur1");
+  CHECK(same_code.text().empty());
+  CHECK(same_code.other == 1);
+  CHECK(same_code.to_string() == "#4: part.ur1 violated: the same values as #1");
+
+  const stepnc::meta::AlgorithmInfo& every_part_used = *rules_schema::meta_schema.rules[0];
+  CHECK(Violation::global_rule(every_part_used, &every_part_used.where[0]).to_string() ==
+        "rule every_part_used.wr1 violated");
+  const Violation stopped = Violation::global_rule(every_part_used).unevaluated("a loop without end");
+  const Violation copy = stopped;
+  CHECK(copy.kind == Violation::Kind::Unevaluated);
+  CHECK_FALSE(copy.id);
+  CHECK(copy.message() == "a loop without end");
+  CHECK(copy.message().data() != stopped.message().data());
+  CHECK(copy.to_string() == "rule every_part_used.unlabelled not evaluated: a loop without end");
+  const Violation where_stopped =
+      Violation::type_where(2, positive_length, positive_length.where[0], length).unevaluated("no value");
+  CHECK(where_stopped.to_string() == "#2: positive_length.wr1 not evaluated: no value");
+  CHECK(where_stopped.attribute() == "length");
+}
+
 TEST_CASE("derived and inverse attributes, functions, and the rules a schema lists", "[rules]") {
   auto file = read(good_parts + "#10=ASSEMBLY('kit',(#1,#2,#3));\n");
   stepnc::meta::Instance& bolt = *file->model.instances()[0];

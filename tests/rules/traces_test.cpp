@@ -69,6 +69,17 @@ TEST_CASE("a replayed rule sees SELF, USEDIN, aggregates and FUNCTIONs as interp
                                  "#18: node.not_own_peer violated", "#21: chain.long violated"});
 }
 
+// A replay takes a read of an instance other than the traced one as it was
+// recorded, without reading it again, unless its value holds the instance
+// replayed on: #1 and #2 share their next, #3, whose next is #2; #2's rule
+// replayed from #1's trace (#1.next is #3, #3.next is #2, not #1) would
+// miss that #2 is its next's next.
+TEST_CASE("a replay does not take over a read of another instance whose value holds SELF", "[rules][traces]") {
+  auto file = read("#1=RING(#3);\n#2=RING(#3);\n#3=RING(#2);\n");
+  CHECK(checked(file->model) ==
+        std::vector<std::string>{"#2: ring.not_next_of_next violated", "#3: ring.not_next_of_next violated"});
+}
+
 // Traces live for one check: a model changed after a check is checked anew.
 TEST_CASE("a model changed between two checks is checked anew", "[rules][traces]") {
   stepnc::meta::Model model;

@@ -20,6 +20,7 @@
 #include "round_trip.h"
 #include "scanner.h"
 #include "stepnc/io/input.h"
+#include "stepnc/p21/huge_pages.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 
@@ -234,20 +235,6 @@ void populate_ahead(const char* text, std::size_t size, std::uint64_t begin) {
 #endif
 }
 
-// The record index of a large file (24 bytes a record, 24 MB for the
-// benchmark file) on transparent huge pages where the system offers them
-// on request: a fault per 2 MiB instead of one per 4 KiB page (some 6,000
-// for that file).
-void back_with_huge_pages(void* data, std::size_t bytes) {
-#if defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
-  const auto begin = (reinterpret_cast<std::uintptr_t>(data) + kHugePage - 1) / kHugePage * kHugePage;
-  const auto end = (reinterpret_cast<std::uintptr_t>(data) + bytes) / kHugePage * kHugePage;
-  if (begin < end) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-  (void)data, (void)bytes;
-#endif
-}
 }  // namespace
 
 const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
@@ -300,6 +287,8 @@ class DocumentBuilder final : public RecordHandler {
     // regrows (untouched capacity costs address space, not memory).
     const std::size_t expected = doc_.size_ / 48;
     doc_.records_.reserve(expected);
+    // The record index of a large file: 24 bytes a record, 24 MB for the
+    // benchmark file (some 6,000 faults without huge pages).
     back_with_huge_pages(doc_.records_.data(), doc_.records_.capacity() * sizeof(RecordEntry));
     doc_.ids_ = std::make_unique<Document::IdTable>(expected);
     if (const unsigned jobs = parallel_jobs(); jobs > 1) {

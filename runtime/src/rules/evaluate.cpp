@@ -29,6 +29,7 @@
 #include "stepnc/io/output.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
+#include "stepnc/p21/huge_pages.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/meta/value.h"
 
@@ -268,6 +269,32 @@ class Indexes {
   std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
 };
 
+// A USEDIN role, 'SCHEMA.ENTITY.ATTRIBUTE' (the schema part optional),
+// split; an empty role is every role.
+struct Role {
+  std::string_view entity, attribute;
+  bool valid = true;  // false: no attribute part, no role at all
+  const meta::AttributeInfo* seen = nullptr;  // the last attribute found to be this role
+
+  // Whether `a` is this role (a non-empty one).
+  bool is(const meta::AttributeInfo& a) {
+    if (&a == seen) return true;
+    if (!meta::equal_names(a.name, attribute) || !meta::equal_names(a.owner->name, entity)) return false;
+    seen = &a;
+    return true;
+  }
+};
+Role role_of(std::string_view r) {
+  Role role;
+  if (r.empty()) return role;
+  const auto dot = r.rfind('.');
+  if (dot == std::string_view::npos) return {{}, {}, false};
+  role.attribute = r.substr(dot + 1);
+  role.entity = r.substr(0, dot);
+  if (const auto d = role.entity.find('.'); d != std::string_view::npos) role.entity = role.entity.substr(d + 1);
+  return role;
+}
+
 constexpr int max_depth = 256;              // nested calls
 constexpr std::uint64_t max_steps = 50'000'000;  // loop iterations of one top-level evaluation
 
@@ -336,6 +363,14 @@ class Interpreter {
       if (o.kind == K::Population) continue;  // recorded only when neither is in it (same entity)
       meta::Instance* input = detail::replayed_input(o, trace.self, &self);
       if (!input) return false;
+      // A read of another instance than the traced one reads what it read
+      // (the model does not change during a check): it holds when its
+      // value holds under the exchange, without reading it again (for
+      // the million points of a file, the USEDIN of the curves they are on).
+      if (input == o.input && o.kind != K::Entity) {
+        if (!detail::same_under(o.output, o.output, trace.self, &self)) return false;
+        continue;
+      }
       const Value subject = Value::of_instance(input);
       switch (o.kind) {
         case K::Entity:
@@ -364,6 +399,7 @@ class Interpreter {
 
  private:
   Indexes& indexes_;
+  const detail::References* references_ = nullptr;  // indexes_'s, once built
   Equality equality_;  // reads attributes through attribute(): a trace records them
   SlotPool pool_;
   // The extents this interpreter has read, from indexes_ (no lock for the next read).
@@ -481,7 +517,11 @@ class Interpreter {
     return v.kind == Value::Kind::Aggregate && std::any_of(v.elements()->begin(), v.elements()->end(), holds_partial);
   }
 
-  const detail::References& references() { return indexes_.references(); }
+  // Kept after the first use: a replay looks it up a few times per instance.
+  const detail::References& references() {
+    if (!references_) references_ = &indexes_.references();
+    return *references_;
+  }
 
   static bool is_a(const meta::Instance& instance, const meta::EntityInfo& entity) {
     return instance.entity_info().is_a(entity);
@@ -1113,20 +1153,11 @@ class Interpreter {
   // Each instance USEDIN(target, r) gives, once, in order, to `found`
   // (which returns false to stop); false when `r` names no role.
   template <class Found>
-  bool each_user(const meta::Instance& target, std::string_view r, Found found) {
-    std::string_view entity_part, attribute_part;
-    if (!r.empty()) {
-      const auto dot = r.rfind('.');
-      if (dot == std::string_view::npos) return false;
-      attribute_part = r.substr(dot + 1);
-      entity_part = r.substr(0, dot);
-      if (const auto d = entity_part.find('.'); d != std::string_view::npos) entity_part = entity_part.substr(d + 1);
-    }
+  bool each_user(const meta::Instance& target, std::string_view r, Role& role, Found found) {
+    if (!role.valid) return false;
     const meta::Instance* last = nullptr;
     for (const auto& use : references().uses(target)) {
-      if (!r.empty() && (!meta::equal_names(use.attribute->name, attribute_part) ||
-                         !meta::equal_names(use.attribute->owner->name, entity_part)))
-        continue;
+      if (!r.empty() && !role.is(*use.attribute)) continue;
       if (use.user == last) continue;
       last = use.user;
       if (!found(use.user)) break;
@@ -1136,7 +1167,8 @@ class Interpreter {
 
   Value read_used_in(const Value& target, std::string_view r) {
     Elements users;
-    if (!each_user(*target.instance, r, [&](meta::Instance* user) {
+    Role role = role_of(r);
+    if (!each_user(*target.instance, r, role, [&](meta::Instance* user) {
           users.push_back(Value::of_instance(user));
           return true;
         }))
@@ -1154,7 +1186,7 @@ class Interpreter {
     const Elements& expected = *recorded.elements();
     std::size_t matched = 0;
     bool same = true;
-    if (!each_user(target, r, [&](meta::Instance* user) {
+    if (!each_user(target, r, replayed_role(r), [&](meta::Instance* user) {
           same = matched < expected.size() && detail::same_under(expected[matched], Value::of_instance(user), traced, self);
           ++matched;
           return same;
@@ -1162,6 +1194,20 @@ class Interpreter {
       return recorded.shape == 0 && expected.empty();
     return same && matched == expected.size() && recorded.shape == unbounded(AggregateShape::Kind::Bag);
   }
+
+  // A replayed role is a name kept in a trace (never one made at run time):
+  // the same text at the same place while this interpreter lives, so the
+  // last few split are found by their address.
+  Role& replayed_role(std::string_view r) {
+    for (auto& [text, role] : replayed_roles_)
+      if (text.data() == r.data() && text.size() == r.size()) return role;
+    auto& [text, role] = replayed_roles_[next_replayed_role_++ % replayed_roles_.size()];
+    text = r;
+    role = role_of(r);
+    return role;
+  }
+  std::array<std::pair<std::string_view, Role>, 4> replayed_roles_{};
+  std::size_t next_replayed_role_ = 0;
 
   Value roles_of(const Value& target) {
     if (target.kind != Value::Kind::Instance) return {};
@@ -1625,15 +1671,6 @@ class FusedRules {
   }
 };
 
-Violation violation_of(Violation::Kind kind, std::optional<std::uint32_t> id, std::string_view owner, std::string_view attribute = {}) {
-  Violation v;
-  v.kind = kind;
-  v.id = id;
-  v.owner = owner;
-  v.attribute = attribute;
-  return v;
-}
-
 // What checking found, in the order a check of the instances one after
 // another finds it: the violations up to the limit, the schemas whose
 // rules were met (their global rules run in that order), and the fused
@@ -1675,7 +1712,23 @@ class Findings {
   }
 
   const std::vector<const meta::SchemaInfo*>& schemas() const { return schemas_; }
-  void reserve(std::size_t n) { violations_.reserve(n); }
+  // Room for `n` violations; a million (every instance of the benchmark
+  // file breaks a rule of the schema) fault in on huge pages, which took
+  // a tenth of the check's time on 4 KiB pages.
+  void reserve(std::size_t n) {
+    violations_.reserve(n);
+    p21::back_with_huge_pages(violations_.data(), violations_.capacity() * sizeof(Violation));
+  }
+  // The list's storage, emptied, for the findings of another range: its
+  // pages are in memory already (a range's list is below the huge page).
+  std::vector<Violation> storage() && {
+    violations_.clear();
+    return std::move(violations_);
+  }
+  void reuse(std::vector<Violation>&& storage) {
+    violations_ = std::move(storage);
+    violations_.clear();
+  }
   std::vector<Violation> take() {
     if (violations_.size() < violations_.capacity() / 2) violations_.shrink_to_fit();
     return std::move(violations_);
@@ -1723,14 +1776,10 @@ class InstanceChecker {
     try {
       if (truth_of(interpreter_.evaluate(rule, std::move(self))) != Truth::False) return;
     } catch (const Unevaluable& reason) {
-      violation.kind = Violation::Kind::Unevaluated;
-      violation.message = reason.what();
+      violation = std::move(violation).unevaluated(reason.what());
     } catch (const std::out_of_range&) {
-      violation.kind = Violation::Kind::Unevaluated;
-      violation.message = "a variable outside its frame";
+      violation = std::move(violation).unevaluated("a variable outside its frame");
     }
-    violation.label = rule.label;
-    violation.text = rule.text;
     findings_->report(std::move(violation));
   }
 
@@ -1855,12 +1904,8 @@ class InstanceChecker {
     for (const Plan::Where& where : plan.where) {
       const Outcome& o = outcomes[i++];
       if (!o.unevaluable && o.truth != Truth::False) continue;
-      Violation v = violation_of(o.unevaluable ? Violation::Kind::Unevaluated : Violation::Kind::Where, instance.id(),
-                                 where.owner->name);
-      v.message = o.reason;
-      v.label = where.rule->label;
-      v.text = where.rule->text;
-      findings_->report(std::move(v));
+      Violation v = Violation::where(instance.id(), *where.owner, *where.rule);
+      findings_->report(o.unevaluable ? std::move(v).unevaluated(o.reason) : std::move(v));
     }
     for (const meta::AttributeInfo* attribute : plan.typed)
       if (auto ref = meta::get(instance, *attribute)) check_value(instance, *attribute, *ref);
@@ -1912,7 +1957,7 @@ class InstanceChecker {
     findings_->note_schema(type.schema);
     const Value value = make();
     for (const meta::DomainRuleInfo& rule : type.where)
-      judge(rule, value, violation_of(Violation::Kind::TypeWhere, instance.id(), type.name, attribute.name));
+      judge(rule, value, Violation::type_where(instance.id(), type, rule, attribute));
   }
 };
 
@@ -1973,6 +2018,7 @@ class Checker {
     const std::size_t ranges = (instances.size() + per_range - 1) / per_range;
     std::vector<std::optional<Findings>> done(ranges);
     std::size_t appended = 0;  // ranges appended to findings_, under `merging`
+    std::vector<std::vector<Violation>> spare;  // the lists of ranges appended, under `merging`
     std::mutex merging;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
@@ -1984,6 +2030,13 @@ class Checker {
           const std::size_t range = next.fetch_add(1);
           if (range >= ranges) break;
           Findings found(options_.limit, fused_.size());
+          {
+            const std::lock_guard<std::mutex> lock(merging);
+            if (!spare.empty()) {
+              found.reuse(std::move(spare.back()));
+              spare.pop_back();
+            }
+          }
           const std::size_t first = range * per_range;
           const std::size_t size = std::min(per_range, instances.size() - first);
           found.reserve(std::min(options_.limit, size));
@@ -1992,6 +2045,7 @@ class Checker {
           done[range] = std::move(found);
           for (; appended < ranges && done[appended]; ++appended) {
             findings_.append(std::move(*done[appended]));
+            spare.push_back(std::move(*done[appended]).storage());
             done[appended].reset();
           }
           if (findings_.full()) stop = true;
@@ -2049,9 +2103,14 @@ class Checker {
 
   void check_unique() {
     std::map<const meta::EntityInfo*, bool> seen;
-    for (meta::Instance* instance : model_.instances())
-      for (const meta::Upcast& up : instance->entity_info().upcasts)
+    const meta::EntityInfo* last = nullptr;  // instances of one entity mostly come together
+    for (meta::Instance* instance : model_.instances()) {
+      const meta::EntityInfo& entity = instance->entity_info();
+      if (&entity == last) continue;
+      last = &entity;
+      for (const meta::Upcast& up : entity.upcasts)
         if (!up.entity->unique.empty()) seen[up.entity] = true;
+    }
     for (const auto& [entity, unused] : seen) {
       for (const meta::UniqueRuleInfo& rule : entity->unique) {
         std::unordered_map<std::string, std::uint32_t> first;
@@ -2075,10 +2134,7 @@ class Checker {
           if (any_indeterminate) continue;  // `?` is never equal to anything
           auto [it, fresh] = first.try_emplace(std::move(key), instance->id());
           if (!fresh) {
-            Violation v = violation_of(Violation::Kind::Unique, instance->id(), entity->name);
-            v.label = rule.label;
-            v.other = it->second;
-            findings_.report(std::move(v));
+            findings_.report(Violation::unique(instance->id(), *entity, rule, it->second));
           }
         }
       }
@@ -2089,21 +2145,13 @@ class Checker {
     for (const meta::SchemaInfo* schema : findings_.schemas())
       for (const meta::AlgorithmInfo* rule : schema->rules) {
         if (findings_.full()) return;
-        Violation base = violation_of(Violation::Kind::GlobalRule, std::nullopt, rule->name);
         try {
           const std::vector<Truth> results =
               interpreter_.run_rule(*rule, [&](std::size_t where) { return fused_result(*rule, where); });
           for (std::size_t i = 0; i < results.size(); ++i)
-            if (results[i] == Truth::False) {
-              Violation v = base;
-              v.label = rule->where[i].label;
-              v.text = rule->where[i].text;
-              findings_.report(std::move(v));
-            }
+            if (results[i] == Truth::False) findings_.report(Violation::global_rule(*rule, &rule->where[i]));
         } catch (const Unevaluable& reason) {
-          base.kind = Violation::Kind::Unevaluated;
-          base.message = reason.what();
-          findings_.report(std::move(base));
+          findings_.report(Violation::global_rule(*rule).unevaluated(reason.what()));
         }
       }
   }
@@ -2176,19 +2224,118 @@ Value parse_argument(const meta::Model& model, std::string_view text) {
 
 }  // namespace
 
-std::string Violation::to_string() const {
-  const std::string rule = std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
-  const std::string at = id ? fmt::format("#{}: ", *id) : std::string();
-  switch (kind) {
-    case Kind::Where: return fmt::format("{}{} violated", at, rule);
-    case Kind::TypeWhere: return fmt::format("{}{} violated (by {})", at, rule, attribute);
-    case Kind::Unique: return fmt::format("{}{} violated: the same values as #{}", at, rule, other);
-    case Kind::GlobalRule: return fmt::format("rule {} violated", rule);
+static_assert(sizeof(void*) != 8 || sizeof(Violation) == 48, "a million violations are listed: keep them small");
+
+Violation Violation::where(std::uint32_t id, const meta::EntityInfo& owner, const meta::DomainRuleInfo& rule) {
+  Violation v;
+  v.id = id;
+  v.owner_ = &owner.name;
+  v.rule_ = &rule;
+  return v;
+}
+
+Violation Violation::type_where(std::uint32_t id, const meta::TypeInfo& type, const meta::DomainRuleInfo& rule,
+                                const meta::AttributeInfo& attribute) {
+  Violation v;
+  v.kind = Kind::TypeWhere;
+  v.id = id;
+  v.owner_ = &type.name;
+  v.rule_ = &rule;
+  v.attribute_ = &attribute;
+  return v;
+}
+
+Violation Violation::unique(std::uint32_t id, const meta::EntityInfo& owner, const meta::UniqueRuleInfo& rule,
+                            std::uint32_t other) {
+  Violation v;
+  v.kind = Kind::Unique;
+  v.id = id;
+  v.other = other;
+  v.owner_ = &owner.name;
+  v.unique_ = &rule;
+  return v;
+}
+
+Violation Violation::global_rule(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo* where) {
+  Violation v;
+  v.kind = Kind::GlobalRule;
+  v.owner_ = &rule.name;
+  v.rule_ = where;
+  return v;
+}
+
+Violation Violation::unevaluated(std::string reason) && {
+  // A UNIQUE clause's values are read, not evaluated (never unevaluated):
+  // were it marked, it would lose its label, not read the wrong member.
+  if (kind == Kind::Unique) rule_ = nullptr;
+  kind = Kind::Unevaluated;
+  message_ = std::make_unique<const std::string>(std::move(reason));
+  return std::move(*this);
+}
+
+Violation::Violation(const Violation& from) { *this = from; }
+
+Violation& Violation::operator=(const Violation& from) {
+  if (this == &from) return *this;
+  kind = from.kind;
+  id = from.id;
+  other = from.other;
+  owner_ = from.owner_;
+  if (from.kind == Kind::Unique)
+    unique_ = from.unique_;
+  else
+    rule_ = from.rule_;
+  attribute_ = from.attribute_;
+  message_ = from.message_ ? std::make_unique<const std::string>(*from.message_) : nullptr;
+  return *this;
+}
+
+std::string_view Violation::label() const noexcept {
+  if (kind == Kind::Unique) return unique_ ? unique_->label : std::string_view();
+  return rule_ ? rule_->label : std::string_view();
+}
+
+namespace {
+
+// "owner.label"; "owner.unlabelled" for a rule without a label.
+void append_rule_name(std::string& out, std::string_view owner, std::string_view label) {
+  out += owner;
+  out += '.';
+  out += label.empty() ? std::string_view("unlabelled") : label;
+}
+
+// What a violation says after its instance's "#id: ", which a diagnostic
+// prints itself: appended, for a million of them in `stepnc validate`.
+void append_message(std::string& out, const Violation& v) {
+  using Kind = Violation::Kind;
+  if (v.kind == Kind::GlobalRule || (v.kind == Kind::Unevaluated && !v.id)) out += "rule ";
+  append_rule_name(out, v.owner(), v.label());
+  switch (v.kind) {
+    case Kind::Where:
+    case Kind::GlobalRule: out += " violated"; break;
+    case Kind::TypeWhere:
+      out += " violated (by ";
+      out += v.attribute();
+      out += ')';
+      break;
+    case Kind::Unique:
+      out += " violated: the same values as #";
+      out += std::to_string(v.other);
+      break;
     case Kind::Unevaluated:
-      return id ? fmt::format("{}{} not evaluated: {}", at, rule, message)
-                : fmt::format("rule {} not evaluated: {}", rule, message);
+      out += " not evaluated: ";
+      out += v.message();
+      break;
   }
-  return rule;
+}
+
+}  // namespace
+
+std::string Violation::to_string() const {
+  std::string out;
+  if (id && kind != Kind::GlobalRule) out += "#" + std::to_string(*id) + ": ";
+  append_message(out, *this);
+  return out;
 }
 
 std::vector<Violation> check(const meta::Model& model, const CheckOptions& options) { return Checker(model, options).run(); }
@@ -2243,18 +2390,19 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
     options.validate_parameters = false;
     document = std::move(p21::read_file(path, options).document);
   }
+  const std::string file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
   std::size_t count = 0;
   for (const Violation& v : violations) {
     p21::Diagnostic d;
-    d.file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
+    d.file = file;
     if (v.id) d.instance_id = *v.id;  // none for a global RULE
     d.severity = v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
     if (v.kind != Violation::Kind::Unevaluated) ++count;
-    std::string message = v.to_string();
-    const std::string prefix = v.id ? fmt::format("#{}: ", *v.id) : std::string();
-    if (v.id && message.starts_with(prefix)) message.erase(0, prefix.size());  // the diagnostic prints `#id`
-    if (with_text && !v.text.empty()) message += fmt::format(": {}", v.text);
-    d.message = std::move(message);
+    append_message(d.message, v);  // the diagnostic prints `#id`
+    if (with_text && !v.text().empty()) {
+      d.message += ": ";
+      d.message += v.text();
+    }
     if (document && v.id)
       if (const p21::RecordEntry* record = document->find(*v.id)) d.location = document->location(record->offset);
     diagnostics.add(std::move(d));
@@ -2265,7 +2413,9 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
 std::vector<std::string> list_rules(const meta::SchemaInfo& schema) {
   std::vector<std::string> out;
   auto name = [](std::string_view owner, std::string_view label) {
-    return std::string(owner) + "." + std::string(label.empty() ? "unlabelled" : label);
+    std::string text;
+    append_rule_name(text, owner, label);
+    return text;
   };
   for (const meta::TypeInfo* type : schema.types)
     for (const meta::DomainRuleInfo& rule : type->where) out.push_back(name(type->name, rule.label));

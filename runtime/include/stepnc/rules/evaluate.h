@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,28 +32,68 @@
 
 namespace stepnc::rules {
 
-/// A rule a model breaks, or one the evaluator could not finish.
+/// A rule a model breaks, or one the evaluator could not finish. 48 bytes:
+/// the names and the rule's text are read from the schema's metadata, which
+/// the violation points into (generated metadata is static; metadata built
+/// at run time must outlive the violation), so that a list of a million
+/// costs little to build; only a rule that could not be evaluated holds a
+/// message of its own.
 struct Violation {
   /// Which kind of rule, or that it could not be evaluated.
   enum class Kind : std::uint8_t {
     Where,        ///< an entity's WHERE rule
-    TypeWhere,    ///< a defined type's WHERE rule, on a value held by `attribute`
+    TypeWhere,    ///< a defined type's WHERE rule, on a value held by `attribute()`
     Unique,       ///< a UNIQUE clause: `other` holds the same values
     GlobalRule,   ///< a RULE's domain rule (no `id`)
-    Unevaluated,  ///< the rule could not be evaluated: `message` says why
+    Unevaluated,  ///< the rule could not be evaluated: `message()` says why
   };
-  Kind kind = Kind::Where;       ///< which kind of rule
+  Kind kind = Kind::Where;          ///< which kind of rule (as the builders below set it: it says which rule is pointed to)
   std::optional<std::uint32_t> id;  ///< the instance's `#id`; empty for a global rule (#0 is a name)
-  std::string_view owner;       ///< the entity, defined type or RULE declaring the rule
-  std::string_view label;       ///< the rule's label (may be empty)
-  std::string_view text;        ///< the rule in canonical EXPRESS
-  std::string_view attribute;   ///< TypeWhere: the attribute holding the value
-  std::uint32_t other = 0;      ///< Unique: the instance with the same values
-  std::string message;          ///< Unevaluated: the reason
+  std::uint32_t other = 0;          ///< Unique: the instance with the same values
+
+  /// WHERE rule `rule` of entity `owner` broken by instance `id`.
+  static Violation where(std::uint32_t id, const meta::EntityInfo& owner, const meta::DomainRuleInfo& rule);
+  /// WHERE rule `rule` of defined type `type` broken by a value that `attribute` of instance `id` holds.
+  static Violation type_where(std::uint32_t id, const meta::TypeInfo& type, const meta::DomainRuleInfo& rule,
+                              const meta::AttributeInfo& attribute);
+  /// UNIQUE clause `rule` of entity `owner`: instance `id` holds the values `other` holds.
+  static Violation unique(std::uint32_t id, const meta::EntityInfo& owner, const meta::UniqueRuleInfo& rule,
+                          std::uint32_t other);
+  /// Domain rule `where` of global RULE `rule`; without `where`, the RULE as a whole (to be marked unevaluated).
+  static Violation global_rule(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo* where = nullptr);
+  /// The same rule, marked as not evaluated for `reason`.
+  Violation unevaluated(std::string reason) &&;
+
+  /// The entity, defined type or RULE declaring the rule.
+  std::string_view owner() const noexcept { return owner_ ? *owner_ : std::string_view(); }
+  /// The rule's label (may be empty).
+  std::string_view label() const noexcept;
+  /// The rule in canonical EXPRESS (empty for a UNIQUE clause).
+  std::string_view text() const noexcept { return kind != Kind::Unique && rule_ ? rule_->text : std::string_view(); }
+  /// TypeWhere (and a defined type's rule not evaluated): the attribute holding the value.
+  std::string_view attribute() const noexcept { return attribute_ ? attribute_->name : std::string_view(); }
+  /// Unevaluated: the reason.
+  std::string_view message() const noexcept { return message_ ? std::string_view(*message_) : std::string_view(); }
 
   /// "#12: positive_length_measure.wr1 violated (by depth)", "#7: item.ur1
   /// violated: the same values as #3", "rule compatible_dimension.wr1 violated".
   std::string to_string() const;
+
+  Violation() = default;                         ///< a WHERE rule of nothing: made by the builders above
+  Violation(const Violation& from);              ///< a copy (of the message too)
+  Violation& operator=(const Violation& from);   ///< a copy (of the message too)
+  Violation(Violation&&) noexcept = default;             ///< moved
+  Violation& operator=(Violation&&) noexcept = default;  ///< moved
+  ~Violation() = default;
+
+ private:
+  const std::string_view* owner_ = nullptr;  // the declaring metadata's `name`
+  union {
+    const meta::DomainRuleInfo* rule_ = nullptr;  ///< every kind but Unique: the rule
+    const meta::UniqueRuleInfo* unique_;          ///< Unique: the clause
+  };
+  const meta::AttributeInfo* attribute_ = nullptr;
+  std::unique_ptr<const std::string> message_;  // Unevaluated only: nothing to allocate or free otherwise
 };
 
 /// How check() works.
