@@ -441,3 +441,16 @@ TEST_CASE("combinations beyond two entities get no class, and one note per schem
   CHECK(h.find("class time_unit_and_annotated_unit : ") != std::string::npos);
   CHECK(h.find("si_unit_and_length_unit_and_annotated_unit") == std::string::npos);
 }
+
+TEST_CASE("a select member that renames a select gets no value accessor", "[corpus]") {
+  auto model = compile_good({"select_renaming_select.exp"});
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  CHECK(diagnostics.empty());
+  REQUIRE(files.size() == 2);
+  const std::string& h = files[0].text;
+  CHECK(h.find("// inspected_shape_element_select: members renaming a select have no typed accessors yet.") !=
+        std::string::npos);
+  CHECK(h.find("as_inspected_shape_element_select") == std::string::npos);
+  CHECK(h.find("knot_locator* as_knot_locator() const;") != std::string::npos);
+}

@@ -527,6 +527,14 @@ void SchemaEmitter::print_select(Printer& p, const DefinedType& type) {
       p.print("\n// $member$: aggregate members have no typed accessors yet.\n", {{"member", d->name}});
       continue;
     }
+    // A select value holds no select (meta::Select::Storage), so a member
+    // renaming a select (AP210 e3's `inspected_shape_element_select =
+    // inspected_element_select`) cannot be returned as one.
+    if (d->kind == DefinedType::Kind::Alias && storage_of(d->underlying) == Storage::Select &&
+        resolve_alias(d->underlying).defined->kind == DefinedType::Kind::Select) {
+      p.print("\n// $member$: members renaming a select have no typed accessors yet.\n", {{"member", d->name}});
+      continue;
+    }
     p.print(
         "\nbool is_$member$() const { return member() == &$info$; }\n"
         "std::optional<$type$> as_$member$() const {\n"
