@@ -3,6 +3,9 @@
 // compile (with the project's warnings), and a Part 21 file reads as the
 // emitter's bound says: a complex instance of two entities as its typed
 // combination, one of three as a generic record with a warning naming it.
+#include <string_view>
+#include <vector>
+
 #include <catch2/catch.hpp>
 
 #include "stepnc/exchange/model_file.h"
@@ -64,4 +67,14 @@ TEST_CASE("a combination within the bound reads typed, one beyond it as a generi
   CHECK(warning.location.line == 10);
   CHECK(warning.message ==
         "no schema defines the combination (ANNOTATED_UNIT LENGTH_UNIT NAMED_UNIT SI_UNIT); kept as a generic record");
+}
+
+TEST_CASE("the registry finds a combination by its entities in any order and case", "[expressc][bindings]") {
+  const meta::Registry registry{&wide_andor::meta_schema};
+  const std::vector<std::string_view> pair{"si_unit", "NAMED_UNIT", "Length_Unit"};
+  CHECK(registry.find_complex(pair) == &wide_andor::si_unit_and_length_unit::meta_entity);
+  const std::vector<std::string_view> without_supertype{"si_unit", "length_unit"};
+  CHECK(registry.find_complex(without_supertype) == nullptr);
+  const std::vector<std::string_view> triple{"annotated_unit", "length_unit", "named_unit", "si_unit"};
+  CHECK(registry.find_complex(triple) == nullptr);
 }
