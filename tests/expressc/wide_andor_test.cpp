@@ -66,7 +66,8 @@ TEST_CASE("a combination within the bound reads typed, one beyond it as a generi
   CHECK(warning.instance_id == 3u);
   CHECK(warning.location.line == 10);
   CHECK(warning.message ==
-        "no schema defines the combination (ANNOTATED_UNIT LENGTH_UNIT NAMED_UNIT SI_UNIT); kept as a generic record");
+        "the bindings have no class for the combination (ANNOTATED_UNIT LENGTH_UNIT NAMED_UNIT SI_UNIT) (only for "
+        "combinations of at most two entities of a SUPERTYPE OF constraint); kept as a generic record");
 }
 
 TEST_CASE("the registry finds a combination by its entities in any order and case", "[expressc][bindings]") {
