@@ -417,3 +417,40 @@ TEST_CASE("names the C library defines as macros keep their spelling in EXPRESS,
   // Part 21 and reflection keep the EXPRESS names.
   CHECK(files[1].text.find("\"NULL\"") != std::string::npos);
 }
+
+TEST_CASE("combinations beyond two entities get no class, and one note per schema says how many and where", "[corpus]") {
+  auto model = compile_good({"wide_andor.exp"});
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  REQUIRE(diagnostics.size() == 1);
+  CHECK(diagnostics[0].severity == model::Diagnostic::Severity::Note);
+  CHECK(diagnostics[0].line == 7);
+  CHECK(diagnostics[0].message ==
+        "C++ emitter: schema wide_andor: 6 complex combinations of more than 2 entities get no class "
+        "(SUPERTYPE OF of named_unit (6)); such instances read as generic records");
+  REQUIRE(files.size() == 2);
+  const std::string& h = files[0].text;
+  // The eleven pairs ((2 + 3) * 1 with annotated_unit, 2 * 3 without).
+  std::size_t classes = 0;
+  for (std::size_t at = h.find("\nclass "); at != std::string::npos; at = h.find("\nclass ", at + 1))
+    if (h.compare(at, 1, "\n") == 0 && h.find("_and_", at) < h.find(" : ", at) && h.find(" : ", at) < h.find('\n', at + 1))
+      ++classes;
+  CHECK(classes == 11);
+  CHECK(h.find("class si_unit_and_length_unit : public wide_andor::si_unit, public wide_andor::length_unit {") !=
+        std::string::npos);
+  CHECK(h.find("class time_unit_and_annotated_unit : ") != std::string::npos);
+  CHECK(h.find("si_unit_and_length_unit_and_annotated_unit") == std::string::npos);
+}
+
+TEST_CASE("a select member that renames a select gets no value accessor", "[corpus]") {
+  auto model = compile_good({"select_renaming_select.exp"});
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  CHECK(diagnostics.empty());
+  REQUIRE(files.size() == 2);
+  const std::string& h = files[0].text;
+  CHECK(h.find("// inspected_shape_element_select: members renaming a select have no typed accessors yet.") !=
+        std::string::npos);
+  CHECK(h.find("as_inspected_shape_element_select") == std::string::npos);
+  CHECK(h.find("knot_locator* as_knot_locator() const;") != std::string::npos);
+}

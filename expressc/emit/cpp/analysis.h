@@ -4,6 +4,7 @@
 // virtual bases), and which complex (ANDOR) combinations get a class.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -23,8 +24,24 @@ struct Combination {
   bool abstract = false;                    // when any part is abstract
 };
 
+// The combinations a constraint allows beyond the bound, which get no class.
+struct LeftOutCombinations {
+  const model::Entity* constrained = nullptr;  // the entity whose SUPERTYPE OF allows them
+  std::uint64_t count = 0;                     // before removing duplicates; saturates
+};
+
 class Analysis {
  public:
+  // The most entities (leaves of the constraint, not their supertypes) a
+  // combination class may join. A long form's SUPERTYPE OF (ONEOF(...)
+  // ANDOR ONEOF(...) ANDOR ...) allows a product of its operands (AP210
+  // e3: 479,072 combinations, 5.5 GB of C++); the pairs cover the complex
+  // instances real files carry (length_unit + si_unit,
+  // b_spline_curve_with_knots + rational_b_spline_curve) and every
+  // combination of the ISO 14649 schemas. The others read as generic
+  // records (expressc/README.md, "Complex instances").
+  static constexpr std::size_t max_combination_parts = 2;
+
   explicit Analysis(const model::Model& model);
 
   // True when `entity` is reached along two inheritance paths somewhere
@@ -35,6 +52,9 @@ class Analysis {
   bool instance_shared() const { return instance_shared_; }
 
   const std::vector<Combination>& combinations(const model::Schema* schema) const;
+  // The constraints of `schema` that allow combinations beyond the bound.
+  const std::vector<LeftOutCombinations>& left_out(const model::Schema* schema) const;
+  std::uint64_t left_out_total(const model::Schema* schema) const;  // saturates
 
   // `entity` and its ancestors, depth first in SUBTYPE OF order, each once.
   static std::vector<const model::Entity*> self_and_ancestors(const model::Entity* entity);
@@ -47,6 +67,7 @@ class Analysis {
   std::set<const model::Entity*> shared_;
   bool instance_shared_ = false;
   std::map<const model::Schema*, std::vector<Combination>> combinations_;
+  std::map<const model::Schema*, std::vector<LeftOutCombinations>> left_out_;
 };
 
 }  // namespace expressc::emit::cpp

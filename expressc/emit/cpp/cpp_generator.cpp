@@ -56,14 +56,19 @@ std::string file_name(const model::SourceLocation& location) {
   return std::filesystem::path(*location.file).filename().string();
 }
 
-model::Diagnostic error_at(const model::SourceLocation& location, std::string message) {
+model::Diagnostic diagnostic_at(model::Diagnostic::Severity severity, const model::SourceLocation& location,
+                                std::string message) {
   model::Diagnostic d;
-  d.severity = model::Diagnostic::Severity::Error;
+  d.severity = severity;
   d.file = location.file != nullptr ? *location.file : std::string();
   d.line = location.line;
   d.column = location.column;
   d.message = std::move(message);
   return d;
+}
+
+model::Diagnostic error_at(const model::SourceLocation& location, std::string message) {
+  return diagnostic_at(model::Diagnostic::Severity::Error, location, std::move(message));
 }
 
 // ---------------------------------------------------------------- types
@@ -520,6 +525,14 @@ void SchemaEmitter::print_select(Printer& p, const DefinedType& type) {
         d->schema == &schema_ ? concat({"type_info::", identifier(d->name)}) : type_info_name(d->schema, d->name);
     if (d->kind == DefinedType::Kind::Alias && storage_of(d->underlying) == Storage::Aggregate) {
       p.print("\n// $member$: aggregate members have no typed accessors yet.\n", {{"member", d->name}});
+      continue;
+    }
+    // A select value holds no select (meta::Select::Storage), so a member
+    // renaming a select (AP210 e3's `inspected_shape_element_select =
+    // inspected_element_select`) cannot be returned as one.
+    if (d->kind == DefinedType::Kind::Alias && storage_of(d->underlying) == Storage::Select &&
+        resolve_alias(d->underlying).defined->kind == DefinedType::Kind::Select) {
+      p.print("\n// $member$: members renaming a select have no typed accessors yet.\n", {{"member", d->name}});
       continue;
     }
     p.print(
@@ -1033,6 +1046,26 @@ bool check_header_order(const model::Model& model, const Analysis& analysis,
   return ok;
 }
 
+// One note per schema whose constraints allow combinations beyond the
+// bound (analysis.h), naming the constraints that allow the most.
+void note_left_out_combinations(const Schema& schema, const Analysis& analysis,
+                                std::vector<model::Diagnostic>& diagnostics) {
+  std::vector<LeftOutCombinations> left_out = analysis.left_out(&schema);
+  if (left_out.empty()) return;
+  std::stable_sort(left_out.begin(), left_out.end(),
+                   [](const LeftOutCombinations& a, const LeftOutCombinations& b) { return a.count > b.count; });
+  constexpr std::size_t named = 3;
+  std::string constraints;
+  for (std::size_t i = 0; i < left_out.size() && i < named; ++i)
+    append_item(constraints, ", ", left_out[i].constrained->name + " (" + std::to_string(left_out[i].count) + ")");
+  if (left_out.size() > named) constraints += ", and " + std::to_string(left_out.size() - named) + " more";
+  diagnostics.push_back(diagnostic_at(
+      model::Diagnostic::Severity::Note, schema.location,
+      "C++ emitter: schema " + schema.name + ": " + std::to_string(analysis.left_out_total(&schema)) + " complex combinations of more than " +
+          std::to_string(Analysis::max_combination_parts) + " entities get no class (SUPERTYPE OF of " +
+          constraints + "); such instances read as generic records"));
+}
+
 }  // namespace
 
 std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::vector<model::Diagnostic>& diagnostics) {
@@ -1046,6 +1079,7 @@ std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::
       ok = false;
       continue;
     }
+    note_left_out_combinations(*schema, analysis, diagnostics);
     files.push_back({schema->name + ".h", emitter.header()});
     files.push_back({schema->name + ".cc", emitter.source()});
   }
@@ -1057,7 +1091,9 @@ bool CppGenerator::generate(const model::Model& model, const std::filesystem::pa
                             std::vector<model::Diagnostic>& diagnostics) const {
   const std::size_t before = diagnostics.size();
   const auto files = render(model, diagnostics);
-  if (diagnostics.size() != before) return false;
+  if (std::any_of(diagnostics.begin() + static_cast<std::ptrdiff_t>(before), diagnostics.end(),
+                  [](const model::Diagnostic& d) { return d.severity == model::Diagnostic::Severity::Error; }))
+    return false;
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) {

@@ -305,8 +305,7 @@ class ModelBuilder final : public meta::FillContext {
       }
       entity = entities_.complex(tree_, parts);
       if (entity == nullptr) {
-        keep_generic(index, fmt::format("no schema defines the combination {}; kept as a generic record",
-                                        display_name()));
+        keep_generic(index, entities_.no_class_for(parts, display_name()));
         return;
       }
     } else {

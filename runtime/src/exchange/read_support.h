@@ -36,6 +36,19 @@ class EntityLookup {
     return registry_.find_complex(parts);
   }
 
+  // Why a complex record has no class: a part no schema defines, or (all
+  // parts known) a combination the bindings give no class (expressc
+  // makes one for a SUPERTYPE OF constraint's combinations of at most two
+  // entities, expressc/README.md "Complex instances").
+  std::string no_class_for(std::span<const std::string_view> parts, std::string_view display_name) const {
+    for (std::string_view part : parts)
+      if (registry_.find_entity(part) == nullptr)
+        return "no schema defines the combination " + std::string(display_name) + " (" + std::string(part) +
+               " is unknown); kept as a generic record";
+    return "the bindings have no class for the combination " + std::string(display_name) +
+           " (only for combinations of at most two entities of a SUPERTYPE OF constraint); kept as a generic record";
+  }
+
  private:
   const meta::Registry& registry_;
   std::vector<const meta::EntityInfo*> entities_;  // by name number

@@ -12,6 +12,13 @@ bool less_names(std::string_view a, std::string_view b) noexcept {
   return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end(),
                                       [](char x, char y) { return lower(x) < lower(y); });
 }
+// FNV-1a of the lower-cased name; summed over a set, so the order of the
+// names does not matter.
+std::uint64_t name_hash(std::string_view name) noexcept {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (char c : name) hash = (hash ^ static_cast<unsigned char>(lower(c))) * 1099511628211ull;
+  return hash;
+}
 }  // namespace
 
 bool equal_names(std::string_view a, std::string_view b) noexcept {
@@ -48,7 +55,16 @@ void Registry::add(const SchemaInfo& schema) {
   schemas_.push_back(&schema);
   for (const EntityInfo* e : schema.entities) {
     entities_.push_back(e);
-    if (!e->is_complex()) insert(entity_index_, e->name, e);
+    if (!e->is_complex()) {
+      insert(entity_index_, e->name, e);
+      continue;
+    }
+    std::uint64_t hash = 0;
+    for (const Upcast& u : e->upcasts)
+      if (u.entity != e) hash += name_hash(u.entity->name);
+    complex_index_.insert(std::upper_bound(complex_index_.begin(), complex_index_.end(), hash,
+                                           [](std::uint64_t h, const auto& entry) { return h < entry.first; }),
+                          {hash, e});
   }
   for (const TypeInfo* t : schema.types) insert(type_index_, t->name, t);
 }
@@ -68,8 +84,12 @@ const TypeInfo* Registry::find_type(std::string_view name) const noexcept {
 }
 
 const EntityInfo* Registry::find_complex(std::span<const std::string_view> part_names) const {
-  for (const EntityInfo* e : entities_) {
-    if (!e->is_complex()) continue;
+  std::uint64_t hash = 0;
+  for (std::string_view name : part_names) hash += name_hash(name);
+  auto candidates = std::equal_range(complex_index_.begin(), complex_index_.end(), std::pair{hash, nullptr},
+                                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto it = candidates.first; it != candidates.second; ++it) {
+    const EntityInfo* e = it->second;
     // The upcast table lists the combination itself (unnamed) and every
     // entity it is made of, each once.
     const std::size_t named = e->upcasts.size() - 1;

@@ -8,9 +8,11 @@
 ///   meta::Instance* pocket = model.create(*e);  // the next free id
 #pragma once
 
+#include <cstdint>
 #include <initializer_list>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "stepnc/meta/info.h"
@@ -56,6 +58,9 @@ class Registry {
   std::vector<const EntityInfo*> entities_;
   std::vector<Entry> entity_index_;  ///< sorted case-insensitively by name
   std::vector<Entry> type_index_;
+  /// Complex combinations by an order-free hash of their entities' names,
+  /// in registration order among equal hashes: long forms have thousands.
+  std::vector<std::pair<std::uint64_t, const EntityInfo*>> complex_index_;
 };
 
 /// Case-insensitive ASCII comparison, as EXPRESS and Part 21 compare names.
