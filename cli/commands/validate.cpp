@@ -36,31 +36,34 @@ int run_validate(const ValidateOptions& options) {
   read_options.strict = false;  // read everything, to report every problem
   read_options.error_limit = options.error_limit;
   LoadedFile result = read_and_report(options.file, read_options, /*print=*/false);
-  // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly.
+  // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly,
+  // reported after the read's diagnostics, within the same error limit.
+  rules::ViolationReport violations;
   if (!options.no_rules && result.ok()) {
     rules::CheckOptions check_options;
-    check_options.limit = options.error_limit;
+    check_options.limit = result.diagnostics.error_limit() - result.diagnostics.error_count();
     check_options.jobs = read_jobs();  // --jobs: the same report on any number of threads
-    rules::report_violations(result.file->model, options.file, result.diagnostics, verbosity() == Verbosity::verbose,
-                             check_options);
+    violations = rules::report_violations(result.file->model, options.file, verbosity() == Verbosity::verbose,
+                                          check_options);
   }
-  if (!options.json) report_read(result, options.file);
-  std::size_t warnings = 0;
+  if (!options.json) report_read(result, options.file, &violations);
+  std::size_t warnings = violations.size() - violations.errors;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
     if (diagnostic.severity == p21::Severity::warning) ++warnings;
   }
-  const std::size_t errors = result.diagnostics.error_count();
+  const std::size_t errors = result.diagnostics.error_count() + violations.errors;
   const std::size_t instances = result.file != nullptr ? result.file->model.size() : 0;
   const bool failed = errors > 0 || (options.strict && warnings > 0);
   if (options.json) {
     nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();
     for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) diagnostics.push_back(diagnostic_json(diagnostic));
+    for (std::size_t i = 0; i < violations.size(); ++i) diagnostics.push_back(diagnostic_json(violations.diagnostic(i)));
     print_json({{"file", options.file},
                 {"valid", !failed},
                 {"errors", errors},
                 {"warnings", warnings},
                 {"instances", instances},
-                {"stopped_at_error_limit", result.diagnostics.limit_reached()},
+                {"stopped_at_error_limit", errors >= result.diagnostics.error_limit()},
                 {"diagnostics", std::move(diagnostics)}});
   } else if (verbosity() != Verbosity::quiet) {
     fmt::print("{}: {} ({} errors, {} warnings, {} instances)\n", options.file, failed ? "invalid" : "valid", errors,

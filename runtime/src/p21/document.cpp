@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include <fcntl.h>
@@ -28,13 +29,39 @@ namespace stepnc::p21 {
 
 // ------------------------------------------------------------ diagnostics
 
-std::string Diagnostic::to_string() const {
-  std::string out = file;
-  if (location.line != 0) out += fmt::format("{}{}:{}", out.empty() ? "" : ":", location.line, location.column);
-  if (!out.empty()) out += ": ";
+namespace {
+void append_number(std::string& out, std::uint64_t number) {
+  const fmt::format_int digits(number);
+  out.append(digits.data(), digits.size());
+}
+}  // namespace
+
+void append_diagnostic_head(std::string& out, std::string_view file, SourceLocation location, Severity severity,
+                            std::optional<std::uint64_t> instance_id) {
+  out += file;
+  if (location.line != 0) {
+    if (!file.empty()) out += ':';
+    append_number(out, location.line);
+    out += ':';
+    append_number(out, location.column);
+  }
+  if (!file.empty() || location.line != 0) out += ": ";
   out += severity == Severity::error ? "error: " : "warning: ";
-  if (instance_id) out += fmt::format("#{}: ", *instance_id);
+  if (instance_id) {
+    out += '#';
+    append_number(out, *instance_id);
+    out += ": ";
+  }
+}
+
+void Diagnostic::append_to(std::string& out) const {
+  append_diagnostic_head(out, file, location, severity, instance_id);
   out += message;
+}
+
+std::string Diagnostic::to_string() const {
+  std::string out;
+  append_to(out);
   return out;
 }
 
@@ -56,7 +83,7 @@ void Diagnostics::sort_by_position() {
 std::string Diagnostics::to_string() const {
   std::string out;
   for (const Diagnostic& d : items_) {
-    out += d.to_string();
+    d.append_to(out);
     out += '\n';
   }
   return out;
@@ -254,6 +281,32 @@ SourceLocation Document::location(std::uint64_t offset) const {
   const auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
   const auto line = static_cast<std::uint32_t>(next - line_starts_.begin());
   return {line, static_cast<std::uint32_t>(offset - *(next - 1) + 1)};
+}
+
+void Document::locate(std::span<const std::uint64_t> offsets, std::span<SourceLocation> out) const {
+  const std::string_view text = buffer();
+  std::vector<std::uint32_t> order;  // indexes into offsets, by offset; empty when already in order
+  if (!std::is_sorted(offsets.begin(), offsets.end())) {
+    order.resize(offsets.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return offsets[a] < offsets[b]; });
+  }
+  std::uint32_t line = 1;
+  std::size_t line_start = 0, scanned = 0;  // newlines counted in [0, scanned)
+  for (std::size_t k = 0; k < offsets.size(); ++k) {
+    const std::size_t i = order.empty() ? k : order[k];
+    const std::size_t offset = std::min<std::uint64_t>(offsets[i], text.size());
+    while (scanned < offset) {
+      const void* newline = std::memchr(text.data() + scanned, '\n', offset - scanned);
+      if (newline == nullptr) {
+        scanned = offset;
+        break;
+      }
+      ++line;
+      scanned = line_start = static_cast<const char*>(newline) - text.data() + 1;
+    }
+    out[i] = {line, static_cast<std::uint32_t>(offset - line_start + 1)};
+  }
 }
 
 Diagnostic Document::diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
