@@ -22,6 +22,7 @@
 #include "scanner.h"
 #include "stepnc/io/input.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 
@@ -281,32 +282,6 @@ SourceLocation Document::location(std::uint64_t offset) const {
   const auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
   const auto line = static_cast<std::uint32_t>(next - line_starts_.begin());
   return {line, static_cast<std::uint32_t>(offset - *(next - 1) + 1)};
-}
-
-void Document::locate(std::span<const std::uint64_t> offsets, std::span<SourceLocation> out) const {
-  const std::string_view text = buffer();
-  std::vector<std::uint32_t> order;  // indexes into offsets, by offset; empty when already in order
-  if (!std::is_sorted(offsets.begin(), offsets.end())) {
-    order.resize(offsets.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return offsets[a] < offsets[b]; });
-  }
-  std::uint32_t line = 1;
-  std::size_t line_start = 0, scanned = 0;  // newlines counted in [0, scanned)
-  for (std::size_t k = 0; k < offsets.size(); ++k) {
-    const std::size_t i = order.empty() ? k : order[k];
-    const std::size_t offset = std::min<std::uint64_t>(offsets[i], text.size());
-    while (scanned < offset) {
-      const void* newline = std::memchr(text.data() + scanned, '\n', offset - scanned);
-      if (newline == nullptr) {
-        scanned = offset;
-        break;
-      }
-      ++line;
-      scanned = line_start = static_cast<const char*>(newline) - text.data() + 1;
-    }
-    out[i] = {line, static_cast<std::uint32_t>(offset - line_start + 1)};
-  }
 }
 
 Diagnostic Document::diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
@@ -614,6 +589,101 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
 }
 
 }  // namespace
+
+namespace {
+
+// Matches the records of a file, as the scanner meets them, with the ids
+// asked for (sorted), and counts lines forward from the last match.
+class RecordLocator final : public RecordHandler {
+ public:
+  RecordLocator(std::string_view text, std::span<const std::uint64_t> ids, std::span<const std::uint32_t> by_id,
+                std::span<SourceLocation> out)
+      : text_(text), ids_(ids), by_id_(by_id), out_(out) {}
+
+  bool on_record(const RecordView& record, StreamContext&) override {
+    // In a file written in order the next id asked for is at the cursor or
+    // a little after it; otherwise search.
+    std::size_t at = cursor_;
+    if (record.id < last_id_) at = 0;
+    for (int step = 0; at < ids_.size() && id(at) < record.id; ++at, ++step)
+      if (step == 64) {
+        at = static_cast<std::size_t>(std::lower_bound(by_id_.begin() + static_cast<std::ptrdiff_t>(at), by_id_.end(), record.id,
+                                                       [this](std::uint32_t i, std::uint64_t wanted) { return ids_[i] < wanted; }) -
+                                      by_id_.begin());
+        break;
+      }
+    last_id_ = record.id;
+    cursor_ = at;
+    if (at == ids_.size() || id(at) != record.id) return true;
+    const SourceLocation location = locate(record.offset);
+    // The first record of an id is the one a Document keeps.
+    for (; at < ids_.size() && id(at) == record.id; ++at)
+      if (SourceLocation& slot = out_[index(at)]; slot.line == 0) slot = location;
+    return true;
+  }
+
+ private:
+  std::size_t index(std::size_t k) const { return by_id_.empty() ? k : by_id_[k]; }
+  std::uint64_t id(std::size_t k) const { return ids_[index(k)]; }
+
+  // Records come in file order: newlines are counted from the last one.
+  SourceLocation locate(std::uint64_t offset) {
+    while (scanned_ < offset) {
+      const void* newline = std::memchr(text_.data() + scanned_, '\n', offset - scanned_);
+      if (newline == nullptr) {
+        scanned_ = offset;
+        break;
+      }
+      ++line_;
+      scanned_ = line_start_ = static_cast<std::size_t>(static_cast<const char*>(newline) - text_.data()) + 1;
+    }
+    return {line_, static_cast<std::uint32_t>(offset - line_start_ + 1)};
+  }
+
+  std::string_view text_;
+  std::span<const std::uint64_t> ids_;
+  std::span<const std::uint32_t> by_id_;  // indexes into ids_ in id order; empty when ids_ is sorted
+  std::span<SourceLocation> out_;
+  std::size_t cursor_ = 0;
+  std::uint64_t last_id_ = 0;
+  std::uint32_t line_ = 1;
+  std::size_t line_start_ = 0, scanned_ = 0;  // newlines are counted in [0, scanned_)
+};
+
+}  // namespace
+
+void locate_records(const std::filesystem::path& path, std::span<const std::uint64_t> ids,
+                    std::span<SourceLocation> out) {
+  std::fill(out.begin(), out.end(), SourceLocation{});
+  if (ids.empty() || io::is_standard_stream(path)) return;
+  std::vector<std::uint32_t> by_id;
+  if (!std::is_sorted(ids.begin(), ids.end())) {
+    by_id.resize(ids.size());
+    for (std::size_t i = 0; i < by_id.size(); ++i) by_id[i] = static_cast<std::uint32_t>(i);
+    std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
+  }
+  // The text: a mapping of a regular file (no copy), else a copy.
+  detail::TextBytes mapped;
+  std::string copy;
+  std::string_view text;
+  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0) return;
+  struct stat status {};
+  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
+    mapped = DocumentBuilder::map_file(descriptor, static_cast<std::size_t>(status.st_size));
+    if (mapped) text = std::string_view(mapped.get(), static_cast<std::size_t>(status.st_size));
+  }
+  ::close(descriptor);
+  if (!mapped) {
+    if (io::read_text(path, copy)) return;
+    text = copy;
+  }
+  ReadOptions options;
+  options.strict = false;
+  options.error_limit = std::numeric_limits<std::size_t>::max();
+  RecordLocator locator(text, ids, by_id, out);
+  stream_text(text, path.string(), options, locator);
+}
 
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
   const std::size_t size = text.size();

@@ -30,6 +30,7 @@
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/meta/value.h"
 
@@ -2429,30 +2430,16 @@ ViolationReport report_violations(const meta::Model& model, const std::filesyste
   report.violations = check(model, options);
   report.errors = static_cast<std::size_t>(std::count_if(report.violations.begin(), report.violations.end(),
                                                          [](const Violation& v) { return severity_of(v) == p21::Severity::error; }));
-  report.locations.assign(report.violations.size(), p21::SourceLocation{});
-  if (report.violations.empty() || io::is_standard_stream(path)) return report;
-  p21::ReadOptions read_options;
-  read_options.strict = false;
-  read_options.validate_parameters = false;
-  const std::optional<p21::Document> document = std::move(p21::read_file(path, read_options).document);
-  if (!document) return report;
-  // The records' offsets, located in one pass over the file; violations
-  // come in instance order, which is file order in a file written in order.
-  std::vector<std::uint64_t> offsets;
-  std::vector<std::uint32_t> located;  // which violation each offset is of
-  offsets.reserve(report.violations.size());
-  located.reserve(report.violations.size());
-  for (std::size_t i = 0; i < report.violations.size(); ++i) {
-    const Violation& v = report.violations[i];
-    if (!v.id) continue;
-    if (const p21::RecordEntry* record = document->find(*v.id)) {
-      offsets.push_back(record->offset);
-      located.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
-  std::vector<p21::SourceLocation> found(offsets.size());
-  document->locate(offsets, found);
-  for (std::size_t k = 0; k < found.size(); ++k) report.locations[located[k]] = found[k];
+  report.locations.resize(report.violations.size());
+  if (report.violations.empty()) return report;
+  // Each violation at its instance's record, found in one more pass over
+  // the file (the model keeps no positions); a global RULE has none.
+  constexpr std::uint64_t no_record = std::numeric_limits<std::uint64_t>::max();
+  std::vector<std::uint64_t> ids(report.violations.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = report.violations[i].id ? *report.violations[i].id : no_record;
+  p21::locate_records(path, ids, report.locations);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (ids[i] == no_record) report.locations[i] = {};
   return report;
 }
 

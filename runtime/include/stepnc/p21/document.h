@@ -158,10 +158,6 @@ class Document {
   /// Line and column of a byte offset, computed on demand (the line table
   /// is built on first use; not thread-safe on that first call).
   SourceLocation location(std::uint64_t offset) const;
-  /// Line and column of many offsets at once, in one forward pass over the
-  /// text (no line table): `out[i]` is location(offsets[i]). Offsets in
-  /// increasing order are taken as they come; others are sorted first.
-  void locate(std::span<const std::uint64_t> offsets, std::span<SourceLocation> out) const;
   /// A Diagnostic for a ParseError, with this file's name and line:col;
   /// `instance_id` empty when the error is in no instance (the header).
   Diagnostic diagnostic(const ParseError& error, std::optional<std::uint64_t> instance_id,
