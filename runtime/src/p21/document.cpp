@@ -607,9 +607,7 @@ class RecordLocator final : public RecordHandler {
     if (record.id < last_id_) at = 0;
     for (int step = 0; at < ids_.size() && id(at) < record.id; ++at, ++step)
       if (step == 64) {
-        at = static_cast<std::size_t>(std::lower_bound(by_id_.begin() + static_cast<std::ptrdiff_t>(at), by_id_.end(), record.id,
-                                                       [this](std::uint32_t i, std::uint64_t wanted) { return ids_[i] < wanted; }) -
-                                      by_id_.begin());
+        at = first_at_least(at, record.id);
         break;
       }
     last_id_ = record.id;
@@ -624,6 +622,16 @@ class RecordLocator final : public RecordHandler {
 
  private:
   std::size_t index(std::size_t k) const { return by_id_.empty() ? k : by_id_[k]; }
+  // The first position from `from` on whose id is not below `wanted`.
+  std::size_t first_at_least(std::size_t from, std::uint64_t wanted) const {
+    std::size_t to = ids_.size();
+    while (from < to) {
+      const std::size_t middle = from + (to - from) / 2;
+      if (id(middle) < wanted) from = middle + 1;
+      else to = middle;
+    }
+    return from;
+  }
   std::uint64_t id(std::size_t k) const { return ids_[index(k)]; }
 
   // Records come in file order: newlines are counted from the last one.
