@@ -3,6 +3,10 @@
 // 14649 schemas and report every problem.
 #include <fmt/format.h>
 
+#include <cstdio>
+#include <string>
+#include <string_view>
+
 #include "stepnc/rules/evaluate.h"
 
 #include "command.h"
@@ -31,6 +35,41 @@ nlohmann::ordered_json diagnostic_json(const p21::Diagnostic& diagnostic) {
   return object;
 }
 
+// print_json of `verdict` with a last member "diagnostics", the array of
+// every diagnostic: each object is dumped as it comes rather than a
+// million of them built into one document first (the same text).
+void print_json_with_diagnostics(nlohmann::ordered_json verdict, const p21::Diagnostics& read,
+                                 const rules::ViolationReport& violations) {
+  verdict["diagnostics"] = nlohmann::ordered_json::array();
+  std::string text = verdict.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  if (read.items().empty() && violations.size() == 0) {
+    fmt::print("{}\n", text);
+    return;
+  }
+  constexpr std::string_view empty_tail = "[]\n}";  // the empty array, then the end of the verdict
+  text.resize(text.size() - empty_tail.size());
+  text += "[\n";
+  bool first = true;
+  const auto add = [&](const p21::Diagnostic& diagnostic) {
+    if (!first) text += ",\n";
+    first = false;
+    // Two levels deeper than a document of its own: four more spaces a line.
+    text += "    ";
+    for (const char c : diagnostic_json(diagnostic).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)) {
+      text += c;
+      if (c == '\n') text += "    ";
+    }
+    if (text.size() >= (std::size_t{1} << 20)) {
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      text.clear();
+    }
+  };
+  for (const p21::Diagnostic& diagnostic : read.items()) add(diagnostic);
+  for (std::size_t i = 0; i < violations.size(); ++i) add(violations.diagnostic(i));
+  text += "\n  ]\n}\n";
+  std::fwrite(text.data(), 1, text.size(), stdout);
+}
+
 int run_validate(const ValidateOptions& options) {
   exchange::ModelReadOptions read_options;
   read_options.strict = false;  // read everything, to report every problem
@@ -55,16 +94,13 @@ int run_validate(const ValidateOptions& options) {
   const std::size_t instances = result.file != nullptr ? result.file->model.size() : 0;
   const bool failed = errors > 0 || (options.strict && warnings > 0);
   if (options.json) {
-    nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();
-    for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) diagnostics.push_back(diagnostic_json(diagnostic));
-    for (std::size_t i = 0; i < violations.size(); ++i) diagnostics.push_back(diagnostic_json(violations.diagnostic(i)));
-    print_json({{"file", options.file},
-                {"valid", !failed},
-                {"errors", errors},
-                {"warnings", warnings},
-                {"instances", instances},
-                {"stopped_at_error_limit", errors >= result.diagnostics.error_limit()},
-                {"diagnostics", std::move(diagnostics)}});
+    print_json_with_diagnostics({{"file", options.file},
+                                 {"valid", !failed},
+                                 {"errors", errors},
+                                 {"warnings", warnings},
+                                 {"instances", instances},
+                                 {"stopped_at_error_limit", errors >= result.diagnostics.error_limit()}},
+                                result.diagnostics, violations);
   } else if (verbosity() != Verbosity::quiet) {
     fmt::print("{}: {} ({} errors, {} warnings, {} instances)\n", options.file, failed ? "invalid" : "valid", errors,
                warnings, instances);
