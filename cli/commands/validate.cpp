@@ -3,7 +3,10 @@
 // 14649 schemas and report every problem.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -24,15 +27,47 @@ struct ValidateOptions {
   std::size_t error_limit = 100;
 };
 
-nlohmann::ordered_json diagnostic_json(const p21::Diagnostic& diagnostic) {
-  nlohmann::ordered_json object{{"file", diagnostic.file},
-                        {"severity", diagnostic.severity == p21::Severity::error ? "error" : "warning"},
-                        {"message", diagnostic.message}};
-  // Unknown parts are null, as they are left out of the text form.
-  object["line"] = diagnostic.location.line != 0 ? nlohmann::ordered_json(diagnostic.location.line) : nlohmann::ordered_json();
-  object["column"] = diagnostic.location.column != 0 ? nlohmann::ordered_json(diagnostic.location.column) : nlohmann::ordered_json();
-  object["id"] = diagnostic.instance_id ? nlohmann::ordered_json(*diagnostic.instance_id) : nlohmann::ordered_json();
-  return object;
+// A JSON string as nlohmann's dump writes it: printable ASCII without
+// quotes or backslashes as it is (file names, rule messages), anything
+// else through nlohmann itself.
+void append_json_string(std::string& out, std::string_view text) {
+  const bool plain = std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7F && c != '"' && c != '\\'; });
+  if (!plain) {
+    out += nlohmann::ordered_json(std::string(text)).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    return;
+  }
+  out += '"';
+  out += text;
+  out += '"';
+}
+
+// A number, or null when unknown (0 line or column, no id), as unknown
+// parts are left out of the text form.
+void append_json_number(std::string& out, std::optional<std::uint64_t> number) {
+  if (!number) {
+    out += "null";
+    return;
+  }
+  const fmt::format_int digits(*number);
+  out.append(digits.data(), digits.size());
+}
+
+// One diagnostic as an element of the verdict's "diagnostics" array, as
+// print_json would indent it there (formatted straight into `out`).
+void append_diagnostic_json(std::string& out, const p21::Diagnostic& diagnostic) {
+  const auto known = [](std::uint32_t n) { return n != 0 ? std::optional<std::uint64_t>(n) : std::nullopt; };
+  out += "    {\n      \"file\": ";
+  append_json_string(out, diagnostic.file);
+  out += diagnostic.severity == p21::Severity::error ? ",\n      \"severity\": \"error\",\n      \"message\": "
+                                                      : ",\n      \"severity\": \"warning\",\n      \"message\": ";
+  append_json_string(out, diagnostic.message);
+  out += ",\n      \"line\": ";
+  append_json_number(out, known(diagnostic.location.line));
+  out += ",\n      \"column\": ";
+  append_json_number(out, known(diagnostic.location.column));
+  out += ",\n      \"id\": ";
+  append_json_number(out, diagnostic.instance_id);
+  out += "\n    }";
 }
 
 // print_json of `verdict` with a last member "diagnostics", the array of
@@ -53,12 +88,7 @@ void print_json_with_diagnostics(nlohmann::ordered_json verdict, const p21::Diag
   const auto add = [&](const p21::Diagnostic& diagnostic) {
     if (!first) text += ",\n";
     first = false;
-    // Two levels deeper than a document of its own: four more spaces a line.
-    text += "    ";
-    for (const char c : diagnostic_json(diagnostic).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)) {
-      text += c;
-      if (c == '\n') text += "    ";
-    }
+    append_diagnostic_json(text, diagnostic);
     if (text.size() >= (std::size_t{1} << 20)) {
       std::fwrite(text.data(), 1, text.size(), stdout);
       text.clear();
