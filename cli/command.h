@@ -17,6 +17,10 @@
 #include "stepnc/p21/diagnostic.h"
 #include "stepnc/tooling/tool_list.h"
 
+namespace stepnc::rules {
+struct ViolationReport;
+}  // namespace stepnc::rules
+
 namespace stepnc::cli {
 
 // Exit codes shared by every subcommand (README, "Using it").
@@ -75,9 +79,11 @@ ToolsInput read_tools(const std::string& path);
 // `-o,--output`: a file, or `-` (the default) for standard output.
 CLI::Option* add_output_option(CLI::App& command, std::string& output, const std::string& description);
 
-// Prints diagnostics to stderr (warnings only above --quiet), and the note
-// that the error limit stopped the read.
-void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file);
+// Prints diagnostics to stderr (warnings only above --quiet), then the
+// rule violations of `violations` if given, and the note that the error
+// limit stopped the read or the rules.
+void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file,
+                       const rules::ViolationReport* violations = nullptr);
 
 // Writes a command's outputs together (stepnc/io/output.h); prints the
 // reason and returns exit_failure when they could not be written.

@@ -8,6 +8,7 @@
 
 #include "command.h"
 #include "stepnc/io/input.h"
+#include "stepnc/rules/evaluate.h"
 
 namespace stepnc::cli {
 namespace {
@@ -63,22 +64,34 @@ CLI::Option* add_output_option(CLI::App& command, std::string& output, const std
       ->option_text("FILE|-");
 }
 
-void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file) {
+void print_diagnostics(const p21::Diagnostics& diagnostics, std::string_view file,
+                       const rules::ViolationReport* violations) {
   // stderr is unbuffered: a line at a time would be a system call each (a
   // million rule violations: 1.4 s of system time), so lines go out in blocks.
   constexpr std::size_t block = std::size_t{64} << 10;
-  fmt::memory_buffer text;
+  std::string text;
+  text.reserve(block + 1024);
   const auto flush = [&text] {
     std::fwrite(text.data(), 1, text.size(), stderr);
     text.clear();
   };
+  const bool quiet = verbosity() == Verbosity::quiet;
   for (const p21::Diagnostic& diagnostic : diagnostics.items()) {
-    if (diagnostic.severity == p21::Severity::warning && verbosity() == Verbosity::quiet) continue;
-    fmt::format_to(std::back_inserter(text), "{}\n", diagnostic.to_string());
+    if (diagnostic.severity == p21::Severity::warning && quiet) continue;
+    diagnostic.append_to(text);
+    text += '\n';
     if (text.size() >= block) flush();
   }
-  if (diagnostics.limit_reached())
-    fmt::format_to(std::back_inserter(text), "{}: stopped after {} errors\n", file, diagnostics.error_count());
+  std::size_t errors = diagnostics.error_count();
+  if (violations != nullptr) {
+    for (std::size_t i = 0; i < violations->size(); ++i) {
+      if (quiet && violations->violations[i].kind == rules::Violation::Kind::Unevaluated) continue;
+      violations->append_line(text, i);
+      if (text.size() >= block) flush();
+    }
+    errors += violations->errors;
+  }
+  if (errors >= diagnostics.error_limit()) fmt::format_to(std::back_inserter(text), "{}: stopped after {} errors\n", file, errors);
   flush();
 }
 

@@ -39,8 +39,9 @@ LoadedFile read_and_report(const std::filesystem::path& path, const exchange::Mo
   return loaded;
 }
 
-void report_read(const LoadedFile& loaded, const std::filesystem::path& path) {
-  print_diagnostics(loaded.diagnostics, path.string());
+void report_read(const LoadedFile& loaded, const std::filesystem::path& path,
+                 const rules::ViolationReport* violations) {
+  print_diagnostics(loaded.diagnostics, path.string(), violations);
   if (loaded.file && verbosity() == Verbosity::verbose) {
     fmt::print(stderr, "{}: read {} typed instances, {} generic records\n", path.string(), loaded.file->model.size(),
                loaded.file->generic_records.size());

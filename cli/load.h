@@ -13,6 +13,10 @@
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/registry.h"
 
+namespace stepnc::rules {
+struct ViolationReport;
+}  // namespace stepnc::rules
+
 namespace stepnc::cli {
 
 // The registry of the ISO 14649 bindings in generated/.
@@ -32,8 +36,10 @@ struct LoadedFile {
 // to the caller (report_read, or --json).
 LoadedFile read_and_report(const std::filesystem::path& path, const exchange::ModelReadOptions& options = {},
                            bool print = true);
-// Prints the diagnostics of a read (and, verbose, what was read).
-void report_read(const LoadedFile& loaded, const std::filesystem::path& path);
+// Prints the diagnostics of a read, then the rule violations if given
+// (and, verbose, what was read).
+void report_read(const LoadedFile& loaded, const std::filesystem::path& path,
+                 const rules::ViolationReport* violations = nullptr);
 
 // The file, strictly read, or null after printing why it could not be read.
 const exchange::ModelFile* load(const std::filesystem::path& path);

@@ -3,6 +3,13 @@
 // 14649 schemas and report every problem.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <string_view>
+
 #include "stepnc/rules/evaluate.h"
 
 #include "command.h"
@@ -20,15 +27,77 @@ struct ValidateOptions {
   std::size_t error_limit = 100;
 };
 
-nlohmann::ordered_json diagnostic_json(const p21::Diagnostic& diagnostic) {
-  nlohmann::ordered_json object{{"file", diagnostic.file},
-                        {"severity", diagnostic.severity == p21::Severity::error ? "error" : "warning"},
-                        {"message", diagnostic.message}};
-  // Unknown parts are null, as they are left out of the text form.
-  object["line"] = diagnostic.location.line != 0 ? nlohmann::ordered_json(diagnostic.location.line) : nlohmann::ordered_json();
-  object["column"] = diagnostic.location.column != 0 ? nlohmann::ordered_json(diagnostic.location.column) : nlohmann::ordered_json();
-  object["id"] = diagnostic.instance_id ? nlohmann::ordered_json(*diagnostic.instance_id) : nlohmann::ordered_json();
-  return object;
+// A JSON string as nlohmann's dump writes it: printable ASCII without
+// quotes or backslashes as it is (file names, rule messages), anything
+// else through nlohmann itself.
+void append_json_string(std::string& out, std::string_view text) {
+  const bool plain = std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7F && c != '"' && c != '\\'; });
+  if (!plain) {
+    out += nlohmann::ordered_json(std::string(text)).dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+    return;
+  }
+  out += '"';
+  out += text;
+  out += '"';
+}
+
+// A number, or null when unknown (0 line or column, no id), as unknown
+// parts are left out of the text form.
+void append_json_number(std::string& out, std::optional<std::uint64_t> number) {
+  if (!number) {
+    out += "null";
+    return;
+  }
+  const fmt::format_int digits(*number);
+  out.append(digits.data(), digits.size());
+}
+
+// One diagnostic as an element of the verdict's "diagnostics" array, as
+// print_json would indent it there (formatted straight into `out`).
+void append_diagnostic_json(std::string& out, const p21::Diagnostic& diagnostic) {
+  const auto known = [](std::uint32_t n) { return n != 0 ? std::optional<std::uint64_t>(n) : std::nullopt; };
+  out += "    {\n      \"file\": ";
+  append_json_string(out, diagnostic.file);
+  out += diagnostic.severity == p21::Severity::error ? ",\n      \"severity\": \"error\",\n      \"message\": "
+                                                      : ",\n      \"severity\": \"warning\",\n      \"message\": ";
+  append_json_string(out, diagnostic.message);
+  out += ",\n      \"line\": ";
+  append_json_number(out, known(diagnostic.location.line));
+  out += ",\n      \"column\": ";
+  append_json_number(out, known(diagnostic.location.column));
+  out += ",\n      \"id\": ";
+  append_json_number(out, diagnostic.instance_id);
+  out += "\n    }";
+}
+
+// print_json of `verdict` with a last member "diagnostics", the array of
+// every diagnostic: each object is dumped as it comes rather than a
+// million of them built into one document first (the same text).
+void print_json_with_diagnostics(nlohmann::ordered_json verdict, const p21::Diagnostics& read,
+                                 const rules::ViolationReport& violations) {
+  verdict["diagnostics"] = nlohmann::ordered_json::array();
+  std::string text = verdict.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  if (read.items().empty() && violations.size() == 0) {
+    fmt::print("{}\n", text);
+    return;
+  }
+  constexpr std::string_view empty_tail = "[]\n}";  // the empty array, then the end of the verdict
+  text.resize(text.size() - empty_tail.size());
+  text += "[\n";
+  bool first = true;
+  const auto add = [&](const p21::Diagnostic& diagnostic) {
+    if (!first) text += ",\n";
+    first = false;
+    append_diagnostic_json(text, diagnostic);
+    if (text.size() >= (std::size_t{1} << 20)) {
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      text.clear();
+    }
+  };
+  for (const p21::Diagnostic& diagnostic : read.items()) add(diagnostic);
+  for (std::size_t i = 0; i < violations.size(); ++i) add(violations.diagnostic(i));
+  text += "\n  ]\n}\n";
+  std::fwrite(text.data(), 1, text.size(), stdout);
 }
 
 int run_validate(const ValidateOptions& options) {
@@ -36,32 +105,32 @@ int run_validate(const ValidateOptions& options) {
   read_options.strict = false;  // read everything, to report every problem
   read_options.error_limit = options.error_limit;
   LoadedFile result = read_and_report(options.file, read_options, /*print=*/false);
-  // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly.
+  // WHERE rules, UNIQUE clauses and global RULEs of a file that reads cleanly,
+  // reported after the read's diagnostics, within the same error limit.
+  rules::ViolationReport violations;
   if (!options.no_rules && result.ok()) {
     rules::CheckOptions check_options;
-    check_options.limit = options.error_limit;
+    check_options.limit = result.diagnostics.error_limit() - result.diagnostics.error_count();
     check_options.jobs = read_jobs();  // --jobs: the same report on any number of threads
-    rules::report_violations(result.file->model, options.file, result.diagnostics, verbosity() == Verbosity::verbose,
-                             check_options);
+    violations = rules::report_violations(result.file->model, options.file, verbosity() == Verbosity::verbose,
+                                          check_options);
   }
-  if (!options.json) report_read(result, options.file);
-  std::size_t warnings = 0;
+  if (!options.json) report_read(result, options.file, &violations);
+  std::size_t warnings = violations.size() - violations.errors;
   for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) {
     if (diagnostic.severity == p21::Severity::warning) ++warnings;
   }
-  const std::size_t errors = result.diagnostics.error_count();
+  const std::size_t errors = result.diagnostics.error_count() + violations.errors;
   const std::size_t instances = result.file != nullptr ? result.file->model.size() : 0;
   const bool failed = errors > 0 || (options.strict && warnings > 0);
   if (options.json) {
-    nlohmann::ordered_json diagnostics = nlohmann::ordered_json::array();
-    for (const p21::Diagnostic& diagnostic : result.diagnostics.items()) diagnostics.push_back(diagnostic_json(diagnostic));
-    print_json({{"file", options.file},
-                {"valid", !failed},
-                {"errors", errors},
-                {"warnings", warnings},
-                {"instances", instances},
-                {"stopped_at_error_limit", result.diagnostics.limit_reached()},
-                {"diagnostics", std::move(diagnostics)}});
+    print_json_with_diagnostics({{"file", options.file},
+                                 {"valid", !failed},
+                                 {"errors", errors},
+                                 {"warnings", warnings},
+                                 {"instances", instances},
+                                 {"stopped_at_error_limit", errors >= result.diagnostics.error_limit()}},
+                                result.diagnostics, violations);
   } else if (verbosity() != Verbosity::quiet) {
     fmt::print("{}: {} ({} errors, {} warnings, {} instances)\n", options.file, failed ? "invalid" : "valid", errors,
                warnings, instances);

@@ -177,3 +177,78 @@ TEST_CASE("type rules, UNIQUE clauses and a global RULE are reported in order on
   CHECK(std::find(all.begin(), all.end(), "#212: part.ur1 violated: the same values as #1") != all.end());
   CHECK(all.back() == "rule every_part_used.wr1 violated");
 }
+
+// A report of many violations locates each at its record, whatever the
+// layout: records over several lines, indented, after a comment, ids out
+// of file order, and the last record starting on the file's last line
+// (no newline after it). Expected positions are counted here from the text.
+TEST_CASE("a report of many violations gives each record's line and column", "[rules][report]") {
+  std::string text =
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n";
+  std::vector<std::uint64_t> ids;
+  for (int k = 0; k < 600; ++k) {
+    const std::uint64_t id = k < 300 ? 10 + k : 5000 - k;  // the second half in falling order
+    ids.push_back(id);
+    if (k % 3 == 0)
+      text += fmt::format("#{}=CARTESIAN_POINT(\n  'p{}',\n  ({}.,0.,0.));\n", id, k, k);
+    else if (k % 3 == 1)
+      text += fmt::format("   #{}=CARTESIAN_POINT('',({}.,1.,0.));\n", id, k);
+    else
+      text += fmt::format("/* point {} */ #{}=CARTESIAN_POINT('',({}.,2.,0.));\n", k, id, k);
+  }
+  ids.push_back(9999);
+  text += "#9999=CARTESIAN_POINT('',(9.,9.,9.));ENDSEC;END-ISO-10303-21;";
+  const auto expected = [&text](std::uint64_t id) {
+    const std::size_t at = text.find(fmt::format("#{}=", id));
+    REQUIRE(at != std::string::npos);
+    const std::size_t line_start = text.rfind('\n', at) + 1;
+    return stepnc::p21::SourceLocation{static_cast<std::uint32_t>(std::count(text.begin(), text.begin() + at, '\n') + 1),
+                                       static_cast<std::uint32_t>(at - line_start + 1)};
+  };
+  const std::filesystem::path path = stepnc_test::scratch_directory("rules-report") / "points.stp";
+  stepnc_test::write_text(path, text);
+  auto result = stepnc::exchange::read_model_file(path, machining_registry());
+  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
+  REQUIRE(result.ok());
+  stepnc::rules::CheckOptions options;
+  options.limit = SIZE_MAX;
+  const stepnc::rules::ViolationReport report =
+      stepnc::rules::report_violations(result.file->model, path, /*with_text=*/false, options);
+  // Each point outside a representation (representation_item.wr1), then
+  // the global rules over representation items, which have no record.
+  REQUIRE(report.size() > ids.size());
+  CHECK(report.errors == report.size());
+  std::vector<std::uint64_t> reported;
+  for (std::size_t i = 0; i < report.size(); ++i) {
+    const stepnc::rules::Violation& v = report.violations[i];
+    if (!v.id) {
+      CHECK(report.locations[i] == stepnc::p21::SourceLocation{});
+      continue;
+    }
+    INFO("#" << *v.id);
+    reported.push_back(*v.id);
+    CHECK(report.locations[i] == expected(*v.id));
+    std::string line;
+    report.append_line(line, i);
+    CHECK(line == report.diagnostic(i).to_string() + "\n");
+  }
+  CHECK(std::is_permutation(reported.begin(), reported.end(), ids.begin(), ids.end()));
+  // First, middle and last records, spelled out.
+  CHECK(expected(10) == stepnc::p21::SourceLocation{8, 1});  // the first record, three lines long
+  CHECK(expected(11) == stepnc::p21::SourceLocation{11, 4});  // indented
+  CHECK(expected(12) == stepnc::p21::SourceLocation{12, 15});  // after a comment
+  CHECK(expected(4700) == stepnc::p21::SourceLocation{8 + 100 * 5, 1});  // k = 300: the first of the falling ids
+  CHECK(expected(9999) == stepnc::p21::SourceLocation{8 + 200 * 5, 1});  // on the file's last line
+  std::string lines;
+  for (std::size_t i = 0; i < report.size(); ++i) report.append_line(lines, i);
+  CHECK(lines.find(fmt::format("{}:1008:1: error: #9999: representation_item.wr1 violated\n", path.string())) !=
+        std::string::npos);
+  CHECK(lines.find(fmt::format("{}:11:4: error: #11: representation_item.wr1 violated\n", path.string())) !=
+        std::string::npos);
+  // The Diagnostics form says the same.
+  stepnc::p21::Diagnostics diagnostics(SIZE_MAX);
+  stepnc::rules::report_violations(result.file->model, path, diagnostics, /*with_text=*/false, options);
+  CHECK(diagnostics.to_string() == lines);
+  std::filesystem::remove_all(path.parent_path());
+}

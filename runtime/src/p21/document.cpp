@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include <fcntl.h>
@@ -21,6 +22,7 @@
 #include "scanner.h"
 #include "stepnc/io/input.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
 
@@ -28,13 +30,39 @@ namespace stepnc::p21 {
 
 // ------------------------------------------------------------ diagnostics
 
-std::string Diagnostic::to_string() const {
-  std::string out = file;
-  if (location.line != 0) out += fmt::format("{}{}:{}", out.empty() ? "" : ":", location.line, location.column);
-  if (!out.empty()) out += ": ";
+namespace {
+void append_number(std::string& out, std::uint64_t number) {
+  const fmt::format_int digits(number);
+  out.append(digits.data(), digits.size());
+}
+}  // namespace
+
+void append_diagnostic_head(std::string& out, std::string_view file, SourceLocation location, Severity severity,
+                            std::optional<std::uint64_t> instance_id) {
+  out += file;
+  if (location.line != 0) {
+    if (!file.empty()) out += ':';
+    append_number(out, location.line);
+    out += ':';
+    append_number(out, location.column);
+  }
+  if (!file.empty() || location.line != 0) out += ": ";
   out += severity == Severity::error ? "error: " : "warning: ";
-  if (instance_id) out += fmt::format("#{}: ", *instance_id);
+  if (instance_id) {
+    out += '#';
+    append_number(out, *instance_id);
+    out += ": ";
+  }
+}
+
+void Diagnostic::append_to(std::string& out) const {
+  append_diagnostic_head(out, file, location, severity, instance_id);
   out += message;
+}
+
+std::string Diagnostic::to_string() const {
+  std::string out;
+  append_to(out);
   return out;
 }
 
@@ -56,7 +84,7 @@ void Diagnostics::sort_by_position() {
 std::string Diagnostics::to_string() const {
   std::string out;
   for (const Diagnostic& d : items_) {
-    out += d.to_string();
+    d.append_to(out);
     out += '\n';
   }
   return out;
@@ -561,6 +589,109 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
 }
 
 }  // namespace
+
+namespace {
+
+// Matches the records of a file, as the scanner meets them, with the ids
+// asked for (sorted), and counts lines forward from the last match.
+class RecordLocator final : public RecordHandler {
+ public:
+  RecordLocator(std::string_view text, std::span<const std::uint64_t> ids, std::span<const std::uint32_t> by_id,
+                std::span<SourceLocation> out)
+      : text_(text), ids_(ids), by_id_(by_id), out_(out) {}
+
+  bool on_record(const RecordView& record, StreamContext&) override {
+    // In a file written in order the next id asked for is at the cursor or
+    // a little after it; otherwise search.
+    std::size_t at = cursor_;
+    if (record.id < last_id_) at = 0;
+    for (int step = 0; at < ids_.size() && id(at) < record.id; ++at, ++step)
+      if (step == 64) {
+        at = first_at_least(at, record.id);
+        break;
+      }
+    last_id_ = record.id;
+    cursor_ = at;
+    if (at == ids_.size() || id(at) != record.id) return true;
+    const SourceLocation location = locate(record.offset);
+    // The first record of an id is the one a Document keeps.
+    for (; at < ids_.size() && id(at) == record.id; ++at)
+      if (SourceLocation& slot = out_[index(at)]; slot.line == 0) slot = location;
+    return true;
+  }
+
+ private:
+  std::size_t index(std::size_t k) const { return by_id_.empty() ? k : by_id_[k]; }
+  // The first position from `from` on whose id is not below `wanted`.
+  std::size_t first_at_least(std::size_t from, std::uint64_t wanted) const {
+    std::size_t to = ids_.size();
+    while (from < to) {
+      const std::size_t middle = from + (to - from) / 2;
+      if (id(middle) < wanted) from = middle + 1;
+      else to = middle;
+    }
+    return from;
+  }
+  std::uint64_t id(std::size_t k) const { return ids_[index(k)]; }
+
+  // Records come in file order: newlines are counted from the last one.
+  SourceLocation locate(std::uint64_t offset) {
+    while (scanned_ < offset) {
+      const void* newline = std::memchr(text_.data() + scanned_, '\n', offset - scanned_);
+      if (newline == nullptr) {
+        scanned_ = offset;
+        break;
+      }
+      ++line_;
+      scanned_ = line_start_ = static_cast<std::size_t>(static_cast<const char*>(newline) - text_.data()) + 1;
+    }
+    return {line_, static_cast<std::uint32_t>(offset - line_start_ + 1)};
+  }
+
+  std::string_view text_;
+  std::span<const std::uint64_t> ids_;
+  std::span<const std::uint32_t> by_id_;  // indexes into ids_ in id order; empty when ids_ is sorted
+  std::span<SourceLocation> out_;
+  std::size_t cursor_ = 0;
+  std::uint64_t last_id_ = 0;
+  std::uint32_t line_ = 1;
+  std::size_t line_start_ = 0, scanned_ = 0;  // newlines are counted in [0, scanned_)
+};
+
+}  // namespace
+
+void locate_records(const std::filesystem::path& path, std::span<const std::uint64_t> ids,
+                    std::span<SourceLocation> out) {
+  std::fill(out.begin(), out.end(), SourceLocation{});
+  if (ids.empty() || io::is_standard_stream(path)) return;
+  std::vector<std::uint32_t> by_id;
+  if (!std::is_sorted(ids.begin(), ids.end())) {
+    by_id.resize(ids.size());
+    for (std::size_t i = 0; i < by_id.size(); ++i) by_id[i] = static_cast<std::uint32_t>(i);
+    std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
+  }
+  // The text: a mapping of a regular file (no copy), else a copy.
+  detail::TextBytes mapped;
+  std::string copy;
+  std::string_view text;
+  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0) return;
+  struct stat status {};
+  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
+    mapped = DocumentBuilder::map_file(descriptor, static_cast<std::size_t>(status.st_size));
+    if (mapped) text = std::string_view(mapped.get(), static_cast<std::size_t>(status.st_size));
+  }
+  ::close(descriptor);
+  if (!mapped) {
+    if (io::read_text(path, copy)) return;
+    text = copy;
+  }
+  ReadOptions options;
+  options.strict = false;
+  options.error_limit = std::numeric_limits<std::size_t>::max();
+  RecordLocator locator(text, ids, by_id, out);
+  stream_text(text, path.string(), options, locator);
+}
 
 ReadResult read_text(std::string text, std::string file_name, const ReadOptions& options) {
   const std::size_t size = text.size();

@@ -30,6 +30,7 @@
 #include "stepnc/meta/registry.h"
 #include "stepnc/p21/document.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/meta/value.h"
 
@@ -2381,33 +2382,65 @@ std::size_t report_violations(const meta::Model& model, const std::filesystem::p
 
 std::size_t report_violations(const meta::Model& model, const std::filesystem::path& path,
                               p21::Diagnostics& diagnostics, bool with_text, const CheckOptions& check_options) {
-  const std::vector<Violation> violations = check(model, check_options);
-  if (violations.empty()) return 0;
-  std::optional<p21::Document> document;
-  if (!io::is_standard_stream(path)) {
-    p21::ReadOptions options;
-    options.strict = false;
-    options.validate_parameters = false;
-    document = std::move(p21::read_file(path, options).document);
+  const ViolationReport report = report_violations(model, path, with_text, check_options);
+  for (std::size_t i = 0; i < report.size(); ++i) diagnostics.add(report.diagnostic(i));
+  return report.errors;
+}
+
+namespace {
+
+p21::Severity severity_of(const Violation& v) {
+  return v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
+}
+
+// The message of a violation's diagnostic: the `#id` is the diagnostic's.
+void append_report_message(std::string& out, const Violation& v, bool with_text) {
+  append_message(out, v);
+  if (with_text && !v.text().empty()) {
+    out += ": ";
+    out += v.text();
   }
-  const std::string file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
-  std::size_t count = 0;
-  for (const Violation& v : violations) {
-    p21::Diagnostic d;
-    d.file = file;
-    if (v.id) d.instance_id = *v.id;  // none for a global RULE
-    d.severity = v.kind == Violation::Kind::Unevaluated ? p21::Severity::warning : p21::Severity::error;
-    if (v.kind != Violation::Kind::Unevaluated) ++count;
-    append_message(d.message, v);  // the diagnostic prints `#id`
-    if (with_text && !v.text().empty()) {
-      d.message += ": ";
-      d.message += v.text();
-    }
-    if (document && v.id)
-      if (const p21::RecordEntry* record = document->find(*v.id)) d.location = document->location(record->offset);
-    diagnostics.add(std::move(d));
-  }
-  return count;
+}
+
+}  // namespace
+
+p21::Diagnostic ViolationReport::diagnostic(std::size_t i) const {
+  const Violation& v = violations[i];
+  p21::Diagnostic d;
+  d.file = file;
+  d.location = locations[i];
+  if (v.id) d.instance_id = *v.id;  // none for a global RULE
+  d.severity = severity_of(v);
+  append_report_message(d.message, v, with_text);
+  return d;
+}
+
+void ViolationReport::append_line(std::string& out, std::size_t i) const {
+  const Violation& v = violations[i];
+  p21::append_diagnostic_head(out, file, locations[i], severity_of(v), v.id ? std::optional<std::uint64_t>(*v.id) : std::nullopt);
+  append_report_message(out, v, with_text);
+  out += '\n';
+}
+
+ViolationReport report_violations(const meta::Model& model, const std::filesystem::path& path, bool with_text,
+                                  const CheckOptions& options) {
+  ViolationReport report;
+  report.file = io::is_standard_stream(path) ? std::string(io::standard_input_name) : path.string();
+  report.with_text = with_text;
+  report.violations = check(model, options);
+  report.errors = static_cast<std::size_t>(std::count_if(report.violations.begin(), report.violations.end(),
+                                                         [](const Violation& v) { return severity_of(v) == p21::Severity::error; }));
+  report.locations.resize(report.violations.size());
+  if (report.violations.empty()) return report;
+  // Each violation at its instance's record, found in one more pass over
+  // the file (the model keeps no positions); a global RULE has none.
+  constexpr std::uint64_t no_record = std::numeric_limits<std::uint64_t>::max();
+  std::vector<std::uint64_t> ids(report.violations.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = report.violations[i].id ? *report.violations[i].id : no_record;
+  p21::locate_records(path, ids, report.locations);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (ids[i] == no_record) report.locations[i] = {};
+  return report;
 }
 
 std::vector<std::string> list_rules(const meta::SchemaInfo& schema) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace stepnc::p21 {
@@ -36,7 +37,15 @@ struct Diagnostic {
 
   /// "file:line:col: error: `#id`: message" (parts that are unknown are left out).
   std::string to_string() const;
+  /// The same text appended to `out` (no newline): no string of its own.
+  void append_to(std::string& out) const;
 };
+
+/// Appends what Diagnostic::to_string() puts before the message,
+/// "file:line:col: error: `#id`: ", for a report that keeps the file name
+/// once and formats its lines straight into an output buffer.
+void append_diagnostic_head(std::string& out, std::string_view file, SourceLocation location, Severity severity,
+                            std::optional<std::uint64_t> instance_id);
 
 /// A syntax problem found by a low-level routine that knows only byte
 /// offsets; the document turns it into a Diagnostic with line:col.

@@ -93,6 +93,14 @@ Diagnostics stream(std::FILE* file, std::string file_name, const ReadOptions& op
 Diagnostics stream_text(std::string_view text, std::string file_name, const ReadOptions& options,
                         RecordHandler& handler);
 
+/// Line and column of the record of each of `ids` in the file at `path`
+/// (`out[i]` for `ids[i]`; 0:0 when the file has no such record, or cannot
+/// be read), in one pass that keeps nothing per record: for a report of
+/// many instances of a file already read. Ids in increasing order, as the
+/// records are in a file written in order, are matched as they come.
+void locate_records(const std::filesystem::path& path, std::span<const std::uint64_t> ids,
+                    std::span<SourceLocation> out);
+
 /// Line and column of byte `offset` of `text`, counted on demand (no table
 /// is kept: for a reader that needs a position only when it reports one).
 SourceLocation text_location(std::string_view text, std::uint64_t offset);

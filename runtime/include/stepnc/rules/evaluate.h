@@ -147,6 +147,34 @@ Validation validate(const meta::Model& model, std::size_t limit = 1000);
 /// The same, each up to `options.limit`, the rules checked as `options` say.
 Validation validate(const meta::Model& model, const CheckOptions& options);
 
+/// The rule violations of a file, each at its instance's record, ready to
+/// print after the read's own diagnostics: what `stepnc validate` reports.
+/// The file name is held once and a line is formatted straight into the
+/// caller's buffer, so a report of a million violations costs little more
+/// than the violations themselves.
+struct ViolationReport {
+  std::string file;  ///< the name every line starts with
+  bool with_text = false;  ///< each message ends with the rule's text
+  std::vector<Violation> violations;  ///< in check() order: errors up to the limit, and the warnings
+  /// Where each violation's record starts; 0:0 when unknown (a global
+  /// RULE, standard input, a record the file does not have).
+  std::vector<p21::SourceLocation> locations;
+  std::size_t errors = 0;  ///< violations that are errors (a rule that could not be evaluated is a warning)
+
+  std::size_t size() const { return violations.size(); }  ///< errors and warnings
+  /// Violation `i` as a diagnostic: error, or warning when not evaluated.
+  p21::Diagnostic diagnostic(std::size_t i) const;
+  /// Appends diagnostic(i).to_string() to `out`, without a string of its own.
+  void append_line(std::string& out, std::size_t i) const;
+};
+
+/// Evaluates every rule on `model`, read from `path`, up to `options.limit`
+/// violated rules (on `options.jobs` threads), and locates each violation's
+/// record. The file is read again (indexed, not parsed) only when there is
+/// something to locate; standard input cannot be: no positions then.
+ViolationReport report_violations(const meta::Model& model, const std::filesystem::path& path, bool with_text,
+                                  const CheckOptions& options);
+
 /// Evaluates every rule on `model`, read from `path`, and adds each
 /// violation to `diagnostics` as an error at the instance's record
 /// (`file:line:col: error: #id: entity.label violated`), with the rule's
