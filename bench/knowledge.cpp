@@ -133,8 +133,13 @@ void import_million(const fs::path& source) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const fs::path source = argc > 1 ? fs::path(argv[1]) : fs::path(STEPNC_SOURCE_DIR);
+  const fs::path source = fs::absolute(argc > 1 ? fs::path(argv[1]) : fs::path(STEPNC_SOURCE_DIR));
   const std::string only = argc > 2 ? argv[2] : "";
+  // The stores, programs and log it makes (some 60 MB) go to a folder of
+  // their own, not wherever the bench was started (a source tree).
+  const fs::path work = fs::temp_directory_path() / "stepnc_knowledge_bench";
+  fs::create_directories(work);
+  fs::current_path(work);
   if (only.empty() || only == "capitalize") capitalize_thousand(source);
   if (only.empty() || only == "query") query_hundred_thousand(source);
   if (only.empty() || only == "log") import_million(source);
