@@ -515,6 +515,30 @@ detail::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
 
 namespace {
 
+// A mapping of `path` when it is a regular file of at least `smallest`
+// bytes (below that the caller reads it); `opened` is false when it
+// cannot be opened at all.
+struct MappedFile {
+  detail::TextBytes bytes;
+  std::size_t size = 0;
+  bool opened = false;
+};
+
+MappedFile map_regular_file(const std::filesystem::path& path, std::size_t smallest) {
+  MappedFile mapped;
+  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (descriptor < 0) return mapped;
+  mapped.opened = true;
+  struct stat status {};
+  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
+      static_cast<std::size_t>(status.st_size) >= smallest) {
+    mapped.size = static_cast<std::size_t>(status.st_size);
+    mapped.bytes = DocumentBuilder::map_file(descriptor, mapped.size);
+  }
+  ::close(descriptor);
+  return mapped;
+}
+
 // Reads a document from its text, again on one thread when a parallel read
 // was abandoned. With `layout`, its round trip is written there as it is
 // read; `streamed` tells whether that output is complete.
@@ -550,18 +574,9 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
     const std::size_t size = text.size();
     return read_document(DocumentBuilder::copy_text(text), size, io::standard_input_name, options, layout, streamed);
   }
-  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (descriptor < 0) return io_error("cannot open file");
-  struct stat status {};
-  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
-      static_cast<std::size_t>(status.st_size) >= kMapThreshold) {
-    const auto size = static_cast<std::size_t>(status.st_size);
-    detail::TextBytes bytes = DocumentBuilder::map_file(descriptor, size);
-    ::close(descriptor);
-    if (bytes) return read_document(std::move(bytes), size, path.string(), options, layout, streamed);
-  } else {
-    ::close(descriptor);
-  }
+  MappedFile mapped = map_regular_file(path, kMapThreshold);
+  if (!mapped.opened) return io_error("cannot open file");
+  if (mapped.bytes) return read_document(std::move(mapped.bytes), mapped.size, path.string(), options, layout, streamed);
 
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return io_error("cannot open file");
@@ -671,18 +686,13 @@ void locate_records(const std::filesystem::path& path, std::span<const std::uint
     std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
   }
   // The text: a mapping of a regular file (no copy), else a copy.
-  detail::TextBytes mapped;
+  const MappedFile mapped = map_regular_file(path, 1);
+  if (!mapped.opened) return;
   std::string copy;
   std::string_view text;
-  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (descriptor < 0) return;
-  struct stat status {};
-  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
-    mapped = DocumentBuilder::map_file(descriptor, static_cast<std::size_t>(status.st_size));
-    if (mapped) text = std::string_view(mapped.get(), static_cast<std::size_t>(status.st_size));
-  }
-  ::close(descriptor);
-  if (!mapped) {
+  if (mapped.bytes) {
+    text = std::string_view(mapped.bytes.get(), mapped.size);
+  } else {
     if (io::read_text(path, copy)) return;
     text = copy;
   }
