@@ -722,6 +722,8 @@ void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slo
     p.print(",\n .locate = &stepnc::meta::field<$object$, &$owner$::$member$>", v);
     if (declared.optional && !nullable(declared.type))
       p.print(",\n .optional_storage = &stepnc::meta::optional_ops<$storage$>", v);
+    if (auto b = rules_.bounds.find(&declared); b != rules_.bounds.end())
+      p.print(",\n .bounds = meta_tables::$bounds$", {{"bounds", b->second}});
   }
   p.print("},\n");
 }
@@ -858,7 +860,16 @@ std::string SchemaEmitter::source() {
   const std::string ns_name = ns(&schema_);
   const auto entities = entities_in_order();
   const auto& combinations = analysis_.combinations(&schema_);
-  rules_ = emit_rules(schema_);
+  // Attributes whose bounds the evaluator evaluates, as the entity tables list them.
+  std::vector<const Attribute*> bounded;
+  auto note_bounded = [&](const Entity& e) {
+    for (const model::Part21Slot& slot : e.part21)
+      if (!slot.derived() && !evaluated_bounds(slot.declared->type).empty()) bounded.push_back(slot.declared);
+  };
+  for (const Entity* e : entities) note_bounded(*e);
+  for (const Combination& c : combinations)
+    for (const Entity* part : c.parts) note_bounded(*part);
+  rules_ = emit_rules(schema_, bounded);
 
   // Tables first into their own buffer: they register the anonymous
   // aggregate types, which must be defined before them.

@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,16 @@ struct ValidationProblem {
   /// "`#12` direction.direction_ratios: 1 element, outside the bounds [2:3]"
   std::string to_string() const;
 };
+
+/// Whether `size` elements fit an aggregate of `kind` with the bounds
+/// [lower:upper] (`upper` none for `?`; ISO 10303-11 8.2): an ARRAY holds
+/// one element per index (none fit when upper < lower, and any number when
+/// the upper bound is unknown), a LIST, BAG or SET from lower to upper. If
+/// not, the problem in the words every bounds check uses (validate(), the
+/// typed read, the rule evaluator's bounds that are expressions): "1
+/// element, outside the bounds [2:3]".
+std::optional<std::string> size_problem(TypeKind kind, std::int64_t lower, std::optional<std::int64_t> upper,
+                                        std::size_t size);
 
 /// Every problem, in instance order, up to `limit`.
 std::vector<ValidationProblem> validate(const Model& model, std::size_t limit = 1000);
