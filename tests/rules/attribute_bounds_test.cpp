@@ -9,7 +9,8 @@
 // bound that is `?`, a REAL or overflows checks nothing.
 #include <catch2/catch.hpp>
 
-#include <cstdio>
+#include <cstdint>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -19,6 +20,7 @@
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/model.h"
 #include "stepnc/meta/registry.h"
+#include "stepnc/meta/validate.h"
 #include "stepnc/rules/evaluate.h"
 
 namespace {
@@ -191,4 +193,20 @@ TEST_CASE("rules::validate checks the evaluated bounds of a model built in code"
   stepnc::rules::CheckOptions options;
   options.jobs = 3;
   CHECK(stepnc::rules::validate(model, options).messages() == broken.messages());
+}
+
+TEST_CASE("meta::size_problem: one element per index of an ARRAY, lower to upper for the others", "[rules][attribute_bounds]") {
+  using stepnc::meta::TypeKind;
+  using stepnc::meta::size_problem;
+  CHECK_FALSE(size_problem(TypeKind::Array, -5, -1, 5));
+  CHECK(size_problem(TypeKind::Array, -5, -1, 4) == "4 elements, outside the bounds [-5:-1]");
+  CHECK(size_problem(TypeKind::Array, 1, 0, 0) == "0 elements, outside the bounds [1:0]");  // upper < lower: none fit
+  CHECK_FALSE(size_problem(TypeKind::Array, 1, std::nullopt, 7));  // upper unknown: nothing said
+  CHECK(size_problem(TypeKind::Array, INT64_MIN, INT64_MAX, 3) ==
+        "3 elements, outside the bounds [-9223372036854775808:9223372036854775807]");
+  CHECK_FALSE(size_problem(TypeKind::List, 2, std::nullopt, 2));
+  CHECK(size_problem(TypeKind::List, 2, std::nullopt, 1) == "1 element, outside the bounds [2:?]");
+  CHECK(size_problem(TypeKind::Set, 0, -1, 0) == "0 elements, outside the bounds [0:-1]");  // a negative upper bound
+  CHECK_FALSE(size_problem(TypeKind::Bag, -3, 2, 0));
+  CHECK(size_problem(TypeKind::Bag, INT64_MAX, std::nullopt, 5) == "5 elements, outside the bounds [9223372036854775807:?]");
 }

@@ -102,20 +102,7 @@ class Validator {
 
 }  // namespace
 
-std::optional<std::string> size_problem(TypeKind kind, std::int64_t lower, std::optional<std::int64_t> upper,
-                                        std::size_t size) {
-  bool fits = true;
-  if (kind == TypeKind::Array) {
-    // upper - lower in unsigned arithmetic: exact for any upper >= lower.
-    if (upper)
-      fits = *upper >= lower && size > 0 &&
-             static_cast<std::uint64_t>(*upper) - static_cast<std::uint64_t>(lower) == size - 1;
-  } else {
-    const auto n = static_cast<std::uint64_t>(size);
-    fits = (lower <= 0 || n >= static_cast<std::uint64_t>(lower)) &&
-           (!upper || (*upper >= 0 && n <= static_cast<std::uint64_t>(*upper)));
-  }
-  if (fits) return std::nullopt;
+std::string bounds_problem(std::int64_t lower, std::optional<std::int64_t> upper, std::size_t size) {
   return fmt::format("{} element{}, outside the bounds [{}:{}]", size, size == 1 ? "" : "s", lower,
                      upper ? std::to_string(*upper) : std::string("?"));
 }
