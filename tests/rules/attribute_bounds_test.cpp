@@ -167,6 +167,9 @@ TEST_CASE("HIBOUND, LOBOUND, HIINDEX, LOINDEX give the evaluated bounds; an ARRA
   // [LOINDEX, HIINDEX, LOBOUND, HIBOUND] of cells : ARRAY [first_row:last_row], then
   // LOINDEX, HIINDEX of cells[first_row] : ARRAY [first_column:last_column], HIBOUND of cells[last_row].
   CHECK(stepnc::rules::derive_text(grid, *grid.entity_info().find_attribute("indices")) == "[5,6,5,6,-1,1,1]");
+  // In a FUNCTION: [LOINDEX(g.cells), HIINDEX(g.cells[6]), g.cells[6][-1], and
+  // LOINDEX of g.cells and of g.cells[5] passed as AGGREGATE OF GENERIC].
+  CHECK(stepnc::rules::call_text(model, attribute_bounds::meta_algorithms::row_bounds, {"#6"}) == "[5,1,10,5,-1]");
   // The rules that read them hold: grid.wr1 (LOINDEX, HIBOUND of a row),
   // grid.wr2 (cells[5][-1] is the corner), curve_with_knots.wr1 (HIBOUND, LOBOUND).
   CHECK(stepnc::rules::check(model).empty());
