@@ -90,6 +90,9 @@ TEST_CASE("expressc emits bounds that are expressions, per level, and none for c
   REQUIRE(inherited);
   CHECK(inherited->bounds.size() == 1);
   CHECK(inherited->bounds[0].upper.text == "(2 * index_count)");
+  // A redeclaration's bounds are its subtype's row's.
+  CHECK(attribute_bounds::polygon::meta_entity.find_attribute("corners")->bounds[0].lower.text == "3");
+  CHECK(attribute_bounds::quadrilateral::meta_entity.find_attribute("corners")->bounds[0].lower.text == "4");
   CHECK(attribute_bounds::vertex::meta_entity.find_attribute("x")->bounds.empty());
   CHECK(attribute_bounds::mesh::meta_entity.find_attribute("index_count")->bounds.empty());
 }
@@ -102,7 +105,9 @@ TEST_CASE("a file whose aggregates fit their evaluated bounds is valid", "[rules
                                       "#5=CURVE_WITH_KNOTS(3,(4,4),(0.,1.));\n"
                                       "#6=GRID(5,6,-1,3,7,((7,8,9),(10,11,12)));\n"
                                       "#7=SAMPLING(4,$,(1,2),(1,2,3,4,5),(1,2,3,4));\n"
-                                      "#8=SAMPLING(4,2,(1,2,3,4,5,6,7),(1,2),(4,5,6,7,8));\n");
+                                      "#8=SAMPLING(4,2,(1,2,3,4,5,6,7),(1,2),(4,5,6,7,8));\n"
+                                      "#9=POLYGON(5,(#1,#2,#1));\n"
+                                      "#10=QUADRILATERAL(5,(#1,#2,#1,#2));\n");
   CHECK(good.report.empty());
   CHECK(good.errors == 0);
 }
@@ -118,7 +123,9 @@ TEST_CASE("stepnc validate reports each aggregate outside its evaluated bounds a
                                      "#15=GRID(5,6,-1,3,7,((7,8,9),(10,11)));\n"                     // 15
                                      "#16=GRID(5,6,-1,3,8,((7,8,9),(10,11,12)));\n"                  // 16
                                      "#17=SAMPLING(4,$,(1,2,3,4,5),(1,2),(1,2,3));\n"                // 17
-                                     "#18=SAMPLING(-5,7,(1),(1,2,3,4,5,6,7,8),(1));\n");             // 18
+                                     "#18=SAMPLING(-5,7,(1),(1,2,3,4,5,6,7,8),(1));\n"              // 18
+                                     // The subtype's redeclaration, LIST [4:side_count], applies.
+                                     "#19=QUADRILATERAL(5,(#1,#2,#1));\n");                         // 19
   const std::string& f = bad.file;
   CHECK(bad.report ==
         f + ":10:1: error: #10: mesh.cells: 2 elements, outside the bounds [1:3]\n" +
@@ -129,8 +136,9 @@ TEST_CASE("stepnc validate reports each aggregate outside its evaluated bounds a
         f + ":15:1: error: #15: grid.cells: 2 elements, outside the bounds [-1:1]\n" +
         f + ":16:1: error: #16: grid.wr2 violated\n" +
         f + ":17:1: error: #17: sampling.at_least: 3 elements, outside the bounds [4:?]\n" +
-        f + ":18:1: error: #18: sampling.picks: 8 elements, outside the bounds [1:7]\n");
-  CHECK(bad.errors == 9);
+        f + ":18:1: error: #18: sampling.picks: 8 elements, outside the bounds [1:7]\n" +
+        f + ":19:1: error: #19: polygon.corners: 3 elements, outside the bounds [4:5]\n");
+  CHECK(bad.errors == 10);
 }
 
 TEST_CASE("bounds giving a negative or huge size, a REAL or ? never crash", "[rules][attribute_bounds]") {
