@@ -8,6 +8,7 @@
 // HIBOUND, LOBOUND, HIINDEX and LOINDEX (15.10, 15.11, 15.14, 15.15). A
 // bound that is `?`, a REAL or overflows checks nothing.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cstdint>
 #include <optional>
@@ -220,4 +221,52 @@ TEST_CASE("meta::size_problem: one element per index of an ARRAY, lower to upper
   CHECK(size_problem(TypeKind::Set, 0, -1, 0) == "0 elements, outside the bounds [0:-1]");  // a negative upper bound
   CHECK_FALSE(size_problem(TypeKind::Bag, -3, 2, 0));
   CHECK(size_problem(TypeKind::Bag, INT64_MAX, std::nullopt, 5) == "5 elements, outside the bounds [9223372036854775807:?]");
+}
+
+TEST_CASE("replayed rules see each instance's own evaluated bounds", "[rules][attribute_bounds]") {
+  // Grids of one entity whose rows start at different indices: a trace of
+  // grid.wr2 (cells[first_row][first_column] = corner) recorded on one
+  // must not be replayed on another with other bounds. Every third
+  // corner is wrong, every fifth grid has a short row.
+  std::string data;
+  std::vector<std::string> expected;
+  for (int i = 0; i < 60; ++i) {
+    const int first_row = i % 7 - 3, first_column = i % 4 - 2;
+    const bool wrong_corner = i % 3 == 0, short_row = i % 5 == 0;
+    data += fmt::format("#{}=GRID({},{},{},2,{},((1,2),(3{})));\n", 100 + i, first_row, first_row + 1, first_column,
+                        wrong_corner ? 9 : 1, short_row ? "" : ",4");
+    if (wrong_corner) expected.push_back(fmt::format("#{}: grid.wr2 violated", 100 + i));
+    if (short_row)
+      expected.push_back(fmt::format("#{}: grid.cells: 1 element, outside the bounds [{}:{}]", 100 + i, first_column,
+                                     first_column + 1));
+  }
+  stepnc::exchange::ModelReadResult read = stepnc::exchange::read_model_text(part21(data), "grids.stp", registry());
+  REQUIRE(read.ok());
+  auto messages = [&](bool reuse, unsigned jobs) {
+    stepnc::rules::CheckOptions options;
+    options.reuse = reuse;
+    options.jobs = jobs;
+    std::vector<std::string> out;
+    for (const auto& v : stepnc::rules::check(read.file->model, options)) out.push_back(v.to_string());
+    return out;
+  };
+  CHECK(messages(false, 1) == expected);
+  CHECK(messages(true, 1) == expected);
+  CHECK(messages(true, 3) == expected);
+
+  // sampling.wr1 (LOBOUND(at_least) < 10) reads nothing but at_least, whose
+  // elements are the same in every instance; its lower bound, `limit`,
+  // alternates 4 and 12: a trace of a limit-4 instance holds for the
+  // next limit-4 one only.
+  data.clear();
+  expected.clear();
+  for (int i = 0; i < 40; ++i) {
+    data += fmt::format("#{}=SAMPLING({},$,(1),(1),(1,2,3,4,5,6,7,8,9,10,11,12));\n", 200 + i, i % 2 ? 12 : 4);
+    if (i % 2) expected.push_back(fmt::format("#{}: sampling.wr1 violated", 200 + i));
+  }
+  read = stepnc::exchange::read_model_text(part21(data), "samplings.stp", registry());
+  REQUIRE(read.ok());
+  CHECK(messages(false, 1) == expected);
+  CHECK(messages(true, 1) == expected);
+  CHECK(messages(true, 3) == expected);
 }
