@@ -7,6 +7,7 @@
 
 #include "ast/ast.h"
 #include "emit/cpp/cpp_generator.h"
+#include "emit/cpp/rules.h"
 #include "emit/json/json_generator.h"
 #include "support.h"
 
@@ -453,4 +454,51 @@ TEST_CASE("a select member that renames a select gets no value accessor", "[corp
         std::string::npos);
   CHECK(h.find("as_inspected_shape_element_select") == std::string::npos);
   CHECK(h.find("knot_locator* as_knot_locator() const;") != std::string::npos);
+}
+
+TEST_CASE("bounds that are expressions of the instance's attributes stay trees, bound to the attributes", "[corpus]") {
+  auto model = compile_good({"attribute_bounds.exp"});
+  // Each form: a plain attribute, arithmetic, SELF\supertype.attribute, a
+  // DERIVE attribute, nested ARRAYs with expression lower bounds.
+  auto bound_text = [&](const char* entity, const char* attribute) {
+    return type_text(test::attribute(test::entity(*model, entity), attribute).type);
+  };
+  CHECK(bound_text("mesh", "cells") == "ARRAY [1:cell_count] OF vertex");
+  CHECK(bound_text("mesh", "planes") == "ARRAY [1:(2 * index_count)] OF INTEGER");
+  CHECK(bound_text("indexed_mesh", "vertex_counts") == "ARRAY [1:SELF\\mesh.index_count] OF INTEGER");
+  CHECK(bound_text("curve_with_knots", "knots") == "LIST [2:upper_index_on_knots] OF REAL");
+  CHECK(bound_text("grid", "cells") ==
+        "ARRAY [first_row:last_row] OF ARRAY [first_column:last_column] OF INTEGER");
+
+  const model::Entity& curve = test::entity(*model, "curve_with_knots");
+  const model::TypeRef& knots = test::attribute(curve, "knots").type;
+  CHECK(knots.lower.value == 2);
+  CHECK_FALSE(knots.upper.value);
+  REQUIRE(knots.upper.expression);
+  CHECK(knots.upper.expression->binding.kind == ast::Binding::Kind::Attribute);
+  CHECK(knots.upper.expression->binding.attribute == &test::attribute(curve, "upper_index_on_knots"));
+
+  // The levels the evaluator evaluates: down to the deepest with an expression.
+  const model::TypeRef& cells = test::attribute(test::entity(*model, "grid"), "cells").type;
+  CHECK(emit::cpp::evaluated_bounds(cells) == std::vector<const model::TypeRef*>{&cells, cells.element.get()});
+  CHECK(emit::cpp::evaluated_bounds(test::attribute(test::entity(*model, "vertex"), "x").type).empty());
+
+  // The C++ tables: one BoundsInfo array per attribute, named by every row
+  // that lists it (indexed_mesh inherits mesh's).
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  CHECK(diagnostics.empty());
+  REQUIRE(files.size() == 2);
+  const std::string& cc = files[1].text;
+  CHECK(cc.find("constexpr stepnc::meta::BoundsInfo grid_cells_bounds[] = {\n"
+                "    {.lower = {.text = \"first_row\", .line = 52,") != std::string::npos);
+  CHECK(cc.find("{.lower = {.text = \"limit\", .line = 69, .expression = {rule_nodes, ") != std::string::npos);
+  CHECK(cc.find(".upper = {.text = \"?\"}}") != std::string::npos);
+  std::size_t rows = 0;
+  for (std::size_t at = cc.find(".bounds = meta_tables::mesh_planes_bounds"); at != std::string::npos;
+       at = cc.find(".bounds = meta_tables::mesh_planes_bounds", at + 1))
+    ++rows;
+  CHECK(rows == 2);
+  CHECK(cc.find("constexpr stepnc::meta::BoundsInfo mesh_planes_bounds[]") ==
+        cc.rfind("constexpr stepnc::meta::BoundsInfo mesh_planes_bounds[]"));
 }

@@ -204,6 +204,17 @@ std::string express_text(const TypeRef& t) {
   }
 }
 
+// The attribute whose bound expressions a Part 21 slot's row carries
+// (rules.h, evaluated_bounds): a redeclaration's in a subtype, whose
+// bounds then apply, else the declared attribute's; null when neither has
+// any, or the slot is derived.
+const Attribute* bounded_attribute(const model::Part21Slot& slot) {
+  if (slot.derived()) return nullptr;
+  if (!evaluated_bounds(slot.effective->type).empty()) return slot.effective;
+  if (!evaluated_bounds(slot.declared->type).empty()) return slot.declared;
+  return nullptr;
+}
+
 // A name describing an anonymous aggregate type by its structure.
 std::string aggregate_name(const TypeRef& t) {
   std::string name(model::keyword(t.aggregate));
@@ -722,6 +733,8 @@ void SchemaEmitter::print_attribute_row(Printer& p, const model::Part21Slot& slo
     p.print(",\n .locate = &stepnc::meta::field<$object$, &$owner$::$member$>", v);
     if (declared.optional && !nullable(declared.type))
       p.print(",\n .optional_storage = &stepnc::meta::optional_ops<$storage$>", v);
+    if (const Attribute* a = bounded_attribute(slot))
+      p.print(",\n .bounds = meta_tables::$bounds$", {{"bounds", rules_.bounds.at(a)}});
   }
   p.print("},\n");
 }
@@ -858,7 +871,17 @@ std::string SchemaEmitter::source() {
   const std::string ns_name = ns(&schema_);
   const auto entities = entities_in_order();
   const auto& combinations = analysis_.combinations(&schema_);
-  rules_ = emit_rules(schema_);
+  // Attributes whose bounds the evaluator evaluates, as the entity tables
+  // list them (bounded_attribute).
+  std::vector<const Attribute*> bounded;
+  auto note_bounded = [&](const Entity& e) {
+    for (const model::Part21Slot& slot : e.part21)
+      if (const Attribute* a = bounded_attribute(slot)) bounded.push_back(a);
+  };
+  for (const Entity* e : entities) note_bounded(*e);
+  for (const Combination& c : combinations)
+    for (const Entity* part : c.parts) note_bounded(*part);
+  rules_ = emit_rules(schema_, bounded);
 
   // Tables first into their own buffer: they register the anonymous
   // aggregate types, which must be defined before them.

@@ -56,7 +56,8 @@ std::string builtin_enumerator(std::string_view name) {
 
 class RuleEmitter {
  public:
-  explicit RuleEmitter(const model::Schema& schema) : schema_(schema) {}
+  RuleEmitter(const model::Schema& schema, const std::vector<const model::Attribute*>& bounded)
+      : schema_(schema), bounded_(bounded) {}
 
   RuleTables run() {
     for (const auto& type : schema_.types)
@@ -72,6 +73,8 @@ class RuleEmitter {
         out_.derivations[attribute.get()] = rule_row(table, rule, "");
       }
     }
+    for (const model::Attribute* attribute : bounded_)
+      if (!out_.bounds.count(attribute)) out_.bounds[attribute] = bounds_table(*attribute);
     for (const auto& algorithm : schema_.algorithms) emit_algorithm(*algorithm);
     print_nodes();
     return std::move(out_);
@@ -79,6 +82,7 @@ class RuleEmitter {
 
  private:
   const model::Schema& schema_;
+  const std::vector<const model::Attribute*>& bounded_;
   RuleTables out_;
   std::string rule_text_;  // DomainRuleInfo arrays, printed after the nodes
   std::vector<Emitted> nodes_;
@@ -512,6 +516,32 @@ class RuleEmitter {
     return table;
   }
 
+  // An attribute's bounds (meta::BoundsInfo), each level's two as trees
+  // with SELF the instance: a constant as an Integer node, `?` as no nodes.
+  std::string bounds_table(const model::Attribute& attribute) {
+    const std::string table =
+        fmt::format("{}_{}_bounds", identifier(attribute.owner->name), identifier(attribute.name));
+    std::string rows;
+    for (const model::TypeRef* level : cpp::evaluated_bounds(attribute.type))
+      rows += fmt::format("    {{.lower = {}, .upper = {}}},\n", bound_row(level->lower, attribute.location),
+                          bound_row(level->upper, attribute.location));
+    rule_text_ += fmt::format("constexpr stepnc::meta::BoundsInfo {}[] = {{\n{}}};\n", table, rows);
+    return table;
+  }
+  std::string bound_row(const model::Bound& bound, const model::SourceLocation& at) {
+    if (bound.unbounded()) return "{.text = \"?\"}";
+    begin_frame();
+    uint32_t root = 0;
+    if (bound.value) {
+      root = reserve(1);
+      node(root, "Integer").integer = std::to_string(*bound.value);
+    } else {
+      root = add(*bound.expression);
+    }
+    return fmt::format("{{.text = {}, .line = {}, .expression = {{rule_nodes, {}}}, .frame = {}}}",
+                       cpp_string(model::to_string(bound)), at.line, root, max_slot_);
+  }
+
   std::string where_table(const std::string& table, const std::vector<model::DomainRule>& rules) {
     std::vector<std::string> rows;
     for (const model::DomainRule& rule : rules) rows.push_back(rule_row(table, rule, "array"));
@@ -717,6 +747,20 @@ class RuleEmitter {
 
 }  // namespace
 
-RuleTables emit_rules(const model::Schema& schema) { return RuleEmitter(schema).run(); }
+std::vector<const model::TypeRef*> evaluated_bounds(const model::TypeRef& type) {
+  std::vector<const model::TypeRef*> levels;
+  size_t deepest = 0;  // levels up to the last with an expression
+  for (const model::TypeRef* t = &type; t && t->kind == model::TypeRef::Kind::Aggregate; t = t->element.get()) {
+    levels.push_back(t);
+    const auto expression = [](const model::Bound& b) { return !b.value && b.expression; };
+    if (expression(t->lower) || expression(t->upper)) deepest = levels.size();
+  }
+  levels.resize(deepest);
+  return levels;
+}
+
+RuleTables emit_rules(const model::Schema& schema, const std::vector<const model::Attribute*>& bounded) {
+  return RuleEmitter(schema, bounded).run();
+}
 
 }  // namespace expressc::emit::cpp

@@ -23,6 +23,7 @@ struct RuleTables {
   std::map<const model::Entity*, std::string> entity_where, entity_unique;  // table names
   std::map<const model::DefinedType*, std::string> type_where;
   std::map<const model::Attribute*, std::string> derivations;
+  std::map<const model::Attribute*, std::string> bounds;  // meta::BoundsInfo arrays (evaluated_bounds)
   std::vector<std::string> rules, functions;  // qualified AlgorithmInfo names, source order
   std::set<const model::Schema*> schemas;     // other schemas the tables refer to
 };
@@ -30,6 +31,15 @@ struct RuleTables {
 // C++ string literal for `text`.
 std::string cpp_string(std::string_view text);
 
-RuleTables emit_rules(const model::Schema& schema);
+// The levels of an explicit attribute's aggregate type, outermost first,
+// down to the deepest whose bounds include an expression the resolver
+// could not fold (`LIST [2:upper_index_on_knots]`): the evaluator
+// evaluates them per instance. Empty when every bound is a constant or `?`.
+std::vector<const model::TypeRef*> evaluated_bounds(const model::TypeRef& type);
+
+// `bounded`: the explicit attributes with evaluated_bounds that the
+// schema's entity tables list (its entities' and combinations' Part 21
+// slots, inherited ones included), each emitted once.
+RuleTables emit_rules(const model::Schema& schema, const std::vector<const model::Attribute*>& bounded);
 
 }  // namespace expressc::emit::cpp

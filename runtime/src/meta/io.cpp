@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "stepnc/meta/registry.h"
+#include "stepnc/meta/validate.h"
 
 namespace stepnc::meta {
 
@@ -408,11 +409,8 @@ class Filler {
 
   void read_aggregate(const ValueRef& target, const TypeInfo& type, const p21::Value& v) {
     const std::size_t n = v.size();
-    const auto [fewest, most] = type.size_limits();
-    if (static_cast<std::int64_t>(n) < fewest || (most >= 0 && static_cast<std::int64_t>(n) > most)) {
-      const std::string upper = type.upper ? std::to_string(*type.upper) : "?";
-      fail(v, fmt::format("{} elements, outside the bounds [{}:{}]", n, type.lower, upper));
-    }
+    if (auto problem = size_problem(type.kind, type.lower, type.upper, n)) fail(v, *problem);
+    const std::int64_t most = type.size_limits().second;
     std::size_t kept = n;
     if (!target.resize(n)) {
       kept = static_cast<std::size_t>(most);

@@ -77,13 +77,7 @@ class Validator {
 
   void check_aggregate(const Instance& owner, std::string_view attribute, const ValueRef& value, const TypeInfo& type) {
     const std::size_t n = value.size();
-    const auto size = static_cast<std::int64_t>(n);
-    const auto [fewest, most] = type.size_limits();
-    if (size < fewest || (most >= 0 && size > most)) {
-      const std::string upper = type.upper ? std::to_string(*type.upper) : "?";
-      report(owner, attribute,
-             fmt::format("{} element{}, outside the bounds [{}:{}]", n, n == 1 ? "" : "s", type.lower, upper));
-    }
+    if (auto problem = size_problem(type.kind, type.lower, type.upper, n)) report(owner, attribute, std::move(*problem));
     // A SET, and a LIST or ARRAY of UNIQUE, holds each instance once.
     const bool distinct = type.kind == TypeKind::Set || type.unique;
     std::unordered_set<const Instance*> seen;
@@ -107,6 +101,11 @@ class Validator {
 };
 
 }  // namespace
+
+std::string bounds_problem(std::int64_t lower, std::optional<std::int64_t> upper, std::size_t size) {
+  return fmt::format("{} element{}, outside the bounds [{}:{}]", size, size == 1 ? "" : "s", lower,
+                     upper ? std::to_string(*upper) : std::string("?"));
+}
 
 std::vector<ValidationProblem> validate(const Model& model, std::size_t limit) {
   Validator validator(model, limit);

@@ -187,6 +187,14 @@ bool like(std::string_view s, std::string_view p) {
   }
 }
 
+// One level of an explicit attribute's aggregate bounds evaluated for an
+// instance (meta::AttributeInfo::bounds): none where the bound is `?`, is
+// not an INTEGER or cannot be evaluated.
+struct EvaluatedBounds {
+  const meta::TypeInfo* type;  // the level's aggregate type (resolved)
+  std::optional<std::int64_t> lower, upper;
+};
+
 // ---------------------------------------------------------------- the interpreter
 
 // Slot vectors of finished frames and argument lists, kept for the next
@@ -398,6 +406,17 @@ class Interpreter {
 
   Value attribute_of(meta::Instance& instance, std::string_view name) { return attribute(Value::of_instance(&instance), name); }
 
+  /// The bounds of `attribute` of `instance` evaluated, outermost level
+  /// first (empty when they nest too deep to evaluate).
+  std::vector<EvaluatedBounds> bounds_of(meta::Instance& instance, const meta::AttributeInfo& attribute) {
+    steps_ = 0;
+    try {
+      return evaluate_bounds_of(instance, attribute);
+    } catch (const Unevaluable&) {
+      return {};
+    }
+  }
+
  private:
   Indexes& indexes_;
   const detail::References* references_ = nullptr;  // indexes_'s, once built
@@ -567,7 +586,7 @@ class Interpreter {
     if (!a) return {};  // an attribute of another entity the instance is not
     switch (a->kind) {
       case meta::AttributeKind::Explicit:
-        if (auto ref = meta::get(instance, *a)) return from_ref(*ref);
+        if (auto ref = meta::get(instance, *a)) return a->bounds.empty() ? from_ref(*ref) : bounded(instance, *a, from_ref(*ref));
         return {};
       case meta::AttributeKind::Derived: {
         if (!a->derivation) throw Unevaluable(fmt::format("derived attribute '{}' has no derivation", a->name));
@@ -591,6 +610,71 @@ class Interpreter {
       }
     }
     return {};
+  }
+
+  // The attributes whose bounds are being evaluated, innermost last: a
+  // bound that reads its own attribute (`knots : LIST
+  // [2:upper_index_on_knots]` with `upper_index_on_knots :=
+  // SIZEOF(knots)`) reads it with its constant bounds.
+  std::vector<std::pair<const meta::Instance*, const meta::AttributeInfo*>> bounding_;
+
+  // An explicit attribute's value shaped by the bounds evaluated for its
+  // instance (AttributeInfo::bounds; ISO 10303-11 8.2): at each level an
+  // ARRAY is indexed from its lower bound, and HIBOUND, LOBOUND, HIINDEX
+  // and LOINDEX give the evaluated bounds (15.10, 15.11, 15.14, 15.15); a
+  // lower bound that cannot be evaluated keeps the table's index, an upper
+  // one makes HIBOUND `?`.
+  Value bounded(meta::Instance& instance, const meta::AttributeInfo& a, Value v) {
+    for (const auto& [i, attribute] : bounding_)
+      if (i == &instance && attribute == &a) return v;
+    std::vector<EvaluatedBounds> evaluated;
+    try {
+      evaluated = evaluate_bounds_of(instance, a);
+    } catch (const Unevaluable&) {
+      return v;  // nested too deep
+    }
+    std::vector<Frame::Level> levels;
+    for (const EvaluatedBounds& level : evaluated) {
+      const AggregateShape::Kind kind = AggregateShape::unpack(shape_of(*level.type)).kind;
+      AggregateShape shape;
+      shape.kind = kind;
+      if (level.lower) shape = AggregateShape::of(kind, *level.lower, level.upper);
+      levels.push_back({shape.pack(), level.lower ? *level.lower : level.type->lower});
+    }
+    return shaped(std::move(v), levels);
+  }
+
+  std::vector<EvaluatedBounds> evaluate_bounds_of(meta::Instance& instance, const meta::AttributeInfo& a) {
+    const Nesting nesting(depth_, "aggregate bounds", a.name);
+    bounding_.emplace_back(&instance, &a);
+    struct Done {
+      decltype(bounding_)& list;
+      ~Done() { list.pop_back(); }
+    } done{bounding_};
+    const Value self = Value::of_instance(&instance);
+    std::vector<EvaluatedBounds> levels;
+    const meta::TypeInfo* type = a.type ? &a.type->resolved() : nullptr;
+    for (const meta::BoundsInfo& bounds : a.bounds) {
+      if (!type || !type->is_aggregate()) break;
+      levels.push_back({type, bound_value(bounds.lower, self), bound_value(bounds.upper, self)});
+      type = type->underlying ? &type->underlying->resolved() : nullptr;
+    }
+    return levels;
+  }
+
+  // One bound's value: none for `?`, a value that is not an INTEGER, or
+  // an expression that cannot be evaluated.
+  std::optional<std::int64_t> bound_value(const meta::DomainRuleInfo& bound, const Value& self) {
+    if (!bound.expression.nodes) return std::nullopt;
+    try {
+      Frame frame(pool_, bound.frame);
+      frame.self = self;
+      const Value v = eval(bound.expression.nodes, bound.expression.root, frame);
+      if (v.kind == Value::Kind::Integer) return v.integer;
+    } catch (const Unevaluable&) {
+    } catch (const std::out_of_range&) {
+    }
+    return std::nullopt;
   }
 
   Value population(const meta::EntityInfo& entity) {
@@ -1802,6 +1886,7 @@ class InstanceChecker {
     };
     std::vector<Where> where;
     std::vector<const meta::AttributeInfo*> typed;
+    std::vector<const meta::AttributeInfo*> bounded;  // bounds that are expressions (AttributeInfo::bounds)
     const std::vector<std::size_t>* fused = nullptr;
     // Outcomes: the WHERE rules', then the fused rules' predicates.
     struct Kept {
@@ -1827,8 +1912,10 @@ class InstanceChecker {
     if (fresh) {
       for (const meta::Upcast& up : entity.upcasts)
         for (const meta::DomainRuleInfo& rule : up.entity->where) plan.where.push_back({up.entity, &rule});
-      for (const meta::AttributeInfo& attribute : entity.attributes)
+      for (const meta::AttributeInfo& attribute : entity.attributes) {
         if (attribute.stored() && attribute.type && has_type_rules(*attribute.type)) plan.typed.push_back(&attribute);
+        if (attribute.stored() && !attribute.bounds.empty()) plan.bounded.push_back(&attribute);
+      }
       plan.fused = fused_.over(entity);
       plan.reuse = reuse_ && (!plan.where.empty() || plan.fused);
     }
@@ -1910,6 +1997,9 @@ class InstanceChecker {
     }
     for (const meta::AttributeInfo* attribute : plan.typed)
       if (auto ref = meta::get(instance, *attribute)) check_value(instance, *attribute, *ref);
+    for (const meta::AttributeInfo* attribute : plan.bounded)
+      if (auto ref = meta::get(instance, *attribute))
+        check_size(instance, *attribute, *ref, interpreter_.bounds_of(instance, *attribute));
     if (plan.fused)
       for (const std::size_t f : *plan.fused) {
         const Outcome& o = outcomes[i++];
@@ -1922,6 +2012,21 @@ class InstanceChecker {
           fused.holds_for_some = true;
         }
       }
+  }
+
+  // An aggregate's size at each level against the bounds evaluated for
+  // its instance, in meta::validate's words; a level whose lower bound is
+  // unknown is not checked, an unknown upper bound is `?`.
+  void check_size(meta::Instance& instance, const meta::AttributeInfo& attribute, const meta::ValueRef& ref,
+                  std::span<const EvaluatedBounds> levels) {
+    if (levels.empty() || !ref.resolved().is_aggregate()) return;
+    const EvaluatedBounds& level = levels.front();
+    if (level.lower)
+      if (auto problem = meta::size_problem(level.type->kind, *level.lower, level.upper, ref.size()))
+        findings_->report(Violation::bounds(instance.id(), attribute, std::move(*problem)));
+    if (levels.size() > 1)
+      for (std::size_t i = 0; i < ref.size() && !findings_->full(); ++i)
+        check_size(instance, attribute, ref.element(i), levels.subspan(1));
   }
 
   static bool has_type_rules(const meta::TypeInfo& type, int depth = 0) {
@@ -2257,6 +2362,17 @@ Violation Violation::unique(std::uint32_t id, const meta::EntityInfo& owner, con
   return v;
 }
 
+Violation Violation::bounds(std::uint32_t id, const meta::AttributeInfo& attribute, std::string problem) {
+  Violation v;
+  v.kind = Kind::Bounds;
+  v.id = id;
+  v.owner_ = &attribute.owner->name;
+  v.rule_ = nullptr;
+  v.attribute_ = &attribute;
+  v.message_ = std::make_unique<const std::string>(std::move(problem));
+  return v;
+}
+
 Violation Violation::global_rule(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo* where) {
   Violation v;
   v.kind = Kind::GlobalRule;
@@ -2309,6 +2425,12 @@ void append_rule_name(std::string& out, std::string_view owner, std::string_view
 // prints itself: appended, for a million of them in `stepnc validate`.
 void append_message(std::string& out, const Violation& v) {
   using Kind = Violation::Kind;
+  if (v.kind == Kind::Bounds) {  // as meta::ValidationProblem: "entity.attribute: message"
+    append_rule_name(out, v.owner(), v.attribute());
+    out += ": ";
+    out += v.message();
+    return;
+  }
   if (v.kind == Kind::GlobalRule || (v.kind == Kind::Unevaluated && !v.id)) out += "rule ";
   append_rule_name(out, v.owner(), v.label());
   switch (v.kind) {
@@ -2327,6 +2449,7 @@ void append_message(std::string& out, const Violation& v) {
       out += " not evaluated: ";
       out += v.message();
       break;
+    case Kind::Bounds: break;  // above
   }
 }
 

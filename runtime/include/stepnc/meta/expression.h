@@ -222,6 +222,19 @@ struct DomainRuleInfo {
   std::uint32_t frame = 0;   ///< variable slots it needs (QUERY variables)
 };
 
+/// The bounds of one level of an explicit attribute's aggregate type when
+/// one of them (at this level or a deeper one) is an expression of the
+/// instance's attributes, `knots : LIST [2:upper_index_on_knots] OF ...`:
+/// each bound a tree with SELF the instance, evaluated per instance (ISO
+/// 10303-11 8.2: a bound is an integer-valued expression; in an entity's
+/// attribute it may name the entity's attributes). A bound that is `?` has
+/// no nodes (`expression.nodes` null). The TypeInfo keeps the constant
+/// bounds it can (`?` for an expression).
+struct BoundsInfo {
+  DomainRuleInfo lower{};  ///< the lower bound; `text` as written
+  DomainRuleInfo upper{};  ///< the upper bound; no nodes for `?`
+};
+
 /// A UNIQUE clause: the named attributes' values are unique together among
 /// the instances of the entity.
 struct UniqueRuleInfo {

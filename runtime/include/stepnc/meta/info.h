@@ -211,6 +211,11 @@ struct AttributeInfo {
   /// Derived attributes: the derivation as an expression tree (SELF the
   /// instance), for the rule evaluator; `frame` slots for its variables.
   const DomainRuleInfo* derivation = nullptr;
+  /// Explicit attributes whose aggregate bounds are expressions of the
+  /// instance's attributes: each level's bounds, outermost first, down to
+  /// the deepest level with such a bound; empty otherwise (constant bounds
+  /// are `type`'s). The rule evaluator evaluates them per instance.
+  std::span<const BoundsInfo> bounds{};
 
   /// An explicit attribute redeclared as derived in a subtype keeps its Part
   /// 21 slot, written as `*`.

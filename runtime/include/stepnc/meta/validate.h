@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,33 @@ struct ValidationProblem {
   /// "`#12` direction.direction_ratios: 1 element, outside the bounds [2:3]"
   std::string to_string() const;
 };
+
+/// Whether `size` elements fit an aggregate of `kind` with the bounds
+/// [lower:upper] (`upper` none for `?`; ISO 10303-11 8.2): an ARRAY holds
+/// one element per index (none fit when upper < lower, and any number when
+/// the upper bound is unknown), a LIST, BAG or SET from lower to upper.
+/// Inline: the typed read asks it of every aggregate.
+constexpr bool fits_bounds(TypeKind kind, std::int64_t lower, std::optional<std::int64_t> upper,
+                           std::size_t size) noexcept {
+  const auto n = static_cast<std::uint64_t>(size);
+  if (kind == TypeKind::Array)  // upper - lower in unsigned arithmetic: exact for any upper >= lower
+    return !upper || (*upper >= lower && n > 0 &&
+                      static_cast<std::uint64_t>(*upper) - static_cast<std::uint64_t>(lower) == n - 1);
+  return (lower <= 0 || n >= static_cast<std::uint64_t>(lower)) &&
+         (!upper || (*upper >= 0 && n <= static_cast<std::uint64_t>(*upper)));
+}
+
+/// "1 element, outside the bounds [2:3]": the words of every bounds check
+/// (validate(), the typed read, the rule evaluator's bounds that are
+/// expressions of an instance's attributes).
+std::string bounds_problem(std::int64_t lower, std::optional<std::int64_t> upper, std::size_t size);
+
+/// bounds_problem() when `size` elements do not fit (fits_bounds), else none.
+inline std::optional<std::string> size_problem(TypeKind kind, std::int64_t lower, std::optional<std::int64_t> upper,
+                                               std::size_t size) {
+  if (fits_bounds(kind, lower, upper, size)) return std::nullopt;
+  return bounds_problem(lower, upper, size);
+}
 
 /// Every problem, in instance order, up to `limit`.
 std::vector<ValidationProblem> validate(const Model& model, std::size_t limit = 1000);

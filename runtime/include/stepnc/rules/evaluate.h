@@ -9,6 +9,9 @@
 ///     value stored in an attribute, inside aggregates and selects too);
 ///   * UNIQUE clauses, among the instances of the declaring entity;
 ///   * global RULEs over the entity populations;
+///   * the sizes of explicit attributes' aggregates whose bounds are
+///     expressions of the instance's attributes (`knots : LIST
+///     [2:upper_index_on_knots]`), evaluated per instance;
 /// with DERIVE and INVERSE attributes, FUNCTIONs and PROCEDUREs (LOCALs,
 /// IF, CASE, REPEAT, ALIAS, RETURN, ESCAPE, SKIP) and the built-ins
 /// evaluated on the way. Logic is three-valued (ISO 10303-11 12.4): a rule
@@ -46,6 +49,10 @@ struct Violation {
     Unique,       ///< a UNIQUE clause: `other` holds the same values
     GlobalRule,   ///< a RULE's domain rule (no `id`)
     Unevaluated,  ///< the rule could not be evaluated: `message()` says why
+    /// An aggregate of `attribute()` outside bounds that are expressions
+    /// of the instance's attributes, as evaluated for it: `message()`
+    /// says how, in meta::validate's words ("3 elements, outside the bounds [2:4]")
+    Bounds,
   };
   Kind kind = Kind::Where;          ///< which kind of rule (as the builders below set it: it says which rule is pointed to)
   std::optional<std::uint32_t> id;  ///< the instance's `#id`; empty for a global rule (#0 is a name)
@@ -59,24 +66,27 @@ struct Violation {
   /// UNIQUE clause `rule` of entity `owner`: instance `id` holds the values `other` holds.
   static Violation unique(std::uint32_t id, const meta::EntityInfo& owner, const meta::UniqueRuleInfo& rule,
                           std::uint32_t other);
+  /// An aggregate held by `attribute` of instance `id` outside the bounds evaluated for it: `problem` says how.
+  static Violation bounds(std::uint32_t id, const meta::AttributeInfo& attribute, std::string problem);
   /// Domain rule `where` of global RULE `rule`; without `where`, the RULE as a whole (to be marked unevaluated).
   static Violation global_rule(const meta::AlgorithmInfo& rule, const meta::DomainRuleInfo* where = nullptr);
   /// The same rule, marked as not evaluated for `reason`.
   Violation unevaluated(std::string reason) &&;
 
-  /// The entity, defined type or RULE declaring the rule.
+  /// The entity, defined type or RULE declaring the rule (Bounds: the attribute).
   std::string_view owner() const noexcept { return owner_ ? *owner_ : std::string_view(); }
   /// The rule's label (may be empty).
   std::string_view label() const noexcept;
   /// The rule in canonical EXPRESS (empty for a UNIQUE clause).
   std::string_view text() const noexcept { return kind != Kind::Unique && rule_ ? rule_->text : std::string_view(); }
-  /// TypeWhere (and a defined type's rule not evaluated): the attribute holding the value.
+  /// TypeWhere (and a defined type's rule not evaluated), Bounds: the attribute holding the value.
   std::string_view attribute() const noexcept { return attribute_ ? attribute_->name : std::string_view(); }
-  /// Unevaluated: the reason.
+  /// Unevaluated: the reason; Bounds: the size and the bounds.
   std::string_view message() const noexcept { return message_ ? std::string_view(*message_) : std::string_view(); }
 
   /// "#12: positive_length_measure.wr1 violated (by depth)", "#7: item.ur1
-  /// violated: the same values as #3", "rule compatible_dimension.wr1 violated".
+  /// violated: the same values as #3", "rule compatible_dimension.wr1 violated",
+  /// "#4: curve_with_knots.knots: 1 element, outside the bounds [2:3]".
   std::string to_string() const;
 
   Violation() = default;                         ///< a WHERE rule of nothing: made by the builders above
@@ -93,7 +103,7 @@ struct Violation {
     const meta::UniqueRuleInfo* unique_;          ///< Unique: the clause
   };
   const meta::AttributeInfo* attribute_ = nullptr;
-  std::unique_ptr<const std::string> message_;  // Unevaluated only: nothing to allocate or free otherwise
+  std::unique_ptr<const std::string> message_;  // Unevaluated and Bounds only: nothing to allocate or free otherwise
 };
 
 /// How check() works.
