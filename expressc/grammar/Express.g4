@@ -15,6 +15,26 @@
 // the resolver.
 grammar Express;
 
+@parser::preinclude {
+#include <cctype>
+#include <string>
+}
+
+@parser::members {
+// TREAT (the type narrowing of the EXPRESS edition 3 drafts, not in
+// ISO 10303-11:2004) is no reserved word here: an identifier spelled
+// TREAT starts a TREAT expression only where `expression AS name )`
+// follows, so a schema naming something `treat` still compiles.
+bool at_treat() {
+  const std::string text = _input->LT(1)->getText();
+  static const std::string keyword = "treat";
+  if (text.size() != keyword.size()) return false;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(text[i])) != keyword[i]) return false;
+  return true;
+}
+}
+
 // ----------------------------------------------------------------- schemas
 
 syntaxFile : schemaDecl* EOF ;
@@ -250,6 +270,7 @@ atom
     | '{' low=simpleExpression lowOp=intervalOperator item=simpleExpression
           highOp=intervalOperator high=simpleExpression '}'                     # intervalAtom
     | QUERY '(' variable=name '<*' source=expression '|' condition=expression ')' # queryAtom
+    | {at_treat()}? IDENTIFIER '(' operand=expression AS target=name ')'        # treatAtom
     | name actualParameters?                                                    # nameAtom
     ;
 

@@ -706,6 +706,16 @@ class TreeBuilder {
       out->operands.push_back(expression_of(query->condition));
       return finish(std::move(out));
     }
+    if (auto* treat = dynamic_cast<P::TreatAtomContext*>(context)) {
+      // TREAT(operand AS target): the target is kept as a Name operand so
+      // that its position and binding are its own.
+      auto out = node(K::Treat, at);
+      out->operands.push_back(expression_of(treat->operand));
+      auto target = node(K::Name, position_of(treat->target));
+      target->text = treat->target->getText();
+      out->operands.push_back(std::move(target));
+      return finish(std::move(out));
+    }
     auto* named = dynamic_cast<P::NameAtomContext*>(context);
     auto* arguments = named->actualParameters();
     auto out = node(arguments ? K::Call : K::Name, at);
