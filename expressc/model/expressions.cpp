@@ -907,7 +907,7 @@ class Checker {
 
   // Can a value that is `value` (a select member or an entity) be of type
   // `target`? Answers "no" only when sure: a value of defined type `a`
-  // is of type `b` when `a` is `b` or renames it (ISO 10303-11 8.3.1).
+  // is of type `b` when `a` is `b` or renames it (`TYPE a = b;`).
   static bool can_be(const Candidate& value, const Candidate& target) {
     const Renamings of_value = value.defined ? renamings_of(*value.defined) : Renamings{};
     const Renamings of_target = target.defined ? renamings_of(*target.defined) : Renamings{};
@@ -943,7 +943,9 @@ class Checker {
       case Shape::Kind::Aggregate: {
         // Only an entity target is sure to exclude such a value.
         const bool entities_only = std::all_of(targets.begin(), targets.end(), [](const Candidate& t) {
-          return t.entity || (!renamings_of(*t.defined).unsure && renamings_of(*t.defined).entity);
+          if (t.entity) return true;
+          const Renamings renamings = renamings_of(*t.defined);
+          return !renamings.unsure && renamings.entity;
         });
         if (entities_only)
           warning(target.position,

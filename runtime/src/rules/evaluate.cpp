@@ -1108,8 +1108,8 @@ class Interpreter {
   }
 
   // Is `v` of the defined type `type`: declared as it or as a type that
-  // renames it (TYPE b = a, ISO 10303-11 8.3.1)? Of a select type when it
-  // is of one of the select's members.
+  // renames it (`TYPE b = a;`)? Of a select type when it is of one of the
+  // select's members.
   bool is_of_type(const Value& v, const meta::TypeInfo& type) {
     if (type.kind == meta::TypeKind::Select) {
       for (const meta::TypeInfo* member : type.members)
