@@ -774,13 +774,14 @@ class ErrorCollector : public antlr4::BaseErrorListener {
       message = "syntax error: unexpected character " + describe(offending);
     // Name what would have been accepted when that is short enough to help.
     if (auto* parser = dynamic_cast<antlr4::Parser*>(recognizer)) {
-      const antlr4::misc::IntervalSet expected = parser->getExpectedTokens();
+      using L = expressc_antlr::ExpressLexer;
+      antlr4::misc::IntervalSet expected = parser->getExpectedTokens();
+      if (expected.contains(static_cast<size_t>(L::IDENTIFIER)))
+        expected.remove(static_cast<size_t>(L::TREAT));  // an identifier too
       if (!expected.isEmpty() && expected.size() <= 4) {
         std::vector<std::string> names;
         for (ssize_t type : expected.toList())
-          names.push_back(type == expressc_antlr::ExpressLexer::IDENTIFIER
-                              ? "an identifier"
-                              : parser->getVocabulary().getDisplayName(type));
+          names.push_back(type == L::IDENTIFIER ? "an identifier" : parser->getVocabulary().getDisplayName(type));
         message += ", expected ";
         for (size_t i = 0; i < names.size(); ++i) {
           if (i) message += i + 1 == names.size() ? " or " : ", ";

@@ -420,7 +420,7 @@ TEST_CASE("TREAT narrows to an entity, an aggregate type, inside QUERY and neste
   CHECK(nested[0]->binding.entity == &test::entity(*model, "geometric_item"));
   CHECK(nested[0]->operands.at(0).get() == nested[1]);
   CHECK(nested[1]->binding.type == &test::type(*model, "item_target"));
-  CHECK(nested[1]->operands.at(1)->position.line == 49);
+  CHECK(nested[1]->operands.at(1)->position.line == 50);
 
   // `treat` is still an identifier: the user FUNCTION treat is called.
   const ast::Expression* call = find_name(*styled.where.at(3).expression, "treat");
@@ -428,6 +428,11 @@ TEST_CASE("TREAT narrows to an entity, an aggregate type, inside QUERY and neste
   CHECK(call->kind == ast::Expression::Kind::Call);
   CHECK(call->binding.kind == ast::Binding::Kind::Function);
   CHECK(ast::to_string(*test::attribute(styled, "as_mapped").derivation) == "TREAT(item AS mapped_item)");
+  const model::Entity& remedy = test::entity(*model, "remedy");
+  CHECK(test::part21_names(remedy) == Names{"treat"});
+  const ast::Expression* attribute = find_name(*remedy.where.at(0).expression, "treat");
+  REQUIRE(attribute);
+  CHECK(attribute->binding.kind == ast::Binding::Kind::Attribute);
 
   // The rule tables carry the target: an entity, or a defined type.
   std::vector<model::Diagnostic> diagnostics;
