@@ -120,6 +120,11 @@ void print(const Expression& e, std::string& out) {
       print(*e.operands[2], out);
       out += '}';
       return;
+    case K::Treat:
+      out += "TREAT(";
+      print(*e.operands[0], out);
+      out += " AS " + e.operands[1]->text + ")";
+      return;
     case K::Query:
       out += "QUERY(" + e.text + " <* ";
       print(*e.operands[0], out);

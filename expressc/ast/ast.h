@@ -93,6 +93,7 @@ struct Expression {
     Repeat,         // aggregate element operands[0] : operands[1] (repetition)
     Interval,       // {operands[0] op operands[1] op2 operands[2]}
     Query,          // QUERY(text <* operands[0] | operands[1])
+    Treat,          // TREAT(operands[0] AS operands[1]): operands[1] is the target's Name; binding: the target
   };
   Kind kind = Kind::Name;
   Position position;
@@ -103,7 +104,7 @@ struct Expression {
   // Height of this subtree (1 for a leaf). The parser bounds it, so that
   // recursive walks over expressions cannot exhaust the stack.
   uint32_t depth = 1;
-  mutable Binding binding;  // Name, Call and enumeration Attribute: filled by the resolver
+  mutable Binding binding;  // Name, Call, Group, Treat and enumeration Attribute: filled by the resolver
 };
 
 // EXPRESS text for an expression, in one canonical spelling: keywords in

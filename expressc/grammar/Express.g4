@@ -250,6 +250,7 @@ atom
     | '{' low=simpleExpression lowOp=intervalOperator item=simpleExpression
           highOp=intervalOperator high=simpleExpression '}'                     # intervalAtom
     | QUERY '(' variable=name '<*' source=expression '|' condition=expression ')' # queryAtom
+    | TREAT '(' operand=expression AS target=name ')'                           # treatAtom
     | name actualParameters?                                                    # nameAtom
     ;
 
@@ -276,7 +277,11 @@ literal
     | UNKNOWN
     ;
 
-name : IDENTIFIER ;
+// TREAT (the type narrowing of the EXPRESS edition 3 drafts, not in
+// ISO 10303-11:2004) is a token of its own so that only it needs the
+// lookahead that tells `TREAT(x AS t)` from a call, but no reserved word:
+// a schema may still name something `treat`.
+name : IDENTIFIER | TREAT ;
 
 // ----------------------------------------------------------------- lexer
 
@@ -359,6 +364,7 @@ SUPERTYPE : S U P E R T Y P E ;
 THEN : T H E N ;
 TO : T O ;
 TOTAL_OVER : T O T A L '_' O V E R ;
+TREAT : T R E A T ;
 TRUE : T R U E ;
 TYPE : T Y P E ;
 UNIQUE : U N I Q U E ;

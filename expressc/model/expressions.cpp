@@ -468,6 +468,7 @@ class Checker {
         check(*e.operands[1]);
         return source;
       }
+      case K::Treat: return check_treat(e);
       case K::Integer:
       case K::Real: return Shape::of(Family::Number);
       case K::String:
@@ -845,6 +846,113 @@ class Checker {
         warning(e.position,
               fmt::format("group qualifier '{}': no entity of select type '{}' is ever an instance of '{}'",
                           group.name, base.select->name, group.name));
+    }
+  }
+
+  // TREAT(x AS T) (the EXPRESS edition 3 drafts): `T` names an entity or
+  // a defined type, and the result is a value of `T`, so that
+  // `QUERY(it <* TREAT(item AS set_representation_item) | ...)` iterates a
+  // SET of representation_item (AP242's styled_item.wr3).
+  Shape check_treat(const ast::Expression& e) {
+    const Shape operand = check(*e.operands[0]);
+    const ast::Expression& target = *e.operands[1];
+    const Symbol* symbol = work_.find(target.text);
+    if (symbol && symbol->kind == Symbol::Kind::Entity) {
+      e.binding = {.kind = BindingKind::Entity, .entity = symbol->entity};
+    } else if (symbol && symbol->kind == Symbol::Kind::Type) {
+      e.binding = {.kind = BindingKind::Type, .type = symbol->type};
+    } else {
+      warning(target.position, symbol ? fmt::format("TREAT target '{}' is not an entity or a type", target.text)
+                                      : fmt::format("unknown type '{}' in TREAT", target.text));
+      return {};
+    }
+    target.binding = e.binding;
+    const std::vector<Candidate> targets = e.binding.entity ? std::vector<Candidate>{{e.binding.entity, nullptr}}
+                                                            : candidates_of(*e.binding.type);
+    check_treat_target(target, operand, targets);
+    if (e.binding.entity) return Shape::of_entity(e.binding.entity);
+    TypeRef ref;
+    ref.kind = TypeRef::Kind::Defined;
+    ref.defined = e.binding.type;
+    return shape_of(ref);
+  }
+
+  // What a value of a type can be: an entity (or an entity-valued defined
+  // type) or a non-select defined type; a select is each of its members.
+  using Candidate = DefinedType::SelectMember;
+  static std::vector<Candidate> candidates_of(const DefinedType& type) {
+    if (type.kind == DefinedType::Kind::Select) return type.select_closure;
+    return {{nullptr, &type}};
+  }
+
+  // A defined type's chain of renamings (`TYPE b = a;`), `type` first, and
+  // what it ends in: an entity, a select (`unsure`: not followed), or
+  // neither.
+  struct Renamings {
+    std::vector<const DefinedType*> chain;
+    const Entity* entity = nullptr;
+    bool unsure = false;
+  };
+  static Renamings renamings_of(const DefinedType& type) {
+    Renamings out;
+    for (const DefinedType* t = &type; t && out.chain.size() < 64;) {
+      out.chain.push_back(t);
+      if (t->kind == DefinedType::Kind::Select) out.unsure = true;
+      if (t->kind != DefinedType::Kind::Alias) break;
+      if (t->underlying.kind == TypeRef::Kind::Entity) out.entity = t->underlying.entity;
+      t = t->underlying.kind == TypeRef::Kind::Defined ? t->underlying.defined : nullptr;
+    }
+    return out;
+  }
+
+  // Can a value that is `value` (a select member or an entity) be of type
+  // `target`? Answers "no" only when sure: a value of defined type `a`
+  // is of type `b` when `a` is `b` or renames it (`TYPE a = b;`).
+  static bool can_be(const Candidate& value, const Candidate& target) {
+    const Renamings of_value = value.defined ? renamings_of(*value.defined) : Renamings{};
+    const Renamings of_target = target.defined ? renamings_of(*target.defined) : Renamings{};
+    if (of_value.unsure || of_target.unsure) return true;
+    const Entity* value_entity = value.entity ? value.entity : of_value.entity;
+    const Entity* target_entity = target.entity ? target.entity : of_target.entity;
+    if (value_entity || target_entity) return value_entity && target_entity && can_be_both(*value_entity, *target_entity);
+    return std::find(of_value.chain.begin(), of_value.chain.end(), target.defined) != of_value.chain.end();
+  }
+
+  // A TREAT target the operand can never be is reported, like an
+  // impossible group qualifier; selects that may grow, GENERIC and values
+  // of unknown type never are.
+  void check_treat_target(const ast::Expression& target, const Shape& operand, const std::vector<Candidate>& targets) {
+    auto any = [&](const std::vector<Candidate>& values) {
+      for (const Candidate& value : values)
+        for (const Candidate& t : targets)
+          if (can_be(value, t)) return true;
+      return false;
+    };
+    switch (operand.kind) {
+      case Shape::Kind::Entity:
+        if (!any({{operand.entity, nullptr}}))
+          warning(target.position, fmt::format("TREAT target '{}': an instance of '{}' is never of that type",
+                                               target.text, operand.entity->name));
+        return;
+      case Shape::Kind::Select:
+        if (!operand.select->extensible && !any(operand.select->select_closure))
+          warning(target.position, fmt::format("TREAT target '{}': no member of select type '{}' is ever of that type",
+                                               target.text, operand.select->name));
+        return;
+      case Shape::Kind::Simple:
+      case Shape::Kind::Aggregate: {
+        // Only an entity target is sure to exclude such a value.
+        const bool entities_only = std::all_of(targets.begin(), targets.end(), [](const Candidate& t) {
+          if (t.entity) return true;
+          const Renamings renamings = renamings_of(*t.defined);
+          return !renamings.unsure && renamings.entity;
+        });
+        if (entities_only)
+          warning(target.position,
+                  fmt::format("TREAT target '{}': {} is never of that type", target.text, describe(operand)));
+        return;
+      }
+      case Shape::Kind::Unknown: return;
     }
   }
 

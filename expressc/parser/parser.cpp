@@ -706,6 +706,16 @@ class TreeBuilder {
       out->operands.push_back(expression_of(query->condition));
       return finish(std::move(out));
     }
+    if (auto* treat = dynamic_cast<P::TreatAtomContext*>(context)) {
+      // TREAT(operand AS target): the target is kept as a Name operand so
+      // that its position and binding are its own.
+      auto out = node(K::Treat, at);
+      out->operands.push_back(expression_of(treat->operand));
+      auto target = node(K::Name, position_of(treat->target));
+      target->text = treat->target->getText();
+      out->operands.push_back(std::move(target));
+      return finish(std::move(out));
+    }
     auto* named = dynamic_cast<P::NameAtomContext*>(context);
     auto* arguments = named->actualParameters();
     auto out = node(arguments ? K::Call : K::Name, at);
@@ -764,13 +774,14 @@ class ErrorCollector : public antlr4::BaseErrorListener {
       message = "syntax error: unexpected character " + describe(offending);
     // Name what would have been accepted when that is short enough to help.
     if (auto* parser = dynamic_cast<antlr4::Parser*>(recognizer)) {
-      const antlr4::misc::IntervalSet expected = parser->getExpectedTokens();
+      using L = expressc_antlr::ExpressLexer;
+      antlr4::misc::IntervalSet expected = parser->getExpectedTokens();
+      if (expected.contains(static_cast<size_t>(L::IDENTIFIER)))
+        expected.remove(static_cast<size_t>(L::TREAT));  // an identifier too
       if (!expected.isEmpty() && expected.size() <= 4) {
         std::vector<std::string> names;
         for (ssize_t type : expected.toList())
-          names.push_back(type == expressc_antlr::ExpressLexer::IDENTIFIER
-                              ? "an identifier"
-                              : parser->getVocabulary().getDisplayName(type));
+          names.push_back(type == L::IDENTIFIER ? "an identifier" : parser->getVocabulary().getDisplayName(type));
         message += ", expected ";
         for (size_t i = 0; i < names.size(); ++i) {
           if (i) message += i + 1 == names.size() ? " or " : ", ";

@@ -390,6 +390,62 @@ TEST_CASE("group qualifiers that hold through complex instances of common subtyp
   CHECK(test::entity(*model, "shape_aspect_relationship").where.size() == 2);
 }
 
+TEST_CASE("TREAT narrows to an entity, an aggregate type, inside QUERY and nested", "[corpus]") {
+  auto model = compile_good({"treat_expression.exp"});
+  const model::Entity& styled = test::entity(*model, "styled_item");
+  auto treats = [&](const ast::Expression& root) {
+    std::vector<const ast::Expression*> found;
+    visit(root, [&](const ast::Expression& e) {
+      if (e.kind == ast::Expression::Kind::Treat) found.push_back(&e);
+    });
+    return found;
+  };
+  REQUIRE(styled.where.size() == 4);
+  const auto to_entity = treats(*styled.where.at(0).expression);
+  REQUIRE(to_entity.size() == 1);
+  CHECK(to_entity[0]->binding.kind == ast::Binding::Kind::Entity);
+  CHECK(to_entity[0]->binding.entity == &test::entity(*model, "mapped_item"));
+  CHECK(to_entity[0]->operands.at(0)->binding.kind == ast::Binding::Kind::Attribute);
+
+  const auto in_query = treats(*styled.where.at(1).expression);
+  REQUIRE(in_query.size() == 1);
+  CHECK(in_query[0]->binding.kind == ast::Binding::Kind::Type);
+  CHECK(in_query[0]->binding.type == &test::type(*model, "item_set"));
+  CHECK(ast::to_string(*styled.where.at(1).expression) ==
+        "(NOT ('TREAT_EXPRESSION.ITEM_SET' IN TYPEOF(item)) OR (SIZEOF(QUERY(it <* TREAT(item AS item_set) | "
+        "NOT ('TREAT_EXPRESSION.GEOMETRIC_ITEM' IN TYPEOF(it)))) = 0))");
+
+  // Outer first: TREAT(TREAT(wrapped AS item_target) AS geometric_item).
+  const auto nested = treats(*styled.where.at(2).expression);
+  REQUIRE(nested.size() == 4);
+  CHECK(nested[0]->binding.entity == &test::entity(*model, "geometric_item"));
+  CHECK(nested[0]->operands.at(0).get() == nested[1]);
+  CHECK(nested[1]->binding.type == &test::type(*model, "item_target"));
+  CHECK(nested[1]->operands.at(1)->position.line == 50);
+
+  // `treat` is still an identifier: the user FUNCTION treat is called.
+  const ast::Expression* call = find_name(*styled.where.at(3).expression, "treat");
+  REQUIRE(call);
+  CHECK(call->kind == ast::Expression::Kind::Call);
+  CHECK(call->binding.kind == ast::Binding::Kind::Function);
+  CHECK(ast::to_string(*test::attribute(styled, "as_mapped").derivation) == "TREAT(item AS mapped_item)");
+  const model::Entity& remedy = test::entity(*model, "remedy");
+  CHECK(test::part21_names(remedy) == Names{"treat"});
+  const ast::Expression* attribute = find_name(*remedy.where.at(0).expression, "treat");
+  REQUIRE(attribute);
+  CHECK(attribute->binding.kind == ast::Binding::Kind::Attribute);
+
+  // The rule tables carry the target: an entity, or a defined type.
+  std::vector<model::Diagnostic> diagnostics;
+  const auto files = emit::cpp::CppGenerator::render(*model, diagnostics);
+  CHECK(diagnostics.empty());
+  REQUIRE(files.size() == 2);
+  const std::string& cc = files[1].text;
+  CHECK(cc.find("{.kind = NodeKind::Treat, .count = 1, .first = ") != std::string::npos);
+  CHECK(cc.find(".entity = &treat_expression::mapped_item::meta_entity}") != std::string::npos);
+  CHECK(cc.find(".type = &treat_expression::type_info::item_set}") != std::string::npos);
+}
+
 TEST_CASE("a function without parameters is called without parentheses", "[corpus]") {
   auto model = compile_good({"zero_argument_function.exp"});
   const model::Entity& item = test::entity(*model, "item");

@@ -47,6 +47,10 @@ std::string entity_ref(const Entity* e) {
   return fmt::format("&{}::{}::meta_entity", identifier(e->schema->name), identifier(e->name));
 }
 
+std::string type_ref(const model::DefinedType* t) {
+  return fmt::format("&{}::type_info::{}", identifier(t->schema->name), identifier(t->name));
+}
+
 // "VALUE_IN" -> "Value_in": the spelling of meta::Builtin's enumerators.
 std::string builtin_enumerator(std::string_view name) {
   std::string out = model::lowercase(name);
@@ -262,6 +266,20 @@ class RuleEmitter {
         operands(at, all(e.operands));
         return;
       }
+      case K::Treat: {
+        // The target is the node's entity or type; its Name is no operand.
+        if (e.binding.kind == BindingKind::Entity) {
+          node(at, "Treat").entity = entity_ref(e.binding.entity);
+          note(e.binding.entity->schema);
+        } else if (e.binding.kind == BindingKind::Type) {
+          node(at, "Treat").type = type_ref(e.binding.type);
+          note(e.binding.type->schema);
+        } else {
+          return unevaluable(at, e);
+        }
+        operands(at, {e.operands[0].get()});
+        return;
+      }
       case K::Query: {
         // The source is evaluated outside the variable's scope.
         const uint32_t first = reserve(2);
@@ -317,7 +335,7 @@ class RuleEmitter {
     Emitted& n = node(at, "EnumerationItem");
     n.text = cpp_string(e.text);
     if (const model::DefinedType* type = e.binding.type) {
-      n.type = fmt::format("&{}::type_info::{}", identifier(type->schema->name), identifier(type->name));
+      n.type = type_ref(type);
       note(type->schema);
     }
   }

@@ -881,6 +881,10 @@ class Interpreter {
         if (base.kind == Value::Kind::Instance && !entity_of(*base.instance).is_a(*n.entity)) return {};
         return base;
       }
+      case NodeKind::Treat: {
+        Value v = operand(0);
+        return (n.entity ? is_entity(v, *n.entity) : n.type && is_of_type(v, *n.type)) ? v : Value{};
+      }
       case NodeKind::Index: {
         if (n.count == 2 && nodes[n.first].kind == NodeKind::Variable) {  // `v[i]`: no copy of v
           Value at = operand(1);
@@ -1176,6 +1180,33 @@ class Interpreter {
   }
 
   // ------------------------------------------------------------ built-ins
+
+  // TREAT (EXPRESS edition 3 drafts): is `v` an instance of `entity`, a
+  // simple instance or a complex one with an `entity` part?
+  bool is_entity(const Value& v, const meta::EntityInfo& entity) {
+    if (v.kind == Value::Kind::Instance) return entity_of(*v.instance).is_a(entity);
+    if (v.kind != Value::Kind::Partial) return false;
+    for (const meta::EntityInfo* part : v.partial()->entities)
+      if (part->is_a(entity)) return true;
+    return false;
+  }
+
+  // Is `v` of the defined type `type`: declared as it or as a type that
+  // renames it (`TYPE b = a;`)? Of a select type when it is of one of the
+  // select's members.
+  bool is_of_type(const Value& v, const meta::TypeInfo& type) {
+    if (type.kind == meta::TypeKind::Select) {
+      for (const meta::TypeInfo* member : type.members)
+        if (member->kind == meta::TypeKind::Entity ? member->entity && is_entity(v, *member->entity) : is_of_type(v, *member))
+          return true;
+      return false;
+    }
+    if (const meta::TypeInfo& resolved = type.resolved(); resolved.kind == meta::TypeKind::Entity)
+      return resolved.entity && is_entity(v, *resolved.entity);  // TYPE b = an_entity
+    for (const meta::TypeInfo* t = v.type; t; t = t->kind == meta::TypeKind::Alias ? t->underlying : nullptr)
+      if (t == &type) return true;
+    return false;
+  }
 
   // Is `name` ('SCHEMA.ENTITY', any case) one of TYPEOF's names for an instance of `entity`?
   static bool has_type_name(const meta::EntityInfo& entity, std::string_view name) {

@@ -48,6 +48,7 @@ enum class NodeKind : std::uint8_t {
   Repeat,           ///< operand 0 `:` operand 1 inside an aggregate initializer
   Interval,         ///< `{` operand 0 `op` operand 1 `op2` operand 2 `}`
   Query,            ///< QUERY(slot <* operand 0 | operand 1)
+  Treat,            ///< TREAT(operand 0 AS `entity` or `type`): operand 0 when it is of that type, else `?`
   Unevaluable,      ///< what the compiler warned about: evaluates to `?`
   // ---- statements
   Null,             ///< `;`
@@ -201,8 +202,8 @@ struct Node {
   std::int64_t integer = 0;  ///< Integer, Logical; Variable, Return: the declared aggregate (AggregateShape), 0 if none
   double real = 0;           ///< Real
   std::string_view text{};   ///< String, Binary, EnumerationItem, Attribute: the name
-  const EntityInfo* entity = nullptr;       ///< Group, Construct, Population
-  const TypeInfo* type = nullptr;           ///< EnumerationItem
+  const EntityInfo* entity = nullptr;       ///< Group, Construct, Population, Treat (to an entity)
+  const TypeInfo* type = nullptr;           ///< EnumerationItem, Treat (to a defined type)
   const AlgorithmInfo* algorithm = nullptr;  ///< Call, ProcedureCall
 };
 
