@@ -177,9 +177,10 @@ TEST_CASE("schemas that use each other share one header, classes after their sup
 }
 
 TEST_CASE("a schema named like a group's header makes the header's name longer", "[generated][emitter]") {
-  auto compiled = model::compile({{"a.exp", "SCHEMA one; REFERENCE FROM two (b); ENTITY a; link : b; END_ENTITY; END_SCHEMA;"},
-                                  {"b.exp", "SCHEMA two; REFERENCE FROM one (a); ENTITY b; link : a; END_ENTITY; END_SCHEMA;"},
-                                  {"c.exp", "SCHEMA one_group; ENTITY c; END_ENTITY; END_SCHEMA;"}});
+  auto compiled =
+      model::compile({{"a.exp", "SCHEMA one; REFERENCE FROM two (b); ENTITY a; link : b; END_ENTITY; END_SCHEMA;"},
+                      {"b.exp", "SCHEMA two; REFERENCE FROM one (a); ENTITY b; link : a; END_ENTITY; END_SCHEMA;"},
+                      {"c.exp", "SCHEMA one_group; ENTITY c; END_ENTITY; END_SCHEMA;"}});
   REQUIRE(compiled.ok());
   std::vector<model::Diagnostic> diagnostics;
   const auto files = CppGenerator::render(*compiled.model, diagnostics);
