@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The C++ emitter on small schemas compiled from text: the inheritance
 // mechanism it picks, complex (ANDOR) combinations, names that clash with
-// C++, and what it refuses to emit.
+// C++, schemas that use each other, and what it refuses to emit.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -187,4 +187,38 @@ TEST_CASE("a schema named like a group's header makes the header's name longer",
   REQUIRE(files.size() == 7);
   CHECK(files[0].name == "one_group_.h");
   CHECK(files[5].name == "one_group.h");
+}
+
+TEST_CASE("a group's header is named alike whatever the order of the files", "[generated][emitter]") {
+  const std::pair<std::string, std::string> a{
+      "a.exp", "SCHEMA zeta; REFERENCE FROM alpha (b); ENTITY a; link : b; END_ENTITY; END_SCHEMA;"};
+  const std::pair<std::string, std::string> b{
+      "b.exp", "SCHEMA alpha; REFERENCE FROM zeta (a); ENTITY b; link : a; END_ENTITY; END_SCHEMA;"};
+  for (const auto& files : {std::vector{a, b}, std::vector{b, a}}) {
+    auto compiled = model::compile({{files[0].first, files[0].second}, {files[1].first, files[1].second}});
+    REQUIRE(compiled.ok());
+    std::vector<model::Diagnostic> diagnostics;
+    const auto generated = CppGenerator::render(*compiled.model, diagnostics);
+    REQUIRE_FALSE(generated.empty());
+    CHECK(generated[0].name == "alpha_group.h");
+  }
+}
+
+TEST_CASE("an unbounded aggregate of BOOLEAN holds meta::BooleanElement, a small one bool", "[generated][emitter]") {
+  const auto files = generate(R"(
+    SCHEMA flags;
+    TYPE sense = BOOLEAN; END_TYPE;
+    ENTITY loop;
+      senses : LIST [1:?] OF BOOLEAN;
+      named : LIST [1:?] OF sense;
+      few : LIST [1:3] OF BOOLEAN;
+    END_ENTITY;
+    END_SCHEMA;)");
+  const std::string& h = files[0].text;
+  CHECK(contains(h, "#include \"stepnc/meta/boolean_element.h\"\n"));
+  CHECK(contains(h, "std::vector<stepnc::meta::BooleanElement> senses{};"));
+  CHECK(contains(h, "std::vector<stepnc::meta::BooleanElement> named{};"));
+  CHECK(contains(h, "stepnc::meta::InlineVector<bool, 3> few{};"));
+  const auto without = generate("SCHEMA few; ENTITY loop; few : LIST [1:3] OF BOOLEAN; END_ENTITY; END_SCHEMA;");
+  CHECK_FALSE(contains(without[0].text, "boolean_element.h"));
 }
