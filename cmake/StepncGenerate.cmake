@@ -5,7 +5,8 @@
 #
 #   stepnc_generate(TARGET my_schemas
 #                   SCHEMAS schemas/my_schema.exp ...
-#                   [OUT_DIR <dir>])      # default: <binary dir>/<TARGET>
+#                   [OUT_DIR <dir>]       # default: <binary dir>/<TARGET>
+#                   [GROUP_HEADERS <name>_group.h ...])
 #   target_link_libraries(my_app PRIVATE my_schemas)
 #   // #include "my_schema.h"
 #
@@ -14,9 +15,12 @@
 # `<schema>.h` and `<schema>.cc`, so the outputs are known without reading
 # the schemas at configure time. All SCHEMAS are compiled together, as one
 # closed set (a subtype in one schema is listed in its supertype's table).
+# Schemas that use each other also share a header (expressc/README.md,
+# "Schemas that use each other"): list it in GROUP_HEADERS so that the
+# build knows who writes it.
 
 function(stepnc_generate)
-  cmake_parse_arguments(ARG "" "TARGET;OUT_DIR" "SCHEMAS" ${ARGN})
+  cmake_parse_arguments(ARG "" "TARGET;OUT_DIR" "SCHEMAS;GROUP_HEADERS" ${ARGN})
   if(NOT ARG_TARGET OR NOT ARG_SCHEMAS)
     message(FATAL_ERROR "stepnc_generate: TARGET and SCHEMAS are required")
   endif()
@@ -45,6 +49,9 @@ function(stepnc_generate)
     get_filename_component(stem "${schema}" NAME_WE)
     list(APPEND schemas "${path}")
     list(APPEND outputs "${ARG_OUT_DIR}/${stem}.h" "${ARG_OUT_DIR}/${stem}.cc")
+  endforeach()
+  foreach(header IN LISTS ARG_GROUP_HEADERS)
+    list(APPEND outputs "${ARG_OUT_DIR}/${header}")
   endforeach()
 
   # expressc rewrites only the files whose text changed; the stamp records

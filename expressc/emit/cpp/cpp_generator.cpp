@@ -43,6 +43,23 @@ void append_item(std::string& list, std::string_view separator, std::string_view
   list += item;
 }
 
+// `text` as `// ` comment lines of at most 100 characters, broken at
+// spaces (a group's list of schemas may be long).
+std::string comment_lines(std::string_view text) {
+  constexpr std::size_t width = 100 - 3;
+  std::string out;
+  while (!text.empty()) {
+    std::size_t cut = text.size();
+    if (cut > width) {
+      cut = text.rfind(' ', width);
+      if (cut == std::string_view::npos || cut == 0) cut = std::min(text.find(' '), text.size());
+    }
+    out += concat({"// ", text.substr(0, cut), "\n"});
+    text.remove_prefix(std::min(cut + 1, text.size()));
+  }
+  return out;
+}
+
 std::string ns(const Schema* schema) { return identifier(schema->name); }
 std::string qualified(const Schema* schema, std::string_view name) { return concat({ns(schema), "::", identifier(name)}); }
 std::string type_info_name(const Schema* schema, std::string_view name) {
@@ -177,6 +194,8 @@ std::string cpp_type(const TypeRef& t) {
     case TypeRef::Kind::Aggregate:
       if (auto n = inline_capacity(t))
         return concat({"stepnc::meta::InlineVector<", cpp_type(*t.element), ", ", std::to_string(*n), ">"});
+      // std::vector<bool> has no addressable elements (meta::BooleanElement).
+      if (storage_of(*t.element) == Storage::Boolean) return "std::vector<stepnc::meta::BooleanElement>";
       return concat({"std::vector<", cpp_type(*t.element), ">"});
     default: return "";
   }
@@ -273,7 +292,73 @@ void add_type_schemas(const TypeRef& t, SchemaList& list) {
   }
 }
 
+// Schemas that use each other (REFERENCE FROM and USE FROM may be mutual,
+// ISO 10303-11 clause 11; the integrated resources of ISO 10303 do so by
+// design): a strongly connected component, of more than one schema, of
+// the graph of header_dependencies. Their headers cannot include each
+// other, so the group's declarations share one header (expressc/README.md,
+// "Schemas that use each other").
+struct SchemaGroup {
+  std::vector<const Schema*> members;  // in model order
+  std::string name;                    // the shared header's stem
+};
+
 // ---------------------------------------------------------------- emitter
+
+// The declarations of `schemas` (one schema, or a group whose schemas use
+// each other) in an order C++ accepts. Entities: each supertype of the
+// group before its subtypes, otherwise model and source order. The
+// supertype graph is acyclic (no entity is its own supertype; the resolver
+// refuses cycles), so this order always exists, across schemas too.
+std::vector<const Entity*> entities_in_order(const std::vector<const Schema*>& schemas) {
+  const std::set<const Schema*> group(schemas.begin(), schemas.end());
+  std::vector<const Entity*> order;
+  std::set<const Entity*> done;
+  std::function<void(const Entity*)> visit = [&](const Entity* e) {
+    if (group.count(e->schema) == 0 || done.count(e) != 0) return;
+    done.insert(e);
+    for (const Entity* super : e->supertypes) visit(super);
+    order.push_back(e);
+  };
+  for (const Schema* schema : schemas)
+    for (const auto& e : schema->entities) visit(e.get());
+  return order;
+}
+
+// Types: enumerations first (they depend on nothing); then aliases and
+// selects after the defined types of the group that their storage or
+// accessors use. Types never need a complete entity class (entities are
+// held by pointer), so all of a group's types come before its classes.
+std::vector<const DefinedType*> types_in_order(const std::vector<const Schema*>& schemas) {
+  const std::set<const Schema*> group(schemas.begin(), schemas.end());
+  std::vector<const DefinedType*> order;
+  std::set<const DefinedType*> done;
+  for (const Schema* schema : schemas)
+    for (const auto& t : schema->types)
+      if (t->kind == DefinedType::Kind::Enumeration) {
+        order.push_back(t.get());
+        done.insert(t.get());
+      }
+  std::function<void(const DefinedType*)> visit;
+  std::function<void(const TypeRef&)> visit_ref = [&](const TypeRef& r) {
+    if (r.kind == TypeRef::Kind::Defined) visit(r.defined);
+    if (r.kind == TypeRef::Kind::Aggregate && r.element) visit_ref(*r.element);
+  };
+  visit = [&](const DefinedType* t) {
+    if (group.count(t->schema) == 0 || done.count(t) != 0) return;
+    done.insert(t);
+    if (t->kind == DefinedType::Kind::Alias) visit_ref(t->underlying);
+    if (t->kind == DefinedType::Kind::Select)
+      for (const auto& m : t->select_closure)
+        if (m.defined != nullptr && m.defined->kind == DefinedType::Kind::Alias &&
+            storage_of(m.defined->underlying) != Storage::Aggregate)
+          visit(m.defined);
+    order.push_back(t);
+  };
+  for (const Schema* schema : schemas)
+    for (const auto& t : schema->types) visit(t.get());
+  return order;
+}
 
 // One class's reflection tables: its names, and which of the optional
 // tables were printed, so that its EntityInfo refers to exactly those.
@@ -299,16 +384,22 @@ class SchemaEmitter {
 
   bool check();
   std::string header();
+  // The header of a schema in a group, which includes the group's header;
+  // the parts of the group's header that are this schema's.
+  std::string group_member_header(const SchemaGroup& group) const;
+  void print_declarations(Printer& p);
+  const Schema& schema() const { return schema_; }
   std::string source();
   // The schemas whose headers this schema's header includes.
   std::vector<const Schema*> header_dependencies() const;
 
- private:
-  // Header parts.
   void print_type(Printer& p, const DefinedType& type);
-  void print_select(Printer& p, const DefinedType& type);
   void print_entity_class(Printer& p, const Entity& entity);
   void print_combination_class(Printer& p, const Combination& combination);
+
+ private:
+  // Header parts.
+  void print_select(Printer& p, const DefinedType& type);
   std::string base_clause(const std::vector<const Entity*>& supertypes) const;
   void print_class_preamble(Printer& p, bool abstract);
 
@@ -320,8 +411,6 @@ class SchemaEmitter {
   void print_entity_info(Printer& p, const EntityTables& tables);
   void print_attribute_row(Printer& p, const model::Part21Slot& slot, const std::string& object);
 
-  std::vector<const Entity*> entities_in_order() const;
-  std::vector<const DefinedType*> types_in_order() const;
   std::vector<const Schema*> source_dependencies() const;
 
   const model::Model& model_;
@@ -355,50 +444,6 @@ bool SchemaEmitter::check() {
   return ok;
 }
 
-std::vector<const Entity*> SchemaEmitter::entities_in_order() const {
-  // Supertypes of this schema come before their subtypes; otherwise source order.
-  std::vector<const Entity*> order;
-  std::set<const Entity*> done;
-  std::function<void(const Entity*)> visit = [&](const Entity* e) {
-    if (e->schema != &schema_ || done.count(e) != 0) return;
-    done.insert(e);
-    for (const Entity* super : e->supertypes) visit(super);
-    order.push_back(e);
-  };
-  for (const auto& e : schema_.entities) visit(e.get());
-  return order;
-}
-
-std::vector<const DefinedType*> SchemaEmitter::types_in_order() const {
-  // Enumerations first (they depend on nothing); then aliases and selects
-  // after the defined types of this schema that their storage or accessors use.
-  std::vector<const DefinedType*> order;
-  std::set<const DefinedType*> done;
-  for (const auto& t : schema_.types)
-    if (t->kind == DefinedType::Kind::Enumeration) {
-      order.push_back(t.get());
-      done.insert(t.get());
-    }
-  std::function<void(const DefinedType*)> visit;
-  std::function<void(const TypeRef&)> visit_ref = [&](const TypeRef& r) {
-    if (r.kind == TypeRef::Kind::Defined) visit(r.defined);
-    if (r.kind == TypeRef::Kind::Aggregate && r.element) visit_ref(*r.element);
-  };
-  visit = [&](const DefinedType* t) {
-    if (t->schema != &schema_ || done.count(t) != 0) return;
-    done.insert(t);
-    if (t->kind == DefinedType::Kind::Alias) visit_ref(t->underlying);
-    if (t->kind == DefinedType::Kind::Select)
-      for (const auto& m : t->select_closure)
-        if (m.defined != nullptr && m.defined->kind == DefinedType::Kind::Alias &&
-            storage_of(m.defined->underlying) != Storage::Aggregate)
-          visit(m.defined);
-    order.push_back(t);
-  };
-  for (const auto& t : schema_.types) visit(t.get());
-  return order;
-}
-
 std::vector<const Schema*> SchemaEmitter::header_dependencies() const {
   SchemaList list(model_);
   for (const auto& i : schema_.interfaces) list.add(i.schema);
@@ -429,12 +474,33 @@ std::vector<const Schema*> SchemaEmitter::source_dependencies() const {
 
 // ---------------------------------------------------------------- header
 
-std::string SchemaEmitter::header() {
-  std::string out;
-  Printer p(out);
+// True when `type` is, or holds, a std::vector of BOOLEAN (cpp_type).
+bool holds_boolean_vector(const TypeRef& type) {
+  if (type.kind != TypeRef::Kind::Aggregate || !type.element) return false;
+  if (storage_of(*type.element) == Storage::Boolean && !inline_capacity(type)) return true;
+  return holds_boolean_vector(*type.element);
+}
+
+// True when the declarations of `schemas` need meta::BooleanElement: only
+// then do their headers include it.
+bool uses_boolean_vectors(const std::vector<const Schema*>& schemas) {
+  for (const Schema* schema : schemas) {
+    for (const auto& t : schema->types)
+      if (t->kind == DefinedType::Kind::Alias && holds_boolean_vector(t->underlying)) return true;
+    for (const auto& e : schema->entities)
+      for (const auto& a : e->attributes)
+        if (holds_boolean_vector(a->type)) return true;
+  }
+  return false;
+}
+
+// The top of every header: `comment` (whole lines), the runtime's headers
+// (those the declarations of `declared` need), then the headers of the
+// schemas it uses.
+void print_header_start(Printer& p, const std::string& comment, const std::vector<const Schema*>& declared,
+                        const std::vector<const Schema*>& dependencies) {
   p.print(
-      "// $schema$.h: C++ bindings for the EXPRESS schema $schema$.\n"
-      "// Generated by expressc from $file$; do not edit.\n"
+      "$comment$"
       "#pragma once\n"
       "\n"
       "#include <cstdint>\n"
@@ -442,20 +508,52 @@ std::string SchemaEmitter::header() {
       "#include <utility>\n"
       "#include <vector>\n"
       "\n"
+      "$boolean$"
       "#include \"stepnc/meta/enumeration.h\"\n"
       "#include \"stepnc/meta/info.h\"\n"
       "#include \"stepnc/meta/inline_vector.h\"\n"
       "#include \"stepnc/meta/select.h\"\n"
       "#include \"stepnc/meta/string.h\"\n",
-      {{"schema", schema_.name}, {"file", file_name(schema_.location)}});
-  const auto dependencies = header_dependencies();
+      {{"comment", comment},
+       {"boolean", uses_boolean_vectors(declared) ? "#include \"stepnc/meta/boolean_element.h\"\n" : ""}});
   if (!dependencies.empty()) p.print("\n");
   for (const Schema* s : dependencies) p.print("#include \"$name$.h\"\n", {{"name", s->name}});
+}
 
-  const std::string ns_name = ns(&schema_);
-  p.print("\nnamespace $ns$ {\n\nextern const stepnc::meta::SchemaInfo meta_schema;\n", {{"ns", ns_name}});
+std::string SchemaEmitter::header() {
+  std::string out;
+  Printer p(out);
+  print_header_start(p,
+                     concat({"// ", schema_.name, ".h: C++ bindings for the EXPRESS schema ", schema_.name,
+                             ".\n// Generated by expressc from ", file_name(schema_.location), "; do not edit.\n"}),
+                     {&schema_}, header_dependencies());
+  print_declarations(p);
+  for (const DefinedType* t : types_in_order({&schema_})) print_type(p, *t);
+  for (const Entity* e : entities_in_order({&schema_})) print_entity_class(p, *e);
+  for (const Combination& c : analysis_.combinations(&schema_)) print_combination_class(p, c);
+  p.print("\n}  // namespace $ns$\n", {{"ns", ns(&schema_)}});
+  return out;
+}
 
-  const auto entities = entities_in_order();
+std::string SchemaEmitter::group_member_header(const SchemaGroup& group) const {
+  std::string others;
+  for (const Schema* member : group.members)
+    if (member != &schema_) append_item(others, ", ", member->name);
+  return concat({"// ", schema_.name, ".h: C++ bindings for the EXPRESS schema ", schema_.name,
+                 ".\n// Generated by expressc from ", file_name(schema_.location), "; do not edit.\n",
+                 comment_lines(concat({"Declared in ", group.name,
+                                       ".h with the schemas it uses that also use it (directly or through others): ", others,
+                                       "."})),
+                 "#pragma once\n\n#include \"", group.name, ".h\"\n"});
+}
+
+// Opens the schema's namespace and declares what other declarations may
+// name before its classes are complete: the classes, the reflection
+// tables, the algorithms.
+void SchemaEmitter::print_declarations(Printer& p) {
+  p.print("\nnamespace $ns$ {\n\nextern const stepnc::meta::SchemaInfo meta_schema;\n", {{"ns", ns(&schema_)}});
+
+  const auto entities = entities_in_order({&schema_});
   const auto& combinations = analysis_.combinations(&schema_);
   if (!entities.empty()) {
     p.print("\n// Entities, declared first so that types and attributes can refer to them.\n");
@@ -477,13 +575,6 @@ std::string SchemaEmitter::header() {
       p.print("extern const stepnc::meta::AlgorithmInfo $name$;\n", {{"name", identifier(a->name)}});
     p.print("}  // namespace meta_algorithms\n");
   }
-
-  for (const DefinedType* t : types_in_order()) print_type(p, *t);
-  for (const Entity* e : entities) print_entity_class(p, *e);
-  for (const Combination& c : combinations) print_combination_class(p, c);
-
-  p.print("\n}  // namespace $ns$\n", {{"ns", ns_name}});
-  return out;
 }
 
 void SchemaEmitter::print_type(Printer& p, const DefinedType& type) {
@@ -869,7 +960,7 @@ void SchemaEmitter::print_entity_info(Printer& p, const EntityTables& tables) {
 
 std::string SchemaEmitter::source() {
   const std::string ns_name = ns(&schema_);
-  const auto entities = entities_in_order();
+  const auto entities = entities_in_order({&schema_});
   const auto& combinations = analysis_.combinations(&schema_);
   // Attributes whose bounds the evaluator evaluates, as the entity tables
   // list them (bounded_attribute).
@@ -958,10 +1049,13 @@ std::string SchemaEmitter::source() {
   if (!aggregates_.empty()) p.print("\n$text$", {{"text", aggregates_}});
   if (!rules_.tables.empty()) p.print("\n$text$", {{"text", rules_.tables}});
   if (!tables.empty()) p.print("\n$text$", {{"text", tables}});
-  p.print("\nconstexpr const EntityInfo* schema_entities[] = {\n");
+  // A schema of types only (ISO 10303-41's support_resource_schema) has no
+  // entity table: C++ has no arrays of size zero.
+  const bool has_entities = !entities.empty() || !combinations.empty();
+  p.print(has_entities ? "\nconstexpr const EntityInfo* schema_entities[] = {\n" : "\n");
   for (const Entity* e : entities) p.print("    &$e$::meta_entity,\n", {{"e", qualified(e)}});
   for (const Combination& c : combinations) p.print("    &$e$::meta_entity,\n", {{"e", qualified(&schema_, c.name)}});
-  p.print("};\n");
+  if (has_entities) p.print("};\n");
   p.print("constexpr const stepnc::meta::SchemaInfo* schema_set[] = {\n");
   for (const auto& s : model_.schemas) p.print("    &::$name$::meta_schema,\n", {{"name", ns(s.get())}});
   p.print("};\n");
@@ -990,8 +1084,10 @@ std::string SchemaEmitter::source() {
       "\n"
       "constinit const stepnc::meta::SchemaInfo meta_schema{\n"
       "    .name = \"$schema$\",\n"
-      "    .entities = meta_tables::schema_entities,\n",
-      {{"schema", schema_.name}, {"algorithms", algorithms}});
+      "$entities$",
+      {{"schema", schema_.name},
+       {"algorithms", algorithms},
+       {"entities", has_entities ? "    .entities = meta_tables::schema_entities,\n" : ""}});
   if (!schema_.types.empty()) p.print("    .types = meta_tables::schema_types,\n");
   p.print("    .schema_set = meta_tables::schema_set,\n");
   if (!rules_.rules.empty()) p.print("    .rules = meta_tables::schema_rules,\n");
@@ -1034,39 +1130,96 @@ bool unchanged(const std::filesystem::path& path, const std::string& text) {
 
 namespace {
 
-// Headers include the headers of the schemas they use, so those uses must
-// not form a cycle. Reports each schema on a cycle; returns false if any.
-bool check_header_order(const model::Model& model, const Analysis& analysis,
-                        std::vector<model::Diagnostic>& diagnostics) {
-  std::map<const Schema*, std::vector<const Schema*>> uses;
-  for (const auto& schema : model.schemas)
-    uses[schema.get()] = SchemaEmitter(model, analysis, *schema, diagnostics).header_dependencies();
-  enum class State { unvisited, open, done };
-  std::map<const Schema*, State> state;
-  std::vector<const Schema*> path;
-  bool ok = true;
-  std::function<void(const Schema*)> visit = [&](const Schema* s) {
-    state[s] = State::open;
-    path.push_back(s);
-    for (const Schema* used : uses[s]) {
-      if (state[used] == State::open) {
-        std::string cycle;
-        for (auto it = std::find(path.begin(), path.end(), used); it != path.end(); ++it)
-          append_item(cycle, " -> ", (*it)->name);
-        append_item(cycle, " -> ", used->name);
-        diagnostics.push_back(error_at(s->location, "C++ emitter: the schemas use each other (" + cycle +
-                                                        "), so their headers cannot include each other"));
-        ok = false;
-      } else if (state[used] == State::unvisited) {
-        visit(used);
-      }
+using SchemaUses = std::map<const Schema*, std::vector<const Schema*>>;
+
+// The groups in the order of their first members. A group's header is named
+// after its member that sorts first, so that the name does not depend on
+// the order of the input files: `<name>_group.h`, with underscores added
+// while a schema has that name.
+std::vector<SchemaGroup> schema_groups(const model::Model& model, const SchemaUses& uses) {
+  std::map<const Schema*, std::set<const Schema*>> reaches;
+  for (const auto& schema : model.schemas) {
+    std::set<const Schema*>& reached = reaches[schema.get()];
+    std::vector<const Schema*> pending{schema.get()};
+    while (!pending.empty()) {
+      const Schema* s = pending.back();
+      pending.pop_back();
+      for (const Schema* used : uses.at(s))
+        if (reached.insert(used).second) pending.push_back(used);
     }
-    path.pop_back();
-    state[s] = State::done;
+  }
+  std::vector<SchemaGroup> groups;
+  std::set<const Schema*> grouped;
+  for (const auto& schema : model.schemas) {
+    if (grouped.count(schema.get()) != 0) continue;
+    SchemaGroup group;
+    for (const auto& other : model.schemas)
+      if (other == schema ||
+          (reaches[schema.get()].count(other.get()) != 0 && reaches[other.get()].count(schema.get()) != 0))
+        group.members.push_back(other.get());
+    if (group.members.size() < 2) continue;
+    grouped.insert(group.members.begin(), group.members.end());
+    const Schema* first = *std::min_element(group.members.begin(), group.members.end(),
+                                            [](const Schema* a, const Schema* b) { return a->name < b->name; });
+    group.name = first->name + "_group";
+    while (model.find_schema(group.name) != nullptr) group.name += '_';
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+// The group's header: the runtime's headers and those of the schemas the
+// group uses; each member's declarations (print_declarations); then every
+// member's types and classes in one order C++ accepts (types_in_order and
+// entities_in_order over the whole group, then the combinations),
+// reopening a member's namespace wherever the order moves to it.
+std::string group_header(const model::Model& model, const Analysis& analysis, const SchemaGroup& group,
+                         const SchemaUses& uses, std::vector<model::Diagnostic>& diagnostics) {
+  std::vector<SchemaEmitter> emitters;
+  for (const Schema* member : group.members) emitters.emplace_back(model, analysis, *member, diagnostics);
+  auto emitter_of = [&](const Schema* schema) -> SchemaEmitter& {
+    return emitters[static_cast<std::size_t>(std::find(group.members.begin(), group.members.end(), schema) -
+                                             group.members.begin())];
   };
-  for (const auto& schema : model.schemas)
-    if (state[schema.get()] == State::unvisited) visit(schema.get());
-  return ok;
+  SchemaList used(model);
+  std::string names, files;
+  std::set<std::string> listed_files;
+  for (const Schema* member : group.members) {
+    for (const Schema* s : uses.at(member))
+      if (std::find(group.members.begin(), group.members.end(), s) == group.members.end()) used.add(s);
+    append_item(names, ", ", member->name);
+    if (listed_files.insert(file_name(member->location)).second) append_item(files, ", ", file_name(member->location));
+  }
+
+  std::string out;
+  Printer p(out);
+  print_header_start(p,
+                     comment_lines(concat({group.name, ".h: C++ bindings for the EXPRESS schemas ", names,
+                                           ", which use each other, so that their headers cannot include each other: "
+                                           "they include this one. Include the schemas' own headers."})) +
+                         comment_lines(concat({"Generated by expressc from ", files, "; do not edit."})),
+                     group.members, used.ordered(nullptr));
+  for (SchemaEmitter& emitter : emitters) {
+    emitter.print_declarations(p);
+    p.print("\n}  // namespace $ns$\n", {{"ns", ns(&emitter.schema())}});
+  }
+
+  p.print("\n// The types, then the classes (each after its supertypes), of all the schemas above.\n");
+  const Schema* open = nullptr;
+  auto enter = [&](const Schema* schema) -> SchemaEmitter& {
+    if (schema != open) {
+      if (open != nullptr) p.print("\n}  // namespace $ns$\n", {{"ns", ns(open)}});
+      p.print("\nnamespace $ns$ {\n", {{"ns", ns(schema)}});
+      open = schema;
+    }
+    return emitter_of(schema);
+  };
+  for (const DefinedType* t : types_in_order(group.members)) enter(t->schema).print_type(p, *t);
+  for (const Entity* e : entities_in_order(group.members)) enter(e->schema).print_entity_class(p, *e);
+  for (const Schema* member : group.members)
+    for (const Combination& c : analysis.combinations(member)) enter(member).print_combination_class(p, c);
+  if (open != nullptr) p.print("\n}  // namespace $ns$\n", {{"ns", ns(open)}});
+  return out;
 }
 
 // One note per schema whose constraints allow combinations beyond the
@@ -1093,8 +1246,11 @@ void note_left_out_combinations(const Schema& schema, const Analysis& analysis,
 
 std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::vector<model::Diagnostic>& diagnostics) {
   const Analysis analysis(model);
+  SchemaUses uses;
+  for (const auto& schema : model.schemas)
+    uses[schema.get()] = SchemaEmitter(model, analysis, *schema, diagnostics).header_dependencies();
+  const auto groups = schema_groups(model, uses);
   std::vector<GeneratedFile> files;
-  if (!check_header_order(model, analysis, diagnostics)) return files;
   bool ok = true;
   for (const auto& schema : model.schemas) {
     SchemaEmitter emitter(model, analysis, *schema, diagnostics);
@@ -1103,7 +1259,16 @@ std::vector<GeneratedFile> CppGenerator::render(const model::Model& model, std::
       continue;
     }
     note_left_out_combinations(*schema, analysis, diagnostics);
-    files.push_back({schema->name + ".h", emitter.header()});
+    const auto group = std::find_if(groups.begin(), groups.end(), [&](const SchemaGroup& g) {
+      return std::find(g.members.begin(), g.members.end(), schema.get()) != g.members.end();
+    });
+    if (group == groups.end()) {
+      files.push_back({schema->name + ".h", emitter.header()});
+    } else {
+      if (group->members.front() == schema.get())
+        files.push_back({group->name + ".h", group_header(model, analysis, *group, uses, diagnostics)});
+      files.push_back({schema->name + ".h", emitter.group_member_header(*group)});
+    }
     files.push_back({schema->name + ".cc", emitter.source()});
   }
   if (!ok) files.clear();

@@ -737,7 +737,10 @@ class RuleEmitter {
   // ---------------------------------------------------------------- printing
 
   void print_nodes() {
-    if (nodes_.empty()) return;
+    if (nodes_.empty()) {  // UNIQUE clauses need no trees (ISO 10303-44's product_concept)
+      out_.tables = rule_text_;
+      return;
+    }
     std::string text = "// Expression and statement trees (stepnc/meta/expression.h): a node's operands are the\n"
                        "// `count` nodes from `first` on.\n"
                        "using stepnc::meta::Builtin;\nusing stepnc::meta::NodeKind;\nusing stepnc::meta::Operator;\n"

@@ -19,8 +19,8 @@
 ///   ENUMERATION       -> generated `enum class : std::uint8_t`
 ///   SELECT            -> generated class derived from meta::Select
 ///   defined type      -> `using` alias of its underlying type
-///   aggregate         -> std::vector<T>, or InlineVector<T, N> when the upper
-///                        bound N is at most 4 and T is a plain value
+///   aggregate         -> std::vector<T>, or InlineVector<T, N> when the upper bound N
+///                        is at most 4 and T is plain (vectors of BOOLEAN: BooleanElement)
 ///   OPTIONAL          -> std::optional<T>, except pointers and selects,
 ///                        which have their own empty state
 ///
