@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "stepnc/meta/complex.h"
 #include "stepnc/meta/registry.h"
 
 namespace stepnc::meta {
@@ -447,8 +448,28 @@ class Filler {
 
 }  // namespace
 
+namespace {
+
+// Passes references on and drops problems: a value of a supertype shared
+// by several parts of a complex instance is read into each, and its
+// problems are reported once, for the first.
+class QuietContext final : public FillContext {
+ public:
+  explicit QuietContext(FillContext& context) : context_(context) {}
+  Instance* resolve(std::uint64_t id) override { return context_.resolve(id); }
+  bool defer(const PendingReference& reference) override { return context_.defer(reference); }
+  void error(std::uint64_t /*offset*/, std::string /*message*/) override {}
+  std::string describe_missing(std::uint64_t id) override { return context_.describe_missing(id); }
+
+ private:
+  FillContext& context_;
+};
+
+}  // namespace
+
 std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, FillContext& context) {
   const EntityInfo& entity = instance.entity_info();
+  const Combination* combination = entity.combination;
   std::size_t problems = 0;
   auto report = [&](std::uint64_t offset, std::string message) {
     ++problems;
@@ -456,7 +477,9 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
   };
 
   // Fills the attributes `owner` declares (all of them when null) from one
-  // part of the record, walking the table without allocating.
+  // part of the record, walking the table without allocating. A value goes
+  // into the instance, or for a complex instance without a generated class
+  // into each of its parts that has the attribute.
   auto fill_part = [&](const p21::EntityPart& part, const EntityInfo* owner) {
     const auto belongs = [&](const AttributeInfo& a) { return owner == nullptr || a.owner == owner; };
     const auto expected = static_cast<std::size_t>(
@@ -474,16 +497,29 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
       Filler filler(context, a);
       if (!a.stored()) {
         if (!v.is(p21::ParamKind::derived)) filler.fail(v, "derived here; expected `*`");
-      } else if (v.is(p21::ParamKind::null)) {
-        if (a.optional) {
-          reset(instance, a);
-        } else {
-          filler.fail(v, "a required value is missing (`$`)");
-        }
       } else if (v.is(p21::ParamKind::derived)) {
         filler.fail(v, "`*` given for an explicit attribute");
+      } else if (v.is(p21::ParamKind::null) && !a.optional) {
+        filler.fail(v, "a required value is missing (`$`)");
+      } else if (combination == nullptr) {
+        if (v.is(p21::ParamKind::null)) {
+          reset(instance, a);
+        } else {
+          filler.read(emplace(instance, a), v);
+        }
       } else {
-        filler.read(emplace(instance, a), v);
+        const auto& copies = combination->copies[static_cast<std::size_t>(&a - entity.attributes.data())];
+        QuietContext quiet(context);
+        for (const Combination::Copy& copy : copies) {
+          Instance& target = *static_cast<ComplexInstance&>(instance).parts()[copy.part];
+          if (v.is(p21::ParamKind::null)) {
+            reset(target, *copy.attribute);
+          } else if (&copy == &copies.front()) {
+            filler.read(emplace(target, *copy.attribute), v);
+          } else {
+            Filler(quiet, a).read(emplace(target, *copy.attribute), v);
+          }
+        }
       }
       problems += filler.problems();
     }
@@ -542,7 +578,7 @@ std::vector<AttributeText> attribute_texts(const Instance& const_instance) {
     for (const AttributeInfo& d : u.entity->derived) {
       if (!d.derivable() || d.type->resolved().kind != TypeKind::Integer) continue;
       std::int64_t value = 0;
-      d.derive(instance, &value);
+      d.derive(part_as(instance, *u.entity), &value);
       texts.push_back({d.name, std::to_string(value), true});
     }
   }

@@ -2,6 +2,11 @@
 #include "stepnc/meta/registry.h"
 
 #include <algorithm>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "stepnc/meta/complex.h"
 
 namespace stepnc::meta {
 
@@ -25,6 +30,11 @@ bool equal_names(std::string_view a, std::string_view b) noexcept {
   return a.size() == b.size() &&
          std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return lower(x) == lower(y); });
 }
+
+struct Registry::Combinations {
+  std::mutex mutex;
+  std::vector<std::shared_ptr<Combination>> built;
+};
 
 Registry::Registry(std::initializer_list<const SchemaInfo*> schemas) {
   for (const SchemaInfo* s : schemas) add(*s);
@@ -53,6 +63,7 @@ const void* Registry::lookup(const std::vector<Entry>& table, std::string_view n
 void Registry::add(const SchemaInfo& schema) {
   if (std::find(schemas_.begin(), schemas_.end(), &schema) != schemas_.end()) return;
   schemas_.push_back(&schema);
+  if (!combinations_) combinations_ = std::make_shared<Combinations>();
   for (const EntityInfo* e : schema.entities) {
     entities_.push_back(e);
     if (!e->is_complex()) {
@@ -102,6 +113,65 @@ const EntityInfo* Registry::find_complex(std::span<const std::string_view> part_
     if (same_set) return e;
   }
   return nullptr;
+}
+
+}  // namespace stepnc::meta
+
+namespace stepnc::meta {
+
+Registry::Combined Registry::combine(std::span<const std::string_view> part_names) const {
+  Combined result;
+  std::vector<const EntityInfo*> entities;
+  entities.reserve(part_names.size());
+  for (std::string_view name : part_names) {
+    const EntityInfo* entity = find_entity(name);
+    if (entity == nullptr) {
+      result.unknown = true;
+      result.problem = fmt::format("{} is unknown", name);
+      return result;
+    }
+    if (std::find(entities.begin(), entities.end(), entity) != entities.end()) {
+      result.problem = fmt::format("{} is given twice", name);
+      return result;
+    }
+    entities.push_back(entity);
+  }
+  // The leaves: entities of the record none of whose subtypes is in it.
+  std::vector<const EntityInfo*> leaves;
+  for (const EntityInfo* e : entities)
+    if (std::none_of(entities.begin(), entities.end(), [&](const EntityInfo* f) { return f != e && f->is_a(*e); }))
+      leaves.push_back(e);
+  for (const EntityInfo* leaf : leaves) {
+    // The external mapping lists every entity of the instance, supertypes
+    // included (ISO 10303-21 12.2.5.1).
+    for (const Upcast& u : leaf->upcasts) {
+      if (std::find(entities.begin(), entities.end(), u.entity) == entities.end()) {
+        result.problem = fmt::format("{} is a subtype of {}, which the record does not list", leaf->p21_name,
+                                     u.entity->p21_name);
+        return result;
+      }
+    }
+    if (leaf->abstract || leaf->create == nullptr) {
+      result.problem = fmt::format("{} is ABSTRACT and none of its subtypes is in the record", leaf->p21_name);
+      return result;
+    }
+  }
+  std::sort(leaves.begin(), leaves.end());
+  if (!combinations_) return result;  // a default-constructed registry knows no entity
+  const std::lock_guard lock(combinations_->mutex);
+  for (const auto& built : combinations_->built) {
+    std::vector<const EntityInfo*> theirs(built->leaves);
+    std::sort(theirs.begin(), theirs.end());
+    if (theirs == leaves) {
+      result.entity = &built->entity;
+      return result;
+    }
+  }
+  std::shared_ptr<Combination> made = Combination::make(leaves, result.problem);
+  if (!made) return result;
+  combinations_->built.push_back(made);
+  result.entity = &made->entity;
+  return result;
 }
 
 }  // namespace stepnc::meta

@@ -54,6 +54,7 @@ struct EntityInfo;
 struct TypeInfo;
 struct AttributeInfo;
 class Model;
+struct Combination;
 
 /// The root of every generated entity class. An instance knows its Part 21
 /// id and, through its class, its EntityInfo; nothing else is stored.
@@ -246,6 +247,9 @@ struct EntityInfo {
   std::span<const Upcast> upcasts{};  ///< every ancestor and itself
   std::span<const DomainRuleInfo> where{};   ///< WHERE rules declared here
   std::span<const UniqueRuleInfo> unique{};  ///< UNIQUE clauses declared here
+  /// A combination built at run time (complex.h), whose instances are
+  /// ComplexInstance objects; null for every generated table.
+  const Combination* combination = nullptr;
 
   bool is_complex() const noexcept { return !parts.empty(); }  ///< true for a complex (ANDOR) combination of entities
   /// True when this entity is `other` or one of its subtypes (EXPRESS `IN TYPEOF`).

@@ -18,6 +18,7 @@
 #include <new>
 #include <optional>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "stepnc/meta/info.h"
@@ -47,8 +48,23 @@ class Model {
   }
 
   /// Creates an instance of the entity by its table (the reader's path);
-  /// null when the entity is abstract.
+  /// null when the entity is abstract. A combination built at run time
+  /// (EntityInfo::combination) makes a ComplexInstance and its parts
+  /// (complex.h), the parts outside the instance list.
   Instance* create(const EntityInfo& entity, std::optional<std::uint32_t> id = std::nullopt);
+
+  /// The instance `instance` belongs to: the ComplexInstance when it is
+  /// one of its parts (a typed reference to a complex instance holds a
+  /// part), else itself. A look-up only in a model that holds such
+  /// instances.
+  Instance* whole_of(Instance* instance) const noexcept {
+    if (wholes_.empty() || instance == nullptr) return instance;
+    return whole_in_table(instance);
+  }
+  /// The same, for a const instance.
+  const Instance* whole_of(const Instance* instance) const noexcept { return whole_of(const_cast<Instance*>(instance)); }
+  /// Whether any instance is a ComplexInstance (whole_of() is then a look-up).
+  bool has_complex_instances() const noexcept { return !wholes_.empty(); }
 
   /// Makes room for `count` instances in all (a reader knows how many it
   /// will create), so the instance list is allocated once, at its size.
@@ -70,6 +86,9 @@ class Model {
   void adopt(Instance& instance, std::optional<std::uint32_t> id);  ///< registers a new instance under `id` (empty: the next free one)
 
  private:
+  Instance* create_complex(const Combination& combination, std::optional<std::uint32_t> id);
+  Instance* whole_in_table(Instance* part) const noexcept;
+
   struct FreeBytes {
     void operator()(std::byte* bytes) const noexcept;
   };
@@ -84,6 +103,8 @@ class Model {
   std::vector<Instance*> instances_;
   std::uint32_t last_id_ = 0;
   bool in_id_order_ = true;  ///< every instance so far was created with a larger id than the ones before
+  std::unordered_map<const Instance*, Instance*> wholes_;  ///< part -> its ComplexInstance
+  std::vector<std::shared_ptr<const Combination>> combinations_;  ///< the tables its complex instances use
 };
 
 template <class Object>
