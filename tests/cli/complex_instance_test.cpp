@@ -149,6 +149,11 @@ TEST_CASE("bad complex records are reported at their place", "[complex]") {
   CHECK(first_error("#3=(COLOURED('a')LABELLED('l')WEIGHTED(1.0));\n") ==
         "complex.stp:10:1: error: #3: the complex instance (COLOURED LABELLED WEIGHTED) is not valid: COLOURED is a "
         "subtype of ITEM, which the record does not list");
+  // ONEOF (light, heavy) of weighted: never both (ISO 10303-11 9.2.5.2).
+  CHECK(first_error("#3=(HEAVY()ITEM('x')LABELLED('l')LIGHT()WEIGHTED(1.0));\n") ==
+        "complex.stp:10:1: error: #3: the complex instance (HEAVY ITEM LABELLED LIGHT WEIGHTED) is not valid: LIGHT "
+        "and HEAVY are alternatives of a ONEOF of WEIGHTED");
+  CHECK(read(head + "#3=(HEAVY()ITEM('x')LABELLED('l')WEIGHTED(1.0));\n").ok());
   CHECK(first_error("#3=(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNIT_ASSIGNED_CONTEXT((#1))"
                     "REPRESENTATION_CONTEXT('',''));\n#4=HOLDER(#3,());\n") ==
         "complex.stp:11:11: error: #4: attribute 'held' of holder: #3 is "

@@ -156,6 +156,22 @@ Registry::Combined Registry::combine(std::span<const std::string_view> part_name
       return result;
     }
   }
+  // Entities of two operands of one ONEOF never make one instance (ISO
+  // 10303-11 9.2.5.2); a supertype without a constraint allows any
+  // combination of its subtypes (ANDOR, 9.2.5.4).
+  const auto listed = [&](const EntityInfo* e) { return std::find(entities.begin(), entities.end(), e) != entities.end(); };
+  for (const EntityInfo* super : entities) {
+    for (const OneOfMember& a : super->oneof) {
+      if (!listed(a.entity)) continue;
+      for (const OneOfMember& b : super->oneof) {
+        if (b.group == a.group && b.operand != a.operand && listed(b.entity)) {
+          result.problem = fmt::format("{} and {} are alternatives of a ONEOF of {}", a.entity->p21_name,
+                                       b.entity->p21_name, super->p21_name);
+          return result;
+        }
+      }
+    }
+  }
   std::sort(leaves.begin(), leaves.end());
   if (!combinations_) return result;  // a default-constructed registry knows no entity
   const std::lock_guard lock(combinations_->mutex);

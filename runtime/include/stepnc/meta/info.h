@@ -228,6 +228,16 @@ struct Upcast {
   void* (*cast)(void* object) = nullptr;  ///< complete object to a pointer to the ancestor's class
 };
 
+/// An entity named in a ONEOF of a supertype constraint (ISO 10303-11
+/// 9.2.5.2): `entity` lies in operand `operand` of ONEOF number `group` of
+/// the supertype's constraints. One instance combines entities of one
+/// operand of each ONEOF at most.
+struct OneOfMember {
+  const EntityInfo* entity = nullptr;  ///< an entity the operand names (at any depth)
+  std::uint16_t group = 0;    ///< which ONEOF of the supertype's constraints
+  std::uint16_t operand = 0;  ///< which operand of that ONEOF
+};
+
 /// The metaclass of an entity: its names, place in the hierarchy, attributes and factory.
 struct EntityInfo {
   std::string_view name{};  ///< empty for a complex (ANDOR) combination
@@ -247,6 +257,9 @@ struct EntityInfo {
   std::span<const Upcast> upcasts{};  ///< every ancestor and itself
   std::span<const DomainRuleInfo> where{};   ///< WHERE rules declared here
   std::span<const UniqueRuleInfo> unique{};  ///< UNIQUE clauses declared here
+  /// The ONEOFs of its SUPERTYPE OF and SUBTYPE_CONSTRAINTs, for complex
+  /// instances made at run time (Registry::combine).
+  std::span<const OneOfMember> oneof{};
   /// A combination built at run time (complex.h), whose instances are
   /// ComplexInstance objects; null for every generated table.
   const Combination* combination = nullptr;
