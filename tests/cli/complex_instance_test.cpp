@@ -7,14 +7,19 @@
 // INVERSE, `:=:`, WHERE rules of every part) see one instance.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "complex_schema.h"
+#include "stepnc/exchange/lazy_file.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/complex.h"
+#include "stepnc/meta/io.h"
 #include "stepnc/meta/registry.h"
+#include "stepnc/query/path_query.h"
 #include "stepnc/rules/evaluate.h"
 
 namespace {
@@ -205,4 +210,52 @@ TEST_CASE("rules see a complex instance as one instance", "[complex]") {
       "#4=REPRESENTATION('r',#3);\n");
   REQUIRE(without_units.ok());
   CHECK(violations(without_units.file->model) == std::vector<std::string>{"#4: representation.units_known violated"});
+}
+
+TEST_CASE("a lazily opened file reads complex instances on demand", "[complex]") {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "stepnc_complex_lazy_test.stp";
+  std::ofstream(path) << part21(good);
+  stepnc::p21::Diagnostics diagnostics;
+  auto file = stepnc::exchange::LazyModelFile::open(path, registry(), {}, diagnostics);
+  REQUIRE(file != nullptr);
+  auto* shape = stepnc::meta::instance_cast<cs::shape_model>(file->find(5));
+  REQUIRE(shape != nullptr);
+  // The reference holds a part: following it loads the whole record.
+  auto* context = dynamic_cast<cs::geometric_representation_context*>(file->follow(shape->context));
+  REQUIRE(context != nullptr);
+  CHECK(context->coordinate_space_dimension == 3);
+  CHECK(shape->unit_context->units.size() == 1);
+  CHECK(file->is_loaded(*shape->unit_context));
+  CHECK(dynamic_cast<ComplexInstance*>(file->find(3)) != nullptr);
+  CHECK(file->instances_of(cs::global_unit_assigned_context::meta_entity).size() == 1);
+  CHECK(file->diagnostics().items().empty());
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("path queries and dumps show a complex instance as one", "[complex]") {
+  auto result = read(good);
+  REQUIRE(result.ok());
+  const stepnc::meta::Model& model = result.file->model;
+  const auto query = [&](const char* path) {
+    const stepnc::query::QueryResult found = stepnc::query::evaluate(path, model, registry());
+    std::string text = found.error ? "error: " + found.error->message : "";
+    for (const stepnc::query::Node& node : found.nodes) {
+      if (!text.empty()) text += ' ';
+      text += node.to_string();
+    }
+    return text;
+  };
+  // A reference to a part leads to the whole: every entity's attributes.
+  CHECK(query("/#4/context_of_items") == "#3");
+  CHECK(query("/#4/context_of_items/units") == "(#1)");
+  CHECK(query("/shape_model/context/uncertainty[0]/value_component") == "1.E-7");
+  CHECK(query("/#7/held/weight") == "2.5");
+  CHECK(query("/global_unit_assigned_context/coordinate_space_dimension") == "3");
+  CHECK(query("/#7/held/nothing") ==
+        "error: no attribute 'nothing' in coloured+labelled+weighted");
+  CHECK(stepnc::meta::dump(*model.instances()[2]) ==
+        "#3=geometric_representation_context+global_uncertainty_assigned_context+global_unit_assigned_context "
+        "(complex_schema)\n"
+        "  context_identifier: 'ctx'\n  context_type: '3D'\n  coordinate_space_dimension: 3\n"
+        "  uncertainty: (#2)\n  units: (#1)\n");
 }

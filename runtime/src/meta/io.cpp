@@ -242,17 +242,6 @@ std::string_view describe(const TypeInfo& type) {
   return "a value";
 }
 
-std::string entity_name(const Instance& instance) {
-  const EntityInfo& e = instance.entity_info();
-  if (!e.is_complex()) return std::string(e.name);
-  std::string names;
-  for (const EntityInfo* p : e.parts) {
-    if (!names.empty()) names += '+';
-    names += p->name;
-  }
-  return names;
-}
-
 std::string attribute_problem(const AttributeInfo& attribute, std::string_view message) {
   return fmt::format("attribute '{}' of {}: {}", attribute.name, attribute.owner->name, message);
 }
@@ -269,10 +258,10 @@ std::optional<std::string> bind(const ValueRef& target, std::uint64_t id, Instan
         return std::nullopt;
       }
     }
-    return fmt::format("#{} is {}, which select {} does not allow", id, entity_name(*instance), type.name);
+    return fmt::format("#{} is {}, which select {} does not allow", id, instance->entity_info().label(), type.name);
   }
   if (target.set_instance(instance)) return std::nullopt;
-  return fmt::format("#{} is {}, not {}", id, entity_name(*instance), type.entity->name);
+  return fmt::format("#{} is {}, not {}", id, instance->entity_info().label(), type.entity->name);
 }
 
 // Reads parameter values into typed storage, reporting each problem with
@@ -587,14 +576,7 @@ std::vector<AttributeText> attribute_texts(const Instance& const_instance) {
 
 std::string dump(const Instance& instance) {
   const EntityInfo& entity = instance.entity_info();
-  std::string out = fmt::format("#{}=", instance.id());
-  if (entity.is_complex()) {
-    for (std::size_t i = 0; i < entity.parts.size(); ++i)
-      out += fmt::format("{}{}", i == 0 ? "" : "+", entity.parts[i]->name);
-  } else {
-    out += entity.name;
-  }
-  out += fmt::format(" ({})\n", entity.schema->name);
+  std::string out = fmt::format("#{}={} ({})\n", instance.id(), entity.label(), entity.schema->name);
   for (const AttributeText& a : attribute_texts(instance)) {
     out += fmt::format("  {}{}: {}\n", a.name, a.derived ? " (derived)" : "", a.value);
   }

@@ -294,7 +294,7 @@ class Evaluator {
 
   std::optional<QueryError> attribute(const Step& step, std::vector<Node>& nodes) {
     std::vector<Node> result;
-    std::vector<std::string_view> lacking;  // entities without the attribute, for the message
+    std::vector<std::string> lacking;  // entities without the attribute, for the message
     bool found = false;
     // Aggregates apply the step to their elements; work through a queue.
     std::vector<Node> pending(nodes.rbegin(), nodes.rend());
@@ -314,7 +314,7 @@ class Evaluator {
       const meta::EntityInfo& entity = node.instance->entity_info();
       const meta::AttributeInfo* info = entity.find_attribute(step.name);
       if (info == nullptr) {
-        if (std::find(lacking.begin(), lacking.end(), entity.name) == lacking.end()) lacking.push_back(entity.name);
+        if (std::find(lacking.begin(), lacking.end(), entity.label()) == lacking.end()) lacking.push_back(entity.label());
         continue;
       }
       found = true;

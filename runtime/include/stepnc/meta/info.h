@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -273,6 +274,9 @@ struct EntityInfo {
   /// The attribute with this name (case-insensitive) in Part 21 order, then
   /// among derived and inverse ones, or null.
   const AttributeInfo* find_attribute(std::string_view attribute) const noexcept;
+  /// The name for messages: `name`, or for a combination its parts joined
+  /// by `+` (`si_unit+length_unit`).
+  std::string label() const;
 };
 
 /// The metaclass of a schema: its entities and named types.
