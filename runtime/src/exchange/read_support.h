@@ -3,6 +3,7 @@
 // (internal header): the typed entity of a record, the header's check.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <string>
@@ -31,11 +32,17 @@ class EntityLookup {
   // A complex record, by the parts of its parsed parameters (left in
   // `parts`): the generated class of the combination, else one built at
   // run time (meta/complex.h); null when neither can be.
-  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
+  // The combinations met so far are kept by their names as written: a
+  // file repeats a few combinations many times.
+  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) {
     parts.clear();
     for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
-    if (const meta::EntityInfo* generated = registry_.find_complex(parts)) return generated;
-    return registry_.combine(parts).entity;
+    for (const auto& [names, entity] : complex_)
+      if (std::equal(names.begin(), names.end(), parts.begin(), parts.end())) return entity;
+    const meta::EntityInfo* entity = registry_.find_complex(parts);
+    if (entity == nullptr) entity = registry_.combine(parts).entity;
+    if (entity != nullptr && complex_.size() < 64) complex_.emplace_back(parts.begin(), parts.end(), entity);
+    return entity;
   }
 
   // Why a complex record has no typed instance: a part no schema defines
@@ -56,6 +63,14 @@ class EntityLookup {
  private:
   const meta::Registry& registry_;
   std::vector<const meta::EntityInfo*> entities_;  // by name number
+  struct Met {
+    Met(std::vector<std::string_view>::const_iterator first, std::vector<std::string_view>::const_iterator last,
+        const meta::EntityInfo* found)
+        : names(first, last), entity(found) {}
+    std::vector<std::string> names;
+    const meta::EntityInfo* entity;
+  };
+  std::vector<Met> complex_;  // combinations met, by their parts' names as written
 };
 
 // A problem of the header's FILE_SCHEMA against the registry, to report at

@@ -129,7 +129,8 @@ Instance* Model::create_complex(const Combination& combination, std::optional<st
   in_id_order_ = in_id_order;
   auto* whole = new (allocate(sizeof(ComplexInstance), alignof(ComplexInstance))) ComplexInstance(combination, parts);
   adopt(*whole, the_id);
-  for (std::size_t i = 0; i < n; ++i) wholes_.emplace(parts[i], whole);
+  wholes_.push_back(whole);
+  for (std::size_t i = 0; i < n; ++i) parts[i]->whole_ = static_cast<std::uint32_t>(wholes_.size());
   if (combinations_.empty() || combinations_.back().get() != &combination) {
     if (std::none_of(combinations_.begin(), combinations_.end(),
                      [&](const auto& kept) { return kept.get() == &combination; }))
@@ -138,10 +139,6 @@ Instance* Model::create_complex(const Combination& combination, std::optional<st
   return whole;
 }
 
-Instance* Model::whole_in_table(Instance* part) const noexcept {
-  const auto it = wholes_.find(part);
-  return it == wholes_.end() ? part : it->second;
-}
 
 std::span<Instance* const> Model::in_id_order(std::vector<Instance*>& storage) const {
   if (in_id_order_) return instances_;

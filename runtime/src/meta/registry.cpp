@@ -33,7 +33,8 @@ bool equal_names(std::string_view a, std::string_view b) noexcept {
 
 struct Registry::Combinations {
   std::mutex mutex;
-  std::vector<std::shared_ptr<Combination>> built;
+  // By the leaves' addresses, sorted: a file has a handful of distinct ones.
+  std::vector<std::pair<std::vector<const EntityInfo*>, std::shared_ptr<Combination>>> built;
 };
 
 Registry::Registry(std::initializer_list<const SchemaInfo*> schemas) {
@@ -175,18 +176,16 @@ Registry::Combined Registry::combine(std::span<const std::string_view> part_name
   std::sort(leaves.begin(), leaves.end());
   if (!combinations_) return result;  // a default-constructed registry knows no entity
   const std::lock_guard lock(combinations_->mutex);
-  for (const auto& built : combinations_->built) {
-    std::vector<const EntityInfo*> theirs(built->leaves);
-    std::sort(theirs.begin(), theirs.end());
-    if (theirs == leaves) {
+  for (const auto& [key, built] : combinations_->built) {
+    if (key == leaves) {
       result.entity = &built->entity;
       return result;
     }
   }
   std::shared_ptr<Combination> made = Combination::make(leaves, result.problem);
   if (!made) return result;
-  combinations_->built.push_back(made);
   result.entity = &made->entity;
+  combinations_->built.emplace_back(std::move(leaves), std::move(made));
   return result;
 }
 

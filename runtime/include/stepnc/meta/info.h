@@ -82,6 +82,10 @@ class Instance {
  private:
   friend class Model;
   std::uint32_t id_ = 0;
+  /// For a part of a ComplexInstance (complex.h): 1 + its index among the
+  /// model's complex instances (Model::whole_of); 0 otherwise. It fills
+  /// what would be padding: no instance grows.
+  std::uint32_t whole_ = 0;
 };
 
 // ---------------------------------------------------------------- types

@@ -18,7 +18,6 @@
 #include <new>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "stepnc/meta/info.h"
@@ -55,15 +54,16 @@ class Model {
 
   /// The instance `instance` belongs to: the ComplexInstance when it is
   /// one of its parts (a typed reference to a complex instance holds a
-  /// part), else itself. A look-up only in a model that holds such
-  /// instances.
+  /// part), else itself. A part keeps its whole's number
+  /// (Instance::whole_): a test and an index, no look-up.
   Instance* whole_of(Instance* instance) const noexcept {
-    if (wholes_.empty() || instance == nullptr) return instance;
-    return whole_in_table(instance);
+    if (wholes_.empty() || instance == nullptr || instance->whole_ == 0 || instance->whole_ > wholes_.size())
+      return instance;
+    return wholes_[instance->whole_ - 1];
   }
   /// The same, for a const instance.
   const Instance* whole_of(const Instance* instance) const noexcept { return whole_of(const_cast<Instance*>(instance)); }
-  /// Whether any instance is a ComplexInstance (whole_of() is then a look-up).
+  /// Whether any instance is a ComplexInstance (made from a run-time combination).
   bool has_complex_instances() const noexcept { return !wholes_.empty(); }
 
   /// Makes room for `count` instances in all (a reader knows how many it
@@ -87,7 +87,6 @@ class Model {
 
  private:
   Instance* create_complex(const Combination& combination, std::optional<std::uint32_t> id);
-  Instance* whole_in_table(Instance* part) const noexcept;
 
   struct FreeBytes {
     void operator()(std::byte* bytes) const noexcept;
@@ -103,7 +102,7 @@ class Model {
   std::vector<Instance*> instances_;
   std::uint32_t last_id_ = 0;
   bool in_id_order_ = true;  ///< every instance so far was created with a larger id than the ones before
-  std::unordered_map<const Instance*, Instance*> wholes_;  ///< part -> its ComplexInstance
+  std::vector<Instance*> wholes_;  ///< the ComplexInstances, numbered by their parts' Instance::whole_
   std::vector<std::shared_ptr<const Combination>> combinations_;  ///< the tables its complex instances use
 };
 
