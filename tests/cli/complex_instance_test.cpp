@@ -97,6 +97,12 @@ TEST_CASE("complex instances without a class read typed and write back byte for 
       CHECK(part->id() == 3);
       CHECK(model.whole_of(part) == context);
     }
+    // A part of another model's complex instance is not one of this model's.
+    auto other = read(good);
+    REQUIRE(other.ok());
+    stepnc::meta::Instance* foreign = find<ComplexInstance>(other.file->model, 3)->parts()[0];
+    CHECK(model.whole_of(foreign) == foreign);
+    CHECK(model.whole_of(find<cs::representation>(model, 4)) == find<cs::representation>(model, 4));
 
     // Generated accessors follow references into the parts; the shared
     // supertype has its values in each.

@@ -140,6 +140,15 @@ Instance* Model::create_complex(const Combination& combination, std::optional<st
 }
 
 
+Instance* Model::whole_of_part(Instance* part) const noexcept {
+  // The number is checked against the whole's parts: a part of another
+  // model's complex instance is not one of this model's.
+  if (part->whole_ > wholes_.size()) return part;
+  auto* whole = static_cast<ComplexInstance*>(wholes_[part->whole_ - 1]);
+  const auto parts = whole->parts();
+  return std::find(parts.begin(), parts.end(), part) != parts.end() ? whole : part;
+}
+
 std::span<Instance* const> Model::in_id_order(std::vector<Instance*>& storage) const {
   if (in_id_order_) return instances_;
   storage.assign(instances_.begin(), instances_.end());

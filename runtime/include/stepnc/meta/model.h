@@ -57,9 +57,8 @@ class Model {
   /// part), else itself. A part keeps its whole's number
   /// (Instance::whole_): a test and an index, no look-up.
   Instance* whole_of(Instance* instance) const noexcept {
-    if (wholes_.empty() || instance == nullptr || instance->whole_ == 0 || instance->whole_ > wholes_.size())
-      return instance;
-    return wholes_[instance->whole_ - 1];
+    if (wholes_.empty() || instance == nullptr || instance->whole_ == 0) return instance;
+    return whole_of_part(instance);
   }
   /// The same, for a const instance.
   const Instance* whole_of(const Instance* instance) const noexcept { return whole_of(const_cast<Instance*>(instance)); }
@@ -87,6 +86,7 @@ class Model {
 
  private:
   Instance* create_complex(const Combination& combination, std::optional<std::uint32_t> id);
+  Instance* whole_of_part(Instance* part) const noexcept;
 
   struct FreeBytes {
     void operator()(std::byte* bytes) const noexcept;
