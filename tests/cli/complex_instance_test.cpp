@@ -19,6 +19,8 @@
 #include "stepnc/meta/complex.h"
 #include "stepnc/meta/io.h"
 #include "stepnc/meta/registry.h"
+#include "stepnc/p21/document.h"
+#include "stepnc/p21/writer.h"
 #include "stepnc/query/path_query.h"
 #include "stepnc/rules/evaluate.h"
 
@@ -138,6 +140,10 @@ TEST_CASE("complex instances without a class read typed and write back byte for 
 
     CHECK(stepnc::exchange::to_text(*result.file) == part21(good));
   }
+  // The input is in canonical form: what `stepnc format` writes of it.
+  auto document = stepnc::p21::read_text(part21(good), "complex.stp");
+  REQUIRE(document.document);
+  CHECK(stepnc::p21::to_text(*document.document) == part21(good));
 }
 
 TEST_CASE("bad complex records are reported at their place", "[complex]") {
