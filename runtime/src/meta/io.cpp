@@ -435,10 +435,6 @@ class Filler {
   std::size_t problems_ = 0;
 };
 
-}  // namespace
-
-namespace {
-
 // Passes references on and drops problems: a value of a supertype shared
 // by several parts of a complex instance is read into each, and its
 // problems are reported once, for the first.
