@@ -198,6 +198,8 @@ TEST_CASE("rules see a complex instance as one instance", "[complex]") {
   // INVERSE counts #4's reference to a part (used_once), two parts are
   // one instance (one_context), every part's WHERE rules hold.
   CHECK(violations(model).empty());
+  // The structural check follows references into parts too: none is "of another model".
+  CHECK(stepnc::rules::validate(model).messages().empty());
   namespace f = cs::meta_algorithms;
   CHECK(stepnc::rules::call_text(model, f::type_count, {"#3"}) == "4");
   CHECK(stepnc::rules::call_text(model, f::type_count, {"#6"}) == "4");
