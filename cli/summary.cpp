@@ -8,16 +8,7 @@
 
 namespace stepnc::cli {
 
-std::string entity_label(const meta::Instance& instance) {
-  const meta::EntityInfo& entity = instance.entity_info();
-  if (!entity.is_complex()) return std::string(entity.name);
-  std::string joined;
-  for (const meta::EntityInfo* part : entity.parts) {
-    if (!joined.empty()) joined += '+';
-    joined += part->name;
-  }
-  return joined;
-}
+std::string entity_label(const meta::Instance& instance) { return instance.entity_info().label(); }
 
 Identity identify(const meta::Instance& instance) {
   Identity identity{instance.id(), entity_label(instance), std::nullopt};

@@ -29,6 +29,7 @@ namespace {
 using stepnc::meta::AttributeInfo;
 using stepnc::meta::AttributeKind;
 using stepnc::meta::EntityInfo;
+using stepnc::meta::OneOfMember;
 using stepnc::meta::TypeInfo;
 using stepnc::meta::TypeKind;
 using stepnc::meta::Upcast;
@@ -4182,6 +4183,11 @@ constexpr const EntityInfo* representation_item_subtypes[] = {
     &machining_schema::mapped_item::meta_entity,
     &machining_schema::topological_representation_item::meta_entity,
 };
+constexpr OneOfMember representation_item_oneof[] = {
+    {&machining_schema::geometric_representation_item::meta_entity, 0, 0},
+    {&machining_schema::topological_representation_item::meta_entity, 0, 1},
+    {&machining_schema::mapped_item::meta_entity, 0, 2},
+};
 constexpr Upcast representation_item_upcasts[] = {
     {&machining_schema::representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::representation_item, machining_schema::representation_item>},
 };
@@ -4209,6 +4215,18 @@ constexpr AttributeInfo geometric_representation_item_derived[] = {
     {.name = "dim", .owner = &machining_schema::geometric_representation_item::meta_entity, .type = &machining_schema::type_info::dimension_count, .kind = AttributeKind::Derived,
      .derivation = &geometric_representation_item_dim_derivation},
 };
+constexpr OneOfMember geometric_representation_item_oneof[] = {
+    {&machining_schema::point::meta_entity, 0, 0},
+    {&machining_schema::direction::meta_entity, 0, 1},
+    {&machining_schema::placement::meta_entity, 0, 2},
+    {&machining_schema::curve::meta_entity, 0, 3},
+    {&machining_schema::surface::meta_entity, 0, 4},
+    {&machining_schema::edge_curve::meta_entity, 0, 5},
+    {&machining_schema::face_surface::meta_entity, 0, 6},
+    {&machining_schema::vertex_point::meta_entity, 0, 7},
+    {&machining_schema::solid_model::meta_entity, 0, 8},
+    {&machining_schema::poly_loop::meta_entity, 0, 9},
+};
 constexpr Upcast geometric_representation_item_upcasts[] = {
     {&machining_schema::geometric_representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::geometric_representation_item, machining_schema::geometric_representation_item>},
     {&machining_schema::representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::geometric_representation_item, machining_schema::representation_item>},
@@ -4224,6 +4242,12 @@ constexpr const EntityInfo* curve_subtypes[] = {
     &machining_schema::helix::meta_entity,
     &machining_schema::line::meta_entity,
     &machining_schema::pcurve::meta_entity,
+};
+constexpr OneOfMember curve_oneof[] = {
+    {&machining_schema::line::meta_entity, 0, 0},
+    {&machining_schema::conic::meta_entity, 0, 1},
+    {&machining_schema::pcurve::meta_entity, 0, 2},
+    {&machining_schema::bounded_curve::meta_entity, 0, 3},
 };
 constexpr Upcast curve_upcasts[] = {
     {&machining_schema::curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::curve, machining_schema::curve>},
@@ -4241,6 +4265,13 @@ constexpr const EntityInfo* bounded_curve_subtypes[] = {
     &machining_schema::composite_curve::meta_entity,
     &machining_schema::polyline::meta_entity,
     &machining_schema::trimmed_curve::meta_entity,
+};
+constexpr OneOfMember bounded_curve_oneof[] = {
+    {&machining_schema::polyline::meta_entity, 0, 0},
+    {&machining_schema::b_spline_curve::meta_entity, 0, 1},
+    {&machining_schema::trimmed_curve::meta_entity, 0, 2},
+    {&machining_schema::bounded_pcurve::meta_entity, 0, 3},
+    {&machining_schema::composite_curve::meta_entity, 0, 4},
 };
 constexpr Upcast bounded_curve_upcasts[] = {
     {&machining_schema::bounded_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::bounded_curve, machining_schema::bounded_curve>},
@@ -4419,6 +4450,12 @@ constexpr AttributeInfo b_spline_curve_derived[] = {
     {.name = "control_points", .owner = &machining_schema::b_spline_curve::meta_entity, .type = &meta_tables::array_0_n_of_cartesian_point, .kind = AttributeKind::Derived,
      .derivation = &b_spline_curve_control_points_derivation},
 };
+constexpr OneOfMember b_spline_curve_oneof[] = {
+    {&machining_schema::uniform_curve::meta_entity, 0, 0},
+    {&machining_schema::b_spline_curve_with_knots::meta_entity, 0, 1},
+    {&machining_schema::quasi_uniform_curve::meta_entity, 0, 2},
+    {&machining_schema::bezier_curve::meta_entity, 0, 3},
+};
 constexpr Upcast b_spline_curve_upcasts[] = {
     {&machining_schema::b_spline_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_curve, machining_schema::b_spline_curve>},
     {&machining_schema::bounded_curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_curve, machining_schema::bounded_curve>},
@@ -4467,6 +4504,12 @@ constexpr const EntityInfo* surface_subtypes[] = {
 constexpr AttributeInfo surface_attributes[] = {
     {.name = "name", .owner = &machining_schema::surface::meta_entity, .type = &machining_schema::type_info::label,
      .locate = &stepnc::meta::field<machining_schema::surface, &machining_schema::surface::name>},
+};
+constexpr OneOfMember surface_oneof[] = {
+    {&machining_schema::swept_surface::meta_entity, 0, 0},
+    {&machining_schema::elementary_surface::meta_entity, 0, 1},
+    {&machining_schema::bounded_surface::meta_entity, 0, 2},
+    {&machining_schema::oriented_surface::meta_entity, 0, 3},
 };
 constexpr Upcast surface_upcasts[] = {
     {&machining_schema::surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::surface, machining_schema::surface>},
@@ -4529,6 +4572,12 @@ constexpr AttributeInfo b_spline_surface_derived[] = {
      .derivation = &b_spline_surface_v_upper_derivation},
     {.name = "control_points", .owner = &machining_schema::b_spline_surface::meta_entity, .type = &meta_tables::array_0_n_of_array_0_n_of_cartesian_point, .kind = AttributeKind::Derived,
      .derivation = &b_spline_surface_control_points_derivation},
+};
+constexpr OneOfMember b_spline_surface_oneof[] = {
+    {&machining_schema::b_spline_surface_with_knots::meta_entity, 0, 0},
+    {&machining_schema::uniform_surface::meta_entity, 0, 1},
+    {&machining_schema::quasi_uniform_surface::meta_entity, 0, 2},
+    {&machining_schema::bezier_surface::meta_entity, 0, 3},
 };
 constexpr Upcast b_spline_surface_upcasts[] = {
     {&machining_schema::b_spline_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::b_spline_surface, machining_schema::b_spline_surface>},
@@ -4748,6 +4797,12 @@ constexpr AttributeInfo conic_attributes[] = {
     {.name = "position", .owner = &machining_schema::conic::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::conic, &machining_schema::conic::position>},
 };
+constexpr OneOfMember conic_oneof[] = {
+    {&machining_schema::circle::meta_entity, 0, 0},
+    {&machining_schema::ellipse::meta_entity, 0, 1},
+    {&machining_schema::hyperbola::meta_entity, 0, 2},
+    {&machining_schema::parabola::meta_entity, 0, 3},
+};
 constexpr Upcast conic_upcasts[] = {
     {&machining_schema::conic::meta_entity, &stepnc::meta::upcast_to<machining_schema::conic, machining_schema::conic>},
     {&machining_schema::curve::meta_entity, &stepnc::meta::upcast_to<machining_schema::conic, machining_schema::curve>},
@@ -4804,6 +4859,10 @@ constexpr AttributeInfo elementary_surface_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::surface::name>},
     {.name = "position", .owner = &machining_schema::elementary_surface::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::elementary_surface, &machining_schema::elementary_surface::position>},
+};
+constexpr OneOfMember elementary_surface_oneof[] = {
+    {&machining_schema::plane::meta_entity, 0, 0},
+    {&machining_schema::spherical_surface::meta_entity, 0, 1},
 };
 constexpr Upcast elementary_surface_upcasts[] = {
     {&machining_schema::elementary_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::elementary_surface, machining_schema::elementary_surface>},
@@ -5166,6 +5225,10 @@ constexpr AttributeInfo swept_surface_attributes[] = {
     {.name = "swept_curve", .owner = &machining_schema::swept_surface::meta_entity, .type = &machining_schema::type_info::curve,
      .locate = &stepnc::meta::field<machining_schema::swept_surface, &machining_schema::swept_surface::swept_curve>},
 };
+constexpr OneOfMember swept_surface_oneof[] = {
+    {&machining_schema::surface_of_linear_extrusion::meta_entity, 0, 0},
+    {&machining_schema::surface_of_revolution::meta_entity, 0, 1},
+};
 constexpr Upcast swept_surface_upcasts[] = {
     {&machining_schema::swept_surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::swept_surface, machining_schema::swept_surface>},
     {&machining_schema::surface::meta_entity, &stepnc::meta::upcast_to<machining_schema::swept_surface, machining_schema::surface>},
@@ -5306,6 +5369,16 @@ constexpr const EntityInfo* topological_representation_item_subtypes[] = {
     &machining_schema::path::meta_entity,
     &machining_schema::vertex::meta_entity,
 };
+constexpr OneOfMember topological_representation_item_oneof[] = {
+    {&machining_schema::face_bound::meta_entity, 0, 0},
+    {&machining_schema::connected_face_set::meta_entity, 0, 1},
+    {&machining_schema::edge::meta_entity, 0, 2},
+    {&machining_schema::vertex::meta_entity, 0, 3},
+    {&machining_schema::face::meta_entity, 0, 4},
+    {&machining_schema::face_bound::meta_entity, 0, 5},
+    {&machining_schema::loop::meta_entity, 0, 6},
+    {&machining_schema::path::meta_entity, 0, 6},
+};
 constexpr Upcast topological_representation_item_upcasts[] = {
     {&machining_schema::topological_representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::topological_representation_item, machining_schema::topological_representation_item>},
     {&machining_schema::representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::topological_representation_item, machining_schema::representation_item>},
@@ -5324,6 +5397,10 @@ constexpr AttributeInfo connected_face_set_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face,
      .locate = &stepnc::meta::field<machining_schema::connected_face_set, &machining_schema::connected_face_set::cfs_faces>},
+};
+constexpr OneOfMember connected_face_set_oneof[] = {
+    {&machining_schema::open_shell::meta_entity, 0, 0},
+    {&machining_schema::closed_shell::meta_entity, 0, 1},
 };
 constexpr Upcast connected_face_set_upcasts[] = {
     {&machining_schema::connected_face_set::meta_entity, &stepnc::meta::upcast_to<machining_schema::connected_face_set, machining_schema::connected_face_set>},
@@ -5367,6 +5444,10 @@ constexpr AttributeInfo edge_attributes[] = {
     {.name = "edge_end", .owner = &machining_schema::edge::meta_entity, .type = &machining_schema::type_info::vertex,
      .locate = &stepnc::meta::field<machining_schema::edge, &machining_schema::edge::edge_end>},
 };
+constexpr OneOfMember edge_oneof[] = {
+    {&machining_schema::edge_curve::meta_entity, 0, 0},
+    {&machining_schema::oriented_edge::meta_entity, 0, 1},
+};
 constexpr Upcast edge_upcasts[] = {
     {&machining_schema::edge::meta_entity, &stepnc::meta::upcast_to<machining_schema::edge, machining_schema::edge>},
     {&machining_schema::topological_representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::edge, machining_schema::topological_representation_item>},
@@ -5407,6 +5488,11 @@ constexpr const EntityInfo* loop_subtypes[] = {
     &machining_schema::poly_loop::meta_entity,
     &machining_schema::vertex_loop::meta_entity,
 };
+constexpr OneOfMember loop_oneof[] = {
+    {&machining_schema::vertex_loop::meta_entity, 0, 0},
+    {&machining_schema::edge_loop::meta_entity, 0, 1},
+    {&machining_schema::poly_loop::meta_entity, 0, 2},
+};
 constexpr Upcast loop_upcasts[] = {
     {&machining_schema::loop::meta_entity, &stepnc::meta::upcast_to<machining_schema::loop, machining_schema::loop>},
     {&machining_schema::topological_representation_item::meta_entity, &stepnc::meta::upcast_to<machining_schema::loop, machining_schema::topological_representation_item>},
@@ -5426,6 +5512,10 @@ constexpr AttributeInfo path_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::name>},
     {.name = "edge_list", .owner = &machining_schema::path::meta_entity, .type = &meta_tables::list_unique_1_n_of_oriented_edge,
      .locate = &stepnc::meta::field<machining_schema::path, &machining_schema::path::edge_list>},
+};
+constexpr OneOfMember path_oneof[] = {
+    {&machining_schema::edge_loop::meta_entity, 0, 0},
+    {&machining_schema::oriented_path::meta_entity, 0, 1},
 };
 constexpr Upcast path_upcasts[] = {
     {&machining_schema::path::meta_entity, &stepnc::meta::upcast_to<machining_schema::path, machining_schema::path>},
@@ -5469,6 +5559,10 @@ constexpr AttributeInfo face_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::name>},
     {.name = "bounds", .owner = &machining_schema::face::meta_entity, .type = &meta_tables::set_1_n_of_face_bound,
      .locate = &stepnc::meta::field<machining_schema::face, &machining_schema::face::bounds>},
+};
+constexpr OneOfMember face_oneof[] = {
+    {&machining_schema::face_surface::meta_entity, 0, 0},
+    {&machining_schema::oriented_face::meta_entity, 0, 1},
 };
 constexpr Upcast face_upcasts[] = {
     {&machining_schema::face::meta_entity, &stepnc::meta::upcast_to<machining_schema::face, machining_schema::face>},
@@ -5555,6 +5649,10 @@ constexpr AttributeInfo open_shell_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::open_shell, &machining_schema::connected_face_set::name>},
     {.name = "cfs_faces", .owner = &machining_schema::connected_face_set::meta_entity, .type = &meta_tables::set_1_n_of_face,
      .locate = &stepnc::meta::field<machining_schema::open_shell, &machining_schema::connected_face_set::cfs_faces>},
+};
+constexpr OneOfMember open_shell_oneof[] = {
+    {&machining_schema::topological_region::meta_entity, 0, 0},
+    {&machining_schema::oriented_open_shell::meta_entity, 0, 1},
 };
 constexpr Upcast open_shell_upcasts[] = {
     {&machining_schema::open_shell::meta_entity, &stepnc::meta::upcast_to<machining_schema::open_shell, machining_schema::open_shell>},
@@ -5965,6 +6063,11 @@ constexpr AttributeInfo date_attributes[] = {
     {.name = "year_component", .owner = &machining_schema::date::meta_entity, .type = &machining_schema::type_info::year_number,
      .locate = &stepnc::meta::field<machining_schema::date, &machining_schema::date::year_component>},
 };
+constexpr OneOfMember date_oneof[] = {
+    {&machining_schema::calendar_date::meta_entity, 0, 0},
+    {&machining_schema::ordinal_date::meta_entity, 0, 1},
+    {&machining_schema::week_of_year_and_day_date::meta_entity, 0, 2},
+};
 constexpr Upcast date_upcasts[] = {
     {&machining_schema::date::meta_entity, &stepnc::meta::upcast_to<machining_schema::date, machining_schema::date>},
 };
@@ -6290,6 +6393,10 @@ constexpr AttributeInfo property_parameter_attributes[] = {
     {.name = "parameter_name", .owner = &machining_schema::property_parameter::meta_entity, .type = &machining_schema::type_info::label,
      .locate = &stepnc::meta::field<machining_schema::property_parameter, &machining_schema::property_parameter::parameter_name>},
 };
+constexpr OneOfMember property_parameter_oneof[] = {
+    {&machining_schema::descriptive_parameter::meta_entity, 0, 0},
+    {&machining_schema::numeric_parameter::meta_entity, 0, 1},
+};
 constexpr Upcast property_parameter_upcasts[] = {
     {&machining_schema::property_parameter::meta_entity, &stepnc::meta::upcast_to<machining_schema::property_parameter, machining_schema::property_parameter>},
 };
@@ -6340,6 +6447,11 @@ constexpr AttributeInfo manufacturing_feature_attributes[] = {
     {.name = "its_operations", .owner = &machining_schema::manufacturing_feature::meta_entity, .type = &meta_tables::set_0_n_of_machining_operation,
      .locate = &stepnc::meta::field<machining_schema::manufacturing_feature, &machining_schema::manufacturing_feature::its_operations>},
 };
+constexpr OneOfMember manufacturing_feature_oneof[] = {
+    {&machining_schema::region::meta_entity, 0, 0},
+    {&machining_schema::two5d_manufacturing_feature::meta_entity, 0, 1},
+    {&machining_schema::transition_feature::meta_entity, 0, 2},
+};
 
 // region
 constexpr const EntityInfo* region_supertypes[] = {
@@ -6359,6 +6471,11 @@ constexpr AttributeInfo region_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::region::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::region, &machining_schema::region::feature_placement>},
+};
+constexpr OneOfMember region_oneof[] = {
+    {&machining_schema::region_surface_list::meta_entity, 0, 0},
+    {&machining_schema::region_projection::meta_entity, 0, 1},
+    {&machining_schema::topological_region::meta_entity, 0, 2},
 };
 
 // region_projection
@@ -6458,6 +6575,11 @@ constexpr AttributeInfo two5d_manufacturing_feature_attributes[] = {
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<machining_schema::two5d_manufacturing_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
 };
+constexpr OneOfMember two5d_manufacturing_feature_oneof[] = {
+    {&machining_schema::machining_feature::meta_entity, 0, 0},
+    {&machining_schema::replicate_feature::meta_entity, 0, 1},
+    {&machining_schema::compound_feature::meta_entity, 0, 2},
+};
 
 // machining_feature
 constexpr const EntityInfo* machining_feature_supertypes[] = {
@@ -6487,6 +6609,19 @@ constexpr AttributeInfo machining_feature_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "depth", .owner = &machining_schema::machining_feature::meta_entity, .type = &machining_schema::type_info::elementary_surface,
      .locate = &stepnc::meta::field<machining_schema::machining_feature, &machining_schema::machining_feature::depth>},
+};
+constexpr OneOfMember machining_feature_oneof[] = {
+    {&machining_schema::planar_face::meta_entity, 0, 0},
+    {&machining_schema::pocket::meta_entity, 0, 1},
+    {&machining_schema::slot::meta_entity, 0, 2},
+    {&machining_schema::step::meta_entity, 0, 3},
+    {&machining_schema::round_hole::meta_entity, 0, 4},
+    {&machining_schema::toolpath_feature::meta_entity, 0, 5},
+    {&machining_schema::profile_feature::meta_entity, 0, 6},
+    {&machining_schema::boss::meta_entity, 0, 7},
+    {&machining_schema::spherical_cap::meta_entity, 0, 8},
+    {&machining_schema::rounded_end::meta_entity, 0, 9},
+    {&machining_schema::thread::meta_entity, 0, 10},
 };
 
 // planar_face
@@ -6550,6 +6685,10 @@ constexpr AttributeInfo pocket_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::planar_radius>},
     {.name = "orthogonal_radius", .owner = &machining_schema::pocket::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::pocket, &machining_schema::pocket::orthogonal_radius>},
+};
+constexpr OneOfMember pocket_oneof[] = {
+    {&machining_schema::closed_pocket::meta_entity, 0, 0},
+    {&machining_schema::open_pocket::meta_entity, 0, 1},
 };
 
 // closed_pocket
@@ -6635,6 +6774,12 @@ constexpr const EntityInfo* pocket_bottom_condition_subtypes[] = {
     &machining_schema::radiused_pocket_bottom_condition::meta_entity,
     &machining_schema::through_pocket_bottom_condition::meta_entity,
 };
+constexpr OneOfMember pocket_bottom_condition_oneof[] = {
+    {&machining_schema::through_pocket_bottom_condition::meta_entity, 0, 0},
+    {&machining_schema::planar_pocket_bottom_condition::meta_entity, 0, 1},
+    {&machining_schema::radiused_pocket_bottom_condition::meta_entity, 0, 2},
+    {&machining_schema::general_pocket_bottom_condition::meta_entity, 0, 3},
+};
 
 // through_pocket_bottom_condition
 constexpr const EntityInfo* through_pocket_bottom_condition_supertypes[] = {
@@ -6718,6 +6863,13 @@ constexpr const EntityInfo* slot_end_type_subtypes[] = {
     &machining_schema::open_slot_end_type::meta_entity,
     &machining_schema::radiused_slot_end_type::meta_entity,
     &machining_schema::woodruff_slot_end_type::meta_entity,
+};
+constexpr OneOfMember slot_end_type_oneof[] = {
+    {&machining_schema::woodruff_slot_end_type::meta_entity, 0, 0},
+    {&machining_schema::radiused_slot_end_type::meta_entity, 0, 1},
+    {&machining_schema::flat_slot_end_type::meta_entity, 0, 2},
+    {&machining_schema::loop_slot_end_type::meta_entity, 0, 3},
+    {&machining_schema::open_slot_end_type::meta_entity, 0, 4},
 };
 
 // woodruff_slot_end_type
@@ -6826,6 +6978,10 @@ constexpr AttributeInfo profile_feature_attributes[] = {
     {.name = "profile_swept_shape", .owner = &machining_schema::profile_feature::meta_entity, .type = &machining_schema::type_info::linear_path,
      .locate = &stepnc::meta::field<machining_schema::profile_feature, &machining_schema::profile_feature::profile_swept_shape>},
 };
+constexpr OneOfMember profile_feature_oneof[] = {
+    {&machining_schema::general_outside_profile::meta_entity, 0, 0},
+    {&machining_schema::shape_profile::meta_entity, 0, 1},
+};
 
 // general_outside_profile
 constexpr const EntityInfo* general_outside_profile_supertypes[] = {
@@ -6884,6 +7040,13 @@ constexpr AttributeInfo shape_profile_attributes[] = {
     {.name = "removal_direction", .owner = &machining_schema::shape_profile::meta_entity, .type = &machining_schema::type_info::direction,
      .locate = &stepnc::meta::field<machining_schema::shape_profile, &machining_schema::shape_profile::removal_direction>},
 };
+constexpr OneOfMember shape_profile_oneof[] = {
+    {&machining_schema::general_shape_profile::meta_entity, 0, 0},
+    {&machining_schema::partial_circular_shape_profile::meta_entity, 0, 1},
+    {&machining_schema::circular_closed_shape_profile::meta_entity, 0, 2},
+    {&machining_schema::rectangular_open_shape_profile::meta_entity, 0, 3},
+    {&machining_schema::rectangular_closed_shape_profile::meta_entity, 0, 4},
+};
 
 // through_profile_floor
 constexpr Upcast through_profile_floor_upcasts[] = {
@@ -6900,6 +7063,10 @@ constexpr AttributeInfo profile_floor_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::floor_radius>},
     {.name = "start_or_end", .owner = &machining_schema::profile_floor::meta_entity, .type = &stepnc::meta::boolean_type,
      .locate = &stepnc::meta::field<machining_schema::profile_floor, &machining_schema::profile_floor::start_or_end>},
+};
+constexpr OneOfMember profile_floor_oneof[] = {
+    {&machining_schema::general_profile_floor::meta_entity, 0, 0},
+    {&machining_schema::planar_profile_floor::meta_entity, 0, 1},
 };
 
 // general_profile_floor
@@ -7153,6 +7320,10 @@ constexpr const EntityInfo* hole_bottom_condition_subtypes[] = {
     &machining_schema::blind_bottom_condition::meta_entity,
     &machining_schema::through_bottom_condition::meta_entity,
 };
+constexpr OneOfMember hole_bottom_condition_oneof[] = {
+    {&machining_schema::blind_bottom_condition::meta_entity, 0, 0},
+    {&machining_schema::through_bottom_condition::meta_entity, 0, 1},
+};
 
 // through_bottom_condition
 constexpr const EntityInfo* through_bottom_condition_supertypes[] = {
@@ -7172,6 +7343,12 @@ constexpr const EntityInfo* blind_bottom_condition_subtypes[] = {
     &machining_schema::flat_hole_bottom::meta_entity,
     &machining_schema::flat_with_radius_hole_bottom::meta_entity,
     &machining_schema::spherical_hole_bottom::meta_entity,
+};
+constexpr OneOfMember blind_bottom_condition_oneof[] = {
+    {&machining_schema::flat_hole_bottom::meta_entity, 0, 0},
+    {&machining_schema::flat_with_radius_hole_bottom::meta_entity, 0, 1},
+    {&machining_schema::spherical_hole_bottom::meta_entity, 0, 2},
+    {&machining_schema::conical_hole_bottom::meta_entity, 0, 3},
 };
 
 // flat_hole_bottom
@@ -7353,6 +7530,10 @@ constexpr AttributeInfo compound_feature_attributes[] = {
     {.name = "elements", .owner = &machining_schema::compound_feature::meta_entity, .type = &meta_tables::set_2_n_of_compound_feature_select,
      .locate = &stepnc::meta::field<machining_schema::compound_feature, &machining_schema::compound_feature::elements>},
 };
+constexpr OneOfMember compound_feature_oneof[] = {
+    {&machining_schema::counterbore_hole::meta_entity, 0, 0},
+    {&machining_schema::countersunk_hole::meta_entity, 0, 1},
+};
 constexpr Upcast compound_feature_upcasts[] = {
     {&machining_schema::compound_feature::meta_entity, &stepnc::meta::upcast_to<machining_schema::compound_feature, machining_schema::compound_feature>},
     {&machining_schema::two5d_manufacturing_feature::meta_entity, &stepnc::meta::upcast_to<machining_schema::compound_feature, machining_schema::two5d_manufacturing_feature>},
@@ -7425,6 +7606,11 @@ constexpr AttributeInfo replicate_feature_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
     {.name = "replicate_base_feature", .owner = &machining_schema::replicate_feature::meta_entity, .type = &machining_schema::type_info::two5d_manufacturing_feature,
      .locate = &stepnc::meta::field<machining_schema::replicate_feature, &machining_schema::replicate_feature::replicate_base_feature>},
+};
+constexpr OneOfMember replicate_feature_oneof[] = {
+    {&machining_schema::rectangular_pattern::meta_entity, 0, 0},
+    {&machining_schema::circular_pattern::meta_entity, 0, 1},
+    {&machining_schema::general_pattern::meta_entity, 0, 2},
 };
 
 // circular_pattern
@@ -7593,6 +7779,10 @@ constexpr AttributeInfo transition_feature_attributes[] = {
     {.name = "second_feature", .owner = &machining_schema::transition_feature::meta_entity, .type = &machining_schema::type_info::machining_feature,
      .locate = &stepnc::meta::field<machining_schema::transition_feature, &machining_schema::transition_feature::second_feature>},
 };
+constexpr OneOfMember transition_feature_oneof[] = {
+    {&machining_schema::chamfer::meta_entity, 0, 0},
+    {&machining_schema::edge_round::meta_entity, 0, 1},
+};
 
 // chamfer
 constexpr const EntityInfo* chamfer_supertypes[] = {
@@ -7685,6 +7875,10 @@ constexpr AttributeInfo thread_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::number_of_threads>},
     {.name = "thread_hand", .owner = &machining_schema::thread::meta_entity, .type = &machining_schema::type_info::descriptive_parameter,
      .locate = &stepnc::meta::field<machining_schema::thread, &machining_schema::thread::thread_hand>},
+};
+constexpr OneOfMember thread_oneof[] = {
+    {&machining_schema::catalogue_thread::meta_entity, 0, 0},
+    {&machining_schema::defined_thread::meta_entity, 0, 1},
 };
 
 // partial_area_definition
@@ -7832,6 +8026,10 @@ constexpr AttributeInfo profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::profile, &machining_schema::profile::placement>},
 };
+constexpr OneOfMember profile_oneof[] = {
+    {&machining_schema::closed_profile::meta_entity, 0, 0},
+    {&machining_schema::open_profile::meta_entity, 0, 1},
+};
 
 // open_profile
 constexpr const EntityInfo* open_profile_supertypes[] = {
@@ -7849,6 +8047,15 @@ constexpr const EntityInfo* open_profile_subtypes[] = {
 constexpr AttributeInfo open_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::open_profile, &machining_schema::profile::placement>},
+};
+constexpr OneOfMember open_profile_oneof[] = {
+    {&machining_schema::linear_profile::meta_entity, 0, 0},
+    {&machining_schema::square_u_profile::meta_entity, 0, 1},
+    {&machining_schema::rounded_u_profile::meta_entity, 0, 2},
+    {&machining_schema::tee_profile::meta_entity, 0, 3},
+    {&machining_schema::vee_profile::meta_entity, 0, 4},
+    {&machining_schema::partial_circular_profile::meta_entity, 0, 5},
+    {&machining_schema::general_profile::meta_entity, 0, 6},
 };
 
 // linear_profile
@@ -8005,6 +8212,12 @@ constexpr AttributeInfo closed_profile_attributes[] = {
     {.name = "placement", .owner = &machining_schema::profile::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::closed_profile, &machining_schema::profile::placement>},
 };
+constexpr OneOfMember closed_profile_oneof[] = {
+    {&machining_schema::rectangular_closed_profile::meta_entity, 0, 0},
+    {&machining_schema::circular_closed_profile::meta_entity, 0, 1},
+    {&machining_schema::ngon_closed_profile::meta_entity, 0, 2},
+    {&machining_schema::general_closed_profile::meta_entity, 0, 3},
+};
 
 // rectangular_closed_profile
 constexpr const EntityInfo* rectangular_closed_profile_supertypes[] = {
@@ -8086,6 +8299,11 @@ constexpr AttributeInfo travel_path_attributes[] = {
     {.name = "placement", .owner = &machining_schema::travel_path::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::travel_path, &machining_schema::travel_path::placement>},
 };
+constexpr OneOfMember travel_path_oneof[] = {
+    {&machining_schema::general_path::meta_entity, 0, 0},
+    {&machining_schema::linear_path::meta_entity, 0, 1},
+    {&machining_schema::circular_path::meta_entity, 0, 2},
+};
 
 // general_path
 constexpr const EntityInfo* general_path_supertypes[] = {
@@ -8132,6 +8350,10 @@ constexpr AttributeInfo circular_path_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::travel_path::placement>},
     {.name = "radius", .owner = &machining_schema::circular_path::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<machining_schema::circular_path, &machining_schema::circular_path::radius>},
+};
+constexpr OneOfMember circular_path_oneof[] = {
+    {&machining_schema::complete_circular_path::meta_entity, 0, 0},
+    {&machining_schema::partial_circular_path::meta_entity, 0, 1},
 };
 
 // complete_circular_path
@@ -8207,6 +8429,11 @@ constexpr AttributeInfo executable_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
      .locate = &stepnc::meta::field<machining_schema::executable, &machining_schema::executable::its_id>},
 };
+constexpr OneOfMember executable_oneof[] = {
+    {&machining_schema::workingstep::meta_entity, 0, 0},
+    {&machining_schema::nc_function::meta_entity, 0, 1},
+    {&machining_schema::program_structure::meta_entity, 0, 2},
+};
 
 // workingstep
 constexpr const EntityInfo* workingstep_supertypes[] = {
@@ -8223,6 +8450,11 @@ constexpr AttributeInfo workingstep_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::executable::its_id>},
     {.name = "its_secplane", .owner = &machining_schema::workingstep::meta_entity, .type = &machining_schema::type_info::elementary_surface,
      .locate = &stepnc::meta::field<machining_schema::workingstep, &machining_schema::workingstep::its_secplane>},
+};
+constexpr OneOfMember workingstep_oneof[] = {
+    {&machining_schema::machining_workingstep::meta_entity, 0, 0},
+    {&machining_schema::rapid_movement::meta_entity, 0, 1},
+    {&machining_schema::touch_probing::meta_entity, 0, 2},
 };
 
 // machining_workingstep
@@ -8271,6 +8503,11 @@ constexpr AttributeInfo operation_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_toolpath>},
     {.name = "its_tool_direction", .owner = &machining_schema::operation::meta_entity, .type = &machining_schema::type_info::tool_direction, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::operation, &machining_schema::operation::its_tool_direction>},
+};
+constexpr OneOfMember operation_oneof[] = {
+    {&machining_schema::machining_operation::meta_entity, 0, 0},
+    {&machining_schema::rapid_movement::meta_entity, 0, 1},
+    {&machining_schema::touch_probing::meta_entity, 0, 2},
 };
 
 // rapid_movement
@@ -8341,6 +8578,11 @@ constexpr AttributeInfo touch_probing_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::operation::its_tool_direction>},
     {.name = "measured_offset", .owner = &machining_schema::touch_probing::meta_entity, .type = &machining_schema::type_info::nc_variable,
      .locate = &stepnc::meta::field<machining_schema::touch_probing, &machining_schema::touch_probing::measured_offset>},
+};
+constexpr OneOfMember touch_probing_oneof[] = {
+    {&machining_schema::workpiece_probing::meta_entity, 0, 0},
+    {&machining_schema::workpiece_complete_probing::meta_entity, 0, 1},
+    {&machining_schema::tool_probing::meta_entity, 0, 2},
 };
 
 // workpiece_probing
@@ -8455,6 +8697,10 @@ constexpr AttributeInfo tool_probing_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::max_wear>},
     {.name = "its_tool", .owner = &machining_schema::tool_probing::meta_entity, .type = &machining_schema::type_info::machining_tool,
      .locate = &stepnc::meta::field<machining_schema::tool_probing, &machining_schema::tool_probing::its_tool>},
+};
+constexpr OneOfMember tool_probing_oneof[] = {
+    {&machining_schema::tool_length_probing::meta_entity, 0, 0},
+    {&machining_schema::tool_radius_probing::meta_entity, 0, 1},
 };
 
 // machining_tool
@@ -8700,6 +8946,15 @@ constexpr AttributeInfo program_structure_attributes[] = {
     {.name = "its_id", .owner = &machining_schema::executable::meta_entity, .type = &machining_schema::type_info::identifier,
      .locate = &stepnc::meta::field<machining_schema::program_structure, &machining_schema::executable::its_id>},
 };
+constexpr OneOfMember program_structure_oneof[] = {
+    {&machining_schema::workplan::meta_entity, 0, 0},
+    {&machining_schema::parallel::meta_entity, 0, 1},
+    {&machining_schema::non_sequential::meta_entity, 0, 2},
+    {&machining_schema::selective::meta_entity, 0, 3},
+    {&machining_schema::if_statement::meta_entity, 0, 4},
+    {&machining_schema::while_statement::meta_entity, 0, 5},
+    {&machining_schema::assignment::meta_entity, 0, 6},
+};
 
 // workplan
 constexpr const EntityInfo* workplan_supertypes[] = {
@@ -8912,6 +9167,12 @@ constexpr const EntityInfo* boolean_expression_subtypes[] = {
     &machining_schema::multiple_arity_boolean_expression::meta_entity,
     &machining_schema::unary_boolean_expression::meta_entity,
 };
+constexpr OneOfMember boolean_expression_oneof[] = {
+    {&machining_schema::unary_boolean_expression::meta_entity, 0, 0},
+    {&machining_schema::binary_boolean_expression::meta_entity, 0, 1},
+    {&machining_schema::multiple_arity_boolean_expression::meta_entity, 0, 2},
+    {&machining_schema::comparison_expression::meta_entity, 0, 3},
+};
 
 // unary_boolean_expression
 constexpr const EntityInfo* unary_boolean_expression_supertypes[] = {
@@ -8981,6 +9242,10 @@ constexpr AttributeInfo multiple_arity_boolean_expression_attributes[] = {
     {.name = "operands", .owner = &machining_schema::multiple_arity_boolean_expression::meta_entity, .type = &meta_tables::list_2_n_of_boolean_expression,
      .locate = &stepnc::meta::field<machining_schema::multiple_arity_boolean_expression, &machining_schema::multiple_arity_boolean_expression::operands>},
 };
+constexpr OneOfMember multiple_arity_boolean_expression_oneof[] = {
+    {&machining_schema::and_expression::meta_entity, 0, 0},
+    {&machining_schema::or_expression::meta_entity, 0, 1},
+};
 
 // and_expression
 constexpr const EntityInfo* and_expression_supertypes[] = {
@@ -9027,6 +9292,14 @@ constexpr AttributeInfo comparison_expression_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand1>},
     {.name = "operand2", .owner = &machining_schema::comparison_expression::meta_entity, .type = &machining_schema::type_info::rvalue,
      .locate = &stepnc::meta::field<machining_schema::comparison_expression, &machining_schema::comparison_expression::operand2>},
+};
+constexpr OneOfMember comparison_expression_oneof[] = {
+    {&machining_schema::comparison_equal::meta_entity, 0, 0},
+    {&machining_schema::comparison_not_equal::meta_entity, 0, 1},
+    {&machining_schema::comparison_greater::meta_entity, 0, 2},
+    {&machining_schema::comparison_greater_equal::meta_entity, 0, 3},
+    {&machining_schema::comparison_less::meta_entity, 0, 4},
+    {&machining_schema::comparison_less_equal::meta_entity, 0, 5},
 };
 
 // comparison_equal
@@ -9140,6 +9413,10 @@ constexpr const EntityInfo* tool_direction_subtypes[] = {
     &milling_schema::tool_direction_for_milling::meta_entity,
     &machining_schema::two_axes::meta_entity,
 };
+constexpr OneOfMember tool_direction_oneof[] = {
+    {&machining_schema::two_axes::meta_entity, 0, 0},
+    {&machining_schema::three_axes::meta_entity, 0, 1},
+};
 
 // two_axes
 constexpr const EntityInfo* two_axes_supertypes[] = {
@@ -9224,6 +9501,11 @@ constexpr AttributeInfo toolpath_attributes[] = {
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::toolpath, &machining_schema::toolpath::its_machine_functions>},
 };
+constexpr OneOfMember toolpath_oneof[] = {
+    {&machining_schema::feedstop::meta_entity, 0, 0},
+    {&machining_schema::trajectory::meta_entity, 0, 1},
+    {&machining_schema::parameterised_path::meta_entity, 0, 2},
+};
 
 // toolpath_speed
 constexpr AttributeInfo toolpath_speed_attributes[] = {
@@ -9280,6 +9562,11 @@ constexpr AttributeInfo trajectory_attributes[] = {
     {.name = "its_direction", .owner = &machining_schema::trajectory::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::trajectory, &machining_schema::trajectory::its_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
+};
+constexpr OneOfMember trajectory_oneof[] = {
+    {&machining_schema::cutter_location_trajectory::meta_entity, 0, 0},
+    {&machining_schema::cutter_contact_trajectory::meta_entity, 0, 1},
+    {&machining_schema::axis_trajectory::meta_entity, 0, 2},
 };
 
 // cutter_location_trajectory
@@ -9405,6 +9692,10 @@ constexpr AttributeInfo parameterised_path_attributes[] = {
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::parameterised_path, &machining_schema::toolpath::its_machine_functions>},
 };
+constexpr OneOfMember parameterised_path_oneof[] = {
+    {&machining_schema::approach_lift_path::meta_entity, 0, 0},
+    {&machining_schema::connector::meta_entity, 0, 1},
+};
 
 // connector
 constexpr const EntityInfo* connector_supertypes[] = {
@@ -9425,6 +9716,10 @@ constexpr AttributeInfo connector_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_technology>},
     {.name = "its_machine_functions", .owner = &machining_schema::toolpath::meta_entity, .type = &machining_schema::type_info::machine_functions, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::connector, &machining_schema::toolpath::its_machine_functions>},
+};
+constexpr OneOfMember connector_oneof[] = {
+    {&machining_schema::connect_secplane::meta_entity, 0, 0},
+    {&machining_schema::connect_direct::meta_entity, 0, 1},
 };
 
 // connect_secplane
@@ -9500,6 +9795,10 @@ constexpr AttributeInfo approach_lift_path_attributes[] = {
      .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point>},
     {.name = "fix_point_dir", .owner = &machining_schema::approach_lift_path::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<machining_schema::approach_lift_path, &machining_schema::approach_lift_path::fix_point_dir>},
+};
+constexpr OneOfMember approach_lift_path_oneof[] = {
+    {&machining_schema::ap_lift_path_angle::meta_entity, 0, 0},
+    {&machining_schema::ap_lift_path_tangent::meta_entity, 0, 1},
 };
 
 // ap_lift_path_angle
@@ -11129,6 +11428,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::representation_item::
     .create = &stepnc::meta::create_in<machining_schema::representation_item>,
     .upcasts = meta_tables::representation_item_upcasts,
     .where = meta_tables::representation_item_where,
+    .oneof = meta_tables::representation_item_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::geometric_representation_item::entity_info() const noexcept { return meta_entity; }
@@ -11143,6 +11443,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::geometric_representat
     .create = &stepnc::meta::create_in<machining_schema::geometric_representation_item>,
     .upcasts = meta_tables::geometric_representation_item_upcasts,
     .where = meta_tables::geometric_representation_item_where,
+    .oneof = meta_tables::geometric_representation_item_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::curve::entity_info() const noexcept { return meta_entity; }
@@ -11155,6 +11456,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::curve::meta_entity{
     .subtypes = meta_tables::curve_subtypes,
     .create = &stepnc::meta::create_in<machining_schema::curve>,
     .upcasts = meta_tables::curve_upcasts,
+    .oneof = meta_tables::curve_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::bounded_curve::entity_info() const noexcept { return meta_entity; }
@@ -11167,6 +11469,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::bounded_curve::meta_e
     .subtypes = meta_tables::bounded_curve_subtypes,
     .create = &stepnc::meta::create_in<machining_schema::bounded_curve>,
     .upcasts = meta_tables::bounded_curve_upcasts,
+    .oneof = meta_tables::bounded_curve_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::trimmed_curve::entity_info() const noexcept { return meta_entity; }
@@ -11263,6 +11566,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::b_spline_curve::meta_
     .create = &stepnc::meta::create_in<machining_schema::b_spline_curve>,
     .upcasts = meta_tables::b_spline_curve_upcasts,
     .where = meta_tables::b_spline_curve_where,
+    .oneof = meta_tables::b_spline_curve_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::bezier_curve::entity_info() const noexcept { return meta_entity; }
@@ -11288,6 +11592,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::surface::meta_entity{
     .attributes = meta_tables::surface_attributes,
     .create = &stepnc::meta::create_in<machining_schema::surface>,
     .upcasts = meta_tables::surface_upcasts,
+    .oneof = meta_tables::surface_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::bounded_surface::entity_info() const noexcept { return meta_entity; }
@@ -11316,6 +11621,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::b_spline_surface::met
     .create = &stepnc::meta::create_in<machining_schema::b_spline_surface>,
     .upcasts = meta_tables::b_spline_surface_upcasts,
     .where = meta_tables::b_spline_surface_where,
+    .oneof = meta_tables::b_spline_surface_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::bezier_surface::entity_info() const noexcept { return meta_entity; }
@@ -11421,6 +11727,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::conic::meta_entity{
     .attributes = meta_tables::conic_attributes,
     .create = &stepnc::meta::create_in<machining_schema::conic>,
     .upcasts = meta_tables::conic_upcasts,
+    .oneof = meta_tables::conic_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::circle::entity_info() const noexcept { return meta_entity; }
@@ -11459,6 +11766,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::elementary_surface::m
     .attributes = meta_tables::elementary_surface_attributes,
     .create = &stepnc::meta::create_in<machining_schema::elementary_surface>,
     .upcasts = meta_tables::elementary_surface_upcasts,
+    .oneof = meta_tables::elementary_surface_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::ellipse::entity_info() const noexcept { return meta_entity; }
@@ -11659,6 +11967,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::swept_surface::meta_e
     .attributes = meta_tables::swept_surface_attributes,
     .create = &stepnc::meta::create_in<machining_schema::swept_surface>,
     .upcasts = meta_tables::swept_surface_upcasts,
+    .oneof = meta_tables::swept_surface_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::surface_of_linear_extrusion::entity_info() const noexcept { return meta_entity; }
@@ -11733,6 +12042,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::topological_represent
     .subtypes = meta_tables::topological_representation_item_subtypes,
     .create = &stepnc::meta::create_in<machining_schema::topological_representation_item>,
     .upcasts = meta_tables::topological_representation_item_upcasts,
+    .oneof = meta_tables::topological_representation_item_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::connected_face_set::entity_info() const noexcept { return meta_entity; }
@@ -11746,6 +12056,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::connected_face_set::m
     .attributes = meta_tables::connected_face_set_attributes,
     .create = &stepnc::meta::create_in<machining_schema::connected_face_set>,
     .upcasts = meta_tables::connected_face_set_upcasts,
+    .oneof = meta_tables::connected_face_set_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::closed_shell::entity_info() const noexcept { return meta_entity; }
@@ -11772,6 +12083,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::edge::meta_entity{
     .attributes = meta_tables::edge_attributes,
     .create = &stepnc::meta::create_in<machining_schema::edge>,
     .upcasts = meta_tables::edge_upcasts,
+    .oneof = meta_tables::edge_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::edge_curve::entity_info() const noexcept { return meta_entity; }
@@ -11796,6 +12108,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::loop::meta_entity{
     .subtypes = meta_tables::loop_subtypes,
     .create = &stepnc::meta::create_in<machining_schema::loop>,
     .upcasts = meta_tables::loop_upcasts,
+    .oneof = meta_tables::loop_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::path::entity_info() const noexcept { return meta_entity; }
@@ -11810,6 +12123,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::path::meta_entity{
     .create = &stepnc::meta::create_in<machining_schema::path>,
     .upcasts = meta_tables::path_upcasts,
     .where = meta_tables::path_where,
+    .oneof = meta_tables::path_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::edge_loop::entity_info() const noexcept { return meta_entity; }
@@ -11838,6 +12152,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::face::meta_entity{
     .create = &stepnc::meta::create_in<machining_schema::face>,
     .upcasts = meta_tables::face_upcasts,
     .where = meta_tables::face_where,
+    .oneof = meta_tables::face_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::face_bound::entity_info() const noexcept { return meta_entity; }
@@ -11890,6 +12205,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::open_shell::meta_enti
     .attributes = meta_tables::open_shell_attributes,
     .create = &stepnc::meta::create_in<machining_schema::open_shell>,
     .upcasts = meta_tables::open_shell_upcasts,
+    .oneof = meta_tables::open_shell_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::oriented_closed_shell::entity_info() const noexcept { return meta_entity; }
@@ -12176,6 +12492,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::date::meta_entity{
     .attributes = meta_tables::date_attributes,
     .create = &stepnc::meta::create_in<machining_schema::date>,
     .upcasts = meta_tables::date_upcasts,
+    .oneof = meta_tables::date_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::calendar_date::entity_info() const noexcept { return meta_entity; }
@@ -12390,6 +12707,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::property_parameter::m
     .attributes = meta_tables::property_parameter_attributes,
     .create = &stepnc::meta::create_in<machining_schema::property_parameter>,
     .upcasts = meta_tables::property_parameter_upcasts,
+    .oneof = meta_tables::property_parameter_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::descriptive_parameter::entity_info() const noexcept { return meta_entity; }
@@ -12425,6 +12743,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::manufacturing_feature
     .abstract = true,
     .subtypes = meta_tables::manufacturing_feature_subtypes,
     .attributes = meta_tables::manufacturing_feature_attributes,
+    .oneof = meta_tables::manufacturing_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::region::entity_info() const noexcept { return meta_entity; }
@@ -12437,6 +12756,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::region::meta_entity{
     .supertypes = meta_tables::region_supertypes,
     .subtypes = meta_tables::region_subtypes,
     .attributes = meta_tables::region_attributes,
+    .oneof = meta_tables::region_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::region_projection::entity_info() const noexcept { return meta_entity; }
@@ -12486,6 +12806,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::two5d_manufacturing_f
     .supertypes = meta_tables::two5d_manufacturing_feature_supertypes,
     .subtypes = meta_tables::two5d_manufacturing_feature_subtypes,
     .attributes = meta_tables::two5d_manufacturing_feature_attributes,
+    .oneof = meta_tables::two5d_manufacturing_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::machining_feature::entity_info() const noexcept { return meta_entity; }
@@ -12498,6 +12819,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::machining_feature::me
     .supertypes = meta_tables::machining_feature_supertypes,
     .subtypes = meta_tables::machining_feature_subtypes,
     .attributes = meta_tables::machining_feature_attributes,
+    .oneof = meta_tables::machining_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::planar_face::entity_info() const noexcept { return meta_entity; }
@@ -12522,6 +12844,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::pocket::meta_entity{
     .supertypes = meta_tables::pocket_supertypes,
     .subtypes = meta_tables::pocket_subtypes,
     .attributes = meta_tables::pocket_attributes,
+    .oneof = meta_tables::pocket_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::closed_pocket::entity_info() const noexcept { return meta_entity; }
@@ -12556,6 +12879,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::pocket_bottom_conditi
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::pocket_bottom_condition_subtypes,
+    .oneof = meta_tables::pocket_bottom_condition_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::through_pocket_bottom_condition::entity_info() const noexcept { return meta_entity; }
@@ -12626,6 +12950,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::slot_end_type::meta_e
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::slot_end_type_subtypes,
+    .oneof = meta_tables::slot_end_type_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::woodruff_slot_end_type::entity_info() const noexcept { return meta_entity; }
@@ -12707,6 +13032,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::profile_feature::meta
     .supertypes = meta_tables::profile_feature_supertypes,
     .subtypes = meta_tables::profile_feature_subtypes,
     .attributes = meta_tables::profile_feature_attributes,
+    .oneof = meta_tables::profile_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::general_outside_profile::entity_info() const noexcept { return meta_entity; }
@@ -12731,6 +13057,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::shape_profile::meta_e
     .supertypes = meta_tables::shape_profile_supertypes,
     .subtypes = meta_tables::shape_profile_subtypes,
     .attributes = meta_tables::shape_profile_attributes,
+    .oneof = meta_tables::shape_profile_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::through_profile_floor::entity_info() const noexcept { return meta_entity; }
@@ -12752,6 +13079,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::profile_floor::meta_e
     .abstract = true,
     .subtypes = meta_tables::profile_floor_subtypes,
     .attributes = meta_tables::profile_floor_attributes,
+    .oneof = meta_tables::profile_floor_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::general_profile_floor::entity_info() const noexcept { return meta_entity; }
@@ -12880,6 +13208,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::hole_bottom_condition
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::hole_bottom_condition_subtypes,
+    .oneof = meta_tables::hole_bottom_condition_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::through_bottom_condition::entity_info() const noexcept { return meta_entity; }
@@ -12902,6 +13231,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::blind_bottom_conditio
     .abstract = true,
     .supertypes = meta_tables::blind_bottom_condition_supertypes,
     .subtypes = meta_tables::blind_bottom_condition_subtypes,
+    .oneof = meta_tables::blind_bottom_condition_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::flat_hole_bottom::entity_info() const noexcept { return meta_entity; }
@@ -13011,6 +13341,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::compound_feature::met
     .create = &stepnc::meta::create_in<machining_schema::compound_feature>,
     .upcasts = meta_tables::compound_feature_upcasts,
     .where = meta_tables::compound_feature_where,
+    .oneof = meta_tables::compound_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::counterbore_hole::entity_info() const noexcept { return meta_entity; }
@@ -13049,6 +13380,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::replicate_feature::me
     .supertypes = meta_tables::replicate_feature_supertypes,
     .subtypes = meta_tables::replicate_feature_subtypes,
     .attributes = meta_tables::replicate_feature_attributes,
+    .oneof = meta_tables::replicate_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::circular_pattern::entity_info() const noexcept { return meta_entity; }
@@ -13142,6 +13474,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::transition_feature::m
     .supertypes = meta_tables::transition_feature_supertypes,
     .subtypes = meta_tables::transition_feature_subtypes,
     .attributes = meta_tables::transition_feature_attributes,
+    .oneof = meta_tables::transition_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::chamfer::entity_info() const noexcept { return meta_entity; }
@@ -13179,6 +13512,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::thread::meta_entity{
     .subtypes = meta_tables::thread_subtypes,
     .attributes = meta_tables::thread_attributes,
     .where = meta_tables::thread_where,
+    .oneof = meta_tables::thread_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::partial_area_definition::entity_info() const noexcept { return meta_entity; }
@@ -13247,6 +13581,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::profile::meta_entity{
     .abstract = true,
     .subtypes = meta_tables::profile_subtypes,
     .attributes = meta_tables::profile_attributes,
+    .oneof = meta_tables::profile_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::open_profile::entity_info() const noexcept { return meta_entity; }
@@ -13259,6 +13594,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::open_profile::meta_en
     .supertypes = meta_tables::open_profile_supertypes,
     .subtypes = meta_tables::open_profile_subtypes,
     .attributes = meta_tables::open_profile_attributes,
+    .oneof = meta_tables::open_profile_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::linear_profile::entity_info() const noexcept { return meta_entity; }
@@ -13355,6 +13691,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::closed_profile::meta_
     .supertypes = meta_tables::closed_profile_supertypes,
     .subtypes = meta_tables::closed_profile_subtypes,
     .attributes = meta_tables::closed_profile_attributes,
+    .oneof = meta_tables::closed_profile_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::rectangular_closed_profile::entity_info() const noexcept { return meta_entity; }
@@ -13414,6 +13751,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::travel_path::meta_ent
     .abstract = true,
     .subtypes = meta_tables::travel_path_subtypes,
     .attributes = meta_tables::travel_path_attributes,
+    .oneof = meta_tables::travel_path_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::general_path::entity_info() const noexcept { return meta_entity; }
@@ -13450,6 +13788,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::circular_path::meta_e
     .supertypes = meta_tables::circular_path_supertypes,
     .subtypes = meta_tables::circular_path_subtypes,
     .attributes = meta_tables::circular_path_attributes,
+    .oneof = meta_tables::circular_path_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::complete_circular_path::entity_info() const noexcept { return meta_entity; }
@@ -13507,6 +13846,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::executable::meta_enti
     .abstract = true,
     .subtypes = meta_tables::executable_subtypes,
     .attributes = meta_tables::executable_attributes,
+    .oneof = meta_tables::executable_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::workingstep::entity_info() const noexcept { return meta_entity; }
@@ -13519,6 +13859,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::workingstep::meta_ent
     .supertypes = meta_tables::workingstep_supertypes,
     .subtypes = meta_tables::workingstep_subtypes,
     .attributes = meta_tables::workingstep_attributes,
+    .oneof = meta_tables::workingstep_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::machining_workingstep::entity_info() const noexcept { return meta_entity; }
@@ -13554,6 +13895,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::operation::meta_entit
     .abstract = true,
     .subtypes = meta_tables::operation_subtypes,
     .attributes = meta_tables::operation_attributes,
+    .oneof = meta_tables::operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::rapid_movement::entity_info() const noexcept { return meta_entity; }
@@ -13591,6 +13933,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::touch_probing::meta_e
     .supertypes = meta_tables::touch_probing_supertypes,
     .subtypes = meta_tables::touch_probing_subtypes,
     .attributes = meta_tables::touch_probing_attributes,
+    .oneof = meta_tables::touch_probing_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::workpiece_probing::entity_info() const noexcept { return meta_entity; }
@@ -13650,6 +13993,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::tool_probing::meta_en
     .supertypes = meta_tables::tool_probing_supertypes,
     .subtypes = meta_tables::tool_probing_subtypes,
     .attributes = meta_tables::tool_probing_attributes,
+    .oneof = meta_tables::tool_probing_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::machining_tool::entity_info() const noexcept { return meta_entity; }
@@ -13813,6 +14157,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::program_structure::me
     .supertypes = meta_tables::program_structure_supertypes,
     .subtypes = meta_tables::program_structure_subtypes,
     .attributes = meta_tables::program_structure_attributes,
+    .oneof = meta_tables::program_structure_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::workplan::entity_info() const noexcept { return meta_entity; }
@@ -13975,6 +14320,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::boolean_expression::m
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::boolean_expression_subtypes,
+    .oneof = meta_tables::boolean_expression_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::unary_boolean_expression::entity_info() const noexcept { return meta_entity; }
@@ -14035,6 +14381,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::multiple_arity_boolea
     .supertypes = meta_tables::multiple_arity_boolean_expression_supertypes,
     .subtypes = meta_tables::multiple_arity_boolean_expression_subtypes,
     .attributes = meta_tables::multiple_arity_boolean_expression_attributes,
+    .oneof = meta_tables::multiple_arity_boolean_expression_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::and_expression::entity_info() const noexcept { return meta_entity; }
@@ -14071,6 +14418,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::comparison_expression
     .supertypes = meta_tables::comparison_expression_supertypes,
     .subtypes = meta_tables::comparison_expression_subtypes,
     .attributes = meta_tables::comparison_expression_attributes,
+    .oneof = meta_tables::comparison_expression_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::comparison_equal::entity_info() const noexcept { return meta_entity; }
@@ -14164,6 +14512,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::tool_direction::meta_
     .schema = &meta_schema,
     .abstract = true,
     .subtypes = meta_tables::tool_direction_subtypes,
+    .oneof = meta_tables::tool_direction_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::two_axes::entity_info() const noexcept { return meta_entity; }
@@ -14230,6 +14579,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::toolpath::meta_entity
     .abstract = true,
     .subtypes = meta_tables::toolpath_subtypes,
     .attributes = meta_tables::toolpath_attributes,
+    .oneof = meta_tables::toolpath_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::toolpath_speed::entity_info() const noexcept { return meta_entity; }
@@ -14266,6 +14616,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::trajectory::meta_enti
     .supertypes = meta_tables::trajectory_supertypes,
     .subtypes = meta_tables::trajectory_subtypes,
     .attributes = meta_tables::trajectory_attributes,
+    .oneof = meta_tables::trajectory_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::cutter_location_trajectory::entity_info() const noexcept { return meta_entity; }
@@ -14326,6 +14677,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::parameterised_path::m
     .supertypes = meta_tables::parameterised_path_supertypes,
     .subtypes = meta_tables::parameterised_path_subtypes,
     .attributes = meta_tables::parameterised_path_attributes,
+    .oneof = meta_tables::parameterised_path_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::connector::entity_info() const noexcept { return meta_entity; }
@@ -14338,6 +14690,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::connector::meta_entit
     .supertypes = meta_tables::connector_supertypes,
     .subtypes = meta_tables::connector_subtypes,
     .attributes = meta_tables::connector_attributes,
+    .oneof = meta_tables::connector_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::connect_secplane::entity_info() const noexcept { return meta_entity; }
@@ -14374,6 +14727,7 @@ constinit const stepnc::meta::EntityInfo machining_schema::approach_lift_path::m
     .supertypes = meta_tables::approach_lift_path_supertypes,
     .subtypes = meta_tables::approach_lift_path_subtypes,
     .attributes = meta_tables::approach_lift_path_attributes,
+    .oneof = meta_tables::approach_lift_path_oneof,
 };
 
 const stepnc::meta::EntityInfo& machining_schema::ap_lift_path_angle::entity_info() const noexcept { return meta_entity; }

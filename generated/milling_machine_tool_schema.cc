@@ -23,6 +23,7 @@ namespace {
 using stepnc::meta::AttributeInfo;
 using stepnc::meta::AttributeKind;
 using stepnc::meta::EntityInfo;
+using stepnc::meta::OneOfMember;
 using stepnc::meta::TypeInfo;
 using stepnc::meta::TypeKind;
 using stepnc::meta::Upcast;
@@ -233,6 +234,18 @@ constexpr AttributeInfo milling_machine_tool_body_attributes[] = {
      .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_machine_tool_body, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember milling_machine_tool_body_oneof[] = {
+    {&milling_machine_tool_schema::center_drill::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::countersink::meta_entity, 0, 1},
+    {&milling_machine_tool_schema::drill::meta_entity, 0, 2},
+    {&milling_machine_tool_schema::milling_cutter::meta_entity, 0, 3},
+    {&milling_machine_tool_schema::tap::meta_entity, 0, 4},
+    {&milling_machine_tool_schema::milling_threading_tool::meta_entity, 0, 5},
+    {&milling_machine_tool_schema::counterbore::meta_entity, 0, 6},
+    {&milling_machine_tool_schema::reamer::meta_entity, 0, 7},
+    {&milling_machine_tool_schema::boring_tool::meta_entity, 0, 8},
+    {&milling_machine_tool_schema::user_defined_tool::meta_entity, 0, 9},
+};
 
 // milling_tool_dimension
 constexpr AttributeInfo milling_tool_dimension_attributes[] = {
@@ -373,6 +386,10 @@ constexpr AttributeInfo drill_attributes[] = {
      .locate = &stepnc::meta::field<milling_machine_tool_schema::drill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember drill_oneof[] = {
+    {&milling_machine_tool_schema::twist_drill::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::spade_drill::meta_entity, 0, 1},
+};
 
 // twist_drill
 constexpr const EntityInfo* twist_drill_supertypes[] = {
@@ -491,6 +508,15 @@ constexpr AttributeInfo milling_cutter_attributes[] = {
      .locate = &stepnc::meta::field<milling_machine_tool_schema::milling_cutter, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember milling_cutter_oneof[] = {
+    {&milling_machine_tool_schema::facemill::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::endmill::meta_entity, 0, 1},
+    {&milling_machine_tool_schema::t_slot_mill::meta_entity, 0, 2},
+    {&milling_machine_tool_schema::dovetail_mill::meta_entity, 0, 3},
+    {&milling_machine_tool_schema::woodruff_keyseat_mill::meta_entity, 0, 4},
+    {&milling_machine_tool_schema::side_mill::meta_entity, 0, 5},
+    {&milling_machine_tool_schema::thread_mill::meta_entity, 0, 6},
+};
 
 // facemill
 constexpr const EntityInfo* facemill_supertypes[] = {
@@ -543,6 +569,11 @@ constexpr AttributeInfo endmill_attributes[] = {
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::endmill, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember endmill_oneof[] = {
+    {&milling_machine_tool_schema::tapered_endmill::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::ball_endmill::meta_entity, 0, 1},
+    {&milling_machine_tool_schema::bullnose_endmill::meta_entity, 0, 2},
 };
 constexpr Upcast endmill_upcasts[] = {
     {&milling_machine_tool_schema::endmill::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::endmill, milling_machine_tool_schema::endmill>},
@@ -809,6 +840,10 @@ constexpr AttributeInfo tap_attributes[] = {
      .locate = &stepnc::meta::field<milling_machine_tool_schema::tap, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember tap_oneof[] = {
+    {&milling_machine_tool_schema::tapered_tap::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::combined_drill_and_tap::meta_entity, 0, 1},
+};
 constexpr Upcast tap_upcasts[] = {
     {&milling_machine_tool_schema::tap::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::tap, milling_machine_tool_schema::tap>},
     {&milling_machine_tool_schema::milling_machine_tool_body::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::tap, milling_machine_tool_schema::milling_machine_tool_body>},
@@ -980,6 +1015,10 @@ constexpr AttributeInfo reamer_attributes[] = {
     {.name = "pilot_length", .owner = &milling_machine_tool_schema::milling_machine_tool_body::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_machine_tool_schema::reamer, &milling_machine_tool_schema::milling_machine_tool_body::pilot_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember reamer_oneof[] = {
+    {&milling_machine_tool_schema::tapered_reamer::meta_entity, 0, 0},
+    {&milling_machine_tool_schema::combined_drill_and_reamer::meta_entity, 0, 1},
 };
 constexpr Upcast reamer_upcasts[] = {
     {&milling_machine_tool_schema::reamer::meta_entity, &stepnc::meta::upcast_to<milling_machine_tool_schema::reamer, milling_machine_tool_schema::reamer>},
@@ -1254,6 +1293,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_ma
     .supertypes = meta_tables::milling_machine_tool_body_supertypes,
     .subtypes = meta_tables::milling_machine_tool_body_subtypes,
     .attributes = meta_tables::milling_machine_tool_body_attributes,
+    .oneof = meta_tables::milling_machine_tool_body_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::milling_tool_dimension::entity_info() const noexcept { return meta_entity; }
@@ -1314,6 +1354,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::drill::met
     .supertypes = meta_tables::drill_supertypes,
     .subtypes = meta_tables::drill_subtypes,
     .attributes = meta_tables::drill_attributes,
+    .oneof = meta_tables::drill_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::twist_drill::entity_info() const noexcept { return meta_entity; }
@@ -1363,6 +1404,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::milling_cu
     .supertypes = meta_tables::milling_cutter_supertypes,
     .subtypes = meta_tables::milling_cutter_subtypes,
     .attributes = meta_tables::milling_cutter_attributes,
+    .oneof = meta_tables::milling_cutter_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::facemill::entity_info() const noexcept { return meta_entity; }
@@ -1388,6 +1430,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::endmill::m
     .attributes = meta_tables::endmill_attributes,
     .create = &stepnc::meta::create_in<milling_machine_tool_schema::endmill>,
     .upcasts = meta_tables::endmill_upcasts,
+    .oneof = meta_tables::endmill_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_endmill::entity_info() const noexcept { return meta_entity; }
@@ -1499,6 +1542,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::tap::meta_
     .attributes = meta_tables::tap_attributes,
     .create = &stepnc::meta::create_in<milling_machine_tool_schema::tap>,
     .upcasts = meta_tables::tap_upcasts,
+    .oneof = meta_tables::tap_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_tap::entity_info() const noexcept { return meta_entity; }
@@ -1573,6 +1617,7 @@ constinit const stepnc::meta::EntityInfo milling_machine_tool_schema::reamer::me
     .attributes = meta_tables::reamer_attributes,
     .create = &stepnc::meta::create_in<milling_machine_tool_schema::reamer>,
     .upcasts = meta_tables::reamer_upcasts,
+    .oneof = meta_tables::reamer_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_machine_tool_schema::tapered_reamer::entity_info() const noexcept { return meta_entity; }

@@ -23,6 +23,7 @@ namespace {
 using stepnc::meta::AttributeInfo;
 using stepnc::meta::AttributeKind;
 using stepnc::meta::EntityInfo;
+using stepnc::meta::OneOfMember;
 using stepnc::meta::TypeInfo;
 using stepnc::meta::TypeKind;
 using stepnc::meta::Upcast;
@@ -262,6 +263,11 @@ constexpr const EntityInfo* tool_direction_for_milling_subtypes[] = {
     &milling_schema::five_axes_var_tilt_yaw::meta_entity,
     &milling_schema::three_axes_tilted_tool::meta_entity,
 };
+constexpr OneOfMember tool_direction_for_milling_oneof[] = {
+    {&milling_schema::three_axes_tilted_tool::meta_entity, 0, 0},
+    {&milling_schema::five_axes_var_tilt_yaw::meta_entity, 0, 1},
+    {&milling_schema::five_axes_const_tilt_yaw::meta_entity, 0, 2},
+};
 
 // three_axes_tilted_tool
 constexpr const EntityInfo* three_axes_tilted_tool_supertypes[] = {
@@ -332,6 +338,10 @@ constexpr AttributeInfo milling_machining_operation_attributes[] = {
     {.name = "overcut_length", .owner = &milling_schema::milling_machining_operation::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::milling_machining_operation, &milling_schema::milling_machining_operation::overcut_length>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember milling_machining_operation_oneof[] = {
+    {&milling_schema::milling_type_operation::meta_entity, 0, 0},
+    {&milling_schema::drilling_type_operation::meta_entity, 0, 1},
 };
 
 // milling_technology
@@ -460,6 +470,10 @@ constexpr AttributeInfo milling_type_operation_attributes[] = {
     {.name = "retract", .owner = &milling_schema::milling_type_operation::meta_entity, .type = &milling_schema::type_info::approach_retract_strategy, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::milling_type_operation, &milling_schema::milling_type_operation::retract>},
 };
+constexpr OneOfMember milling_type_operation_oneof[] = {
+    {&milling_schema::freeform_operation::meta_entity, 0, 0},
+    {&milling_schema::two5d_milling_operation::meta_entity, 0, 1},
+};
 
 // approach_retract_strategy
 constexpr const EntityInfo* approach_retract_strategy_subtypes[] = {
@@ -470,6 +484,11 @@ constexpr const EntityInfo* approach_retract_strategy_subtypes[] = {
 constexpr AttributeInfo approach_retract_strategy_attributes[] = {
     {.name = "tool_orientation", .owner = &milling_schema::approach_retract_strategy::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::approach_retract_strategy, &milling_schema::approach_retract_strategy::tool_orientation>},
+};
+constexpr OneOfMember approach_retract_strategy_oneof[] = {
+    {&milling_schema::plunge_strategy::meta_entity, 0, 0},
+    {&milling_schema::air_strategy::meta_entity, 0, 1},
+    {&milling_schema::along_path::meta_entity, 0, 2},
 };
 
 // plunge_strategy
@@ -485,6 +504,12 @@ constexpr const EntityInfo* plunge_strategy_subtypes[] = {
 constexpr AttributeInfo plunge_strategy_attributes[] = {
     {.name = "tool_orientation", .owner = &milling_schema::approach_retract_strategy::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::plunge_strategy, &milling_schema::approach_retract_strategy::tool_orientation>},
+};
+constexpr OneOfMember plunge_strategy_oneof[] = {
+    {&milling_schema::plunge_toolaxis::meta_entity, 0, 0},
+    {&milling_schema::plunge_ramp::meta_entity, 0, 1},
+    {&milling_schema::plunge_helix::meta_entity, 0, 2},
+    {&milling_schema::plunge_zigzag::meta_entity, 0, 3},
 };
 
 // plunge_toolaxis
@@ -564,6 +589,10 @@ constexpr const EntityInfo* air_strategy_subtypes[] = {
 constexpr AttributeInfo air_strategy_attributes[] = {
     {.name = "tool_orientation", .owner = &milling_schema::approach_retract_strategy::meta_entity, .type = &machining_schema::type_info::direction, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::air_strategy, &milling_schema::approach_retract_strategy::tool_orientation>},
+};
+constexpr OneOfMember air_strategy_oneof[] = {
+    {&milling_schema::ap_retract_angle::meta_entity, 0, 0},
+    {&milling_schema::ap_retract_tangent::meta_entity, 0, 1},
 };
 
 // ap_retract_angle
@@ -672,6 +701,12 @@ constexpr AttributeInfo freeform_strategy_attributes[] = {
     {.name = "stepover", .owner = &milling_schema::freeform_strategy::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::freeform_strategy, &milling_schema::freeform_strategy::stepover>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember freeform_strategy_oneof[] = {
+    {&milling_schema::uv_strategy::meta_entity, 0, 0},
+    {&milling_schema::plane_cc_strategy::meta_entity, 0, 1},
+    {&milling_schema::plane_cl_strategy::meta_entity, 0, 2},
+    {&milling_schema::leading_line_strategy::meta_entity, 0, 3},
 };
 
 // tolerances
@@ -812,6 +847,11 @@ constexpr AttributeInfo two5d_milling_operation_attributes[] = {
     {.name = "its_machining_strategy", .owner = &milling_schema::two5d_milling_operation::meta_entity, .type = &milling_schema::type_info::two5d_milling_strategy, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::two5d_milling_operation, &milling_schema::two5d_milling_operation::its_machining_strategy>},
 };
+constexpr OneOfMember two5d_milling_operation_oneof[] = {
+    {&milling_schema::plane_milling::meta_entity, 0, 0},
+    {&milling_schema::side_milling::meta_entity, 0, 1},
+    {&milling_schema::bottom_and_side_milling::meta_entity, 0, 2},
+};
 
 // two5d_milling_strategy
 constexpr const EntityInfo* two5d_milling_strategy_subtypes[] = {
@@ -831,6 +871,16 @@ constexpr AttributeInfo two5d_milling_strategy_attributes[] = {
     {.name = "allow_multiple_passes", .owner = &milling_schema::two5d_milling_strategy::meta_entity, .type = &stepnc::meta::boolean_type, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::two5d_milling_strategy, &milling_schema::two5d_milling_strategy::allow_multiple_passes>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<bool>>},
+};
+constexpr OneOfMember two5d_milling_strategy_oneof[] = {
+    {&milling_schema::unidirectional_milling::meta_entity, 0, 0},
+    {&milling_schema::bidirectional_milling::meta_entity, 0, 1},
+    {&milling_schema::contour_parallel::meta_entity, 0, 2},
+    {&milling_schema::bidirectional_contour::meta_entity, 0, 3},
+    {&milling_schema::contour_bidirectional::meta_entity, 0, 4},
+    {&milling_schema::contour_spiral::meta_entity, 0, 5},
+    {&milling_schema::center_milling::meta_entity, 0, 6},
+    {&milling_schema::explicit_strategy::meta_entity, 0, 7},
 };
 
 // unidirectional_milling
@@ -1058,6 +1108,10 @@ constexpr AttributeInfo plane_milling_attributes[] = {
      .locate = &stepnc::meta::field<milling_schema::plane_milling, &milling_schema::plane_milling::allowance_bottom>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember plane_milling_oneof[] = {
+    {&milling_schema::plane_rough_milling::meta_entity, 0, 0},
+    {&milling_schema::plane_finish_milling::meta_entity, 0, 1},
+};
 
 // plane_rough_milling
 constexpr const EntityInfo* plane_rough_milling_supertypes[] = {
@@ -1199,6 +1253,10 @@ constexpr AttributeInfo side_milling_attributes[] = {
     {.name = "allowance_side", .owner = &milling_schema::side_milling::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::side_milling, &milling_schema::side_milling::allowance_side>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember side_milling_oneof[] = {
+    {&milling_schema::side_rough_milling::meta_entity, 0, 0},
+    {&milling_schema::side_finish_milling::meta_entity, 0, 1},
 };
 
 // side_rough_milling
@@ -1350,6 +1408,10 @@ constexpr AttributeInfo bottom_and_side_milling_attributes[] = {
     {.name = "allowance_bottom", .owner = &milling_schema::bottom_and_side_milling::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::bottom_and_side_milling, &milling_schema::bottom_and_side_milling::allowance_bottom>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember bottom_and_side_milling_oneof[] = {
+    {&milling_schema::bottom_and_side_rough_milling::meta_entity, 0, 0},
+    {&milling_schema::bottom_and_side_finish_milling::meta_entity, 0, 1},
 };
 
 // bottom_and_side_rough_milling
@@ -1507,6 +1569,13 @@ constexpr AttributeInfo drilling_type_operation_attributes[] = {
     {.name = "its_machining_strategy", .owner = &milling_schema::drilling_type_operation::meta_entity, .type = &milling_schema::type_info::drilling_type_strategy, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::drilling_type_operation, &milling_schema::drilling_type_operation::its_machining_strategy>},
 };
+constexpr OneOfMember drilling_type_operation_oneof[] = {
+    {&milling_schema::drilling_operation::meta_entity, 0, 0},
+    {&milling_schema::boring_operation::meta_entity, 0, 1},
+    {&milling_schema::back_boring::meta_entity, 0, 2},
+    {&milling_schema::tapping::meta_entity, 0, 3},
+    {&milling_schema::thread_drilling::meta_entity, 0, 4},
+};
 
 // drilling_type_strategy
 constexpr AttributeInfo drilling_type_strategy_attributes[] = {
@@ -1578,6 +1647,12 @@ constexpr AttributeInfo drilling_operation_attributes[] = {
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::positive_ratio_measure>>},
     {.name = "its_machining_strategy", .owner = &milling_schema::drilling_type_operation::meta_entity, .type = &milling_schema::type_info::drilling_type_strategy, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::drilling_operation, &milling_schema::drilling_type_operation::its_machining_strategy>},
+};
+constexpr OneOfMember drilling_operation_oneof[] = {
+    {&milling_schema::drilling::meta_entity, 0, 0},
+    {&milling_schema::center_drilling::meta_entity, 0, 1},
+    {&milling_schema::counter_sinking::meta_entity, 0, 2},
+    {&milling_schema::multistep_drilling::meta_entity, 0, 3},
 };
 
 // drilling
@@ -1835,6 +1910,10 @@ constexpr AttributeInfo boring_operation_attributes[] = {
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
     {.name = "waiting_position", .owner = &milling_schema::boring_operation::meta_entity, .type = &machining_schema::type_info::cartesian_point, .optional = true,
      .locate = &stepnc::meta::field<milling_schema::boring_operation, &milling_schema::boring_operation::waiting_position>},
+};
+constexpr OneOfMember boring_operation_oneof[] = {
+    {&milling_schema::boring::meta_entity, 0, 0},
+    {&milling_schema::reaming::meta_entity, 0, 1},
 };
 
 // boring
@@ -2403,6 +2482,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::tool_direction_for_mill
     .abstract = true,
     .supertypes = meta_tables::tool_direction_for_milling_supertypes,
     .subtypes = meta_tables::tool_direction_for_milling_subtypes,
+    .oneof = meta_tables::tool_direction_for_milling_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::three_axes_tilted_tool::entity_info() const noexcept { return meta_entity; }
@@ -2450,6 +2530,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::milling_machining_opera
     .supertypes = meta_tables::milling_machining_operation_supertypes,
     .subtypes = meta_tables::milling_machining_operation_subtypes,
     .attributes = meta_tables::milling_machining_operation_attributes,
+    .oneof = meta_tables::milling_machining_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::milling_technology::entity_info() const noexcept { return meta_entity; }
@@ -2519,6 +2600,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::milling_type_operation:
     .supertypes = meta_tables::milling_type_operation_supertypes,
     .subtypes = meta_tables::milling_type_operation_subtypes,
     .attributes = meta_tables::milling_type_operation_attributes,
+    .oneof = meta_tables::milling_type_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::approach_retract_strategy::entity_info() const noexcept { return meta_entity; }
@@ -2530,6 +2612,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::approach_retract_strate
     .abstract = true,
     .subtypes = meta_tables::approach_retract_strategy_subtypes,
     .attributes = meta_tables::approach_retract_strategy_attributes,
+    .oneof = meta_tables::approach_retract_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::plunge_strategy::entity_info() const noexcept { return meta_entity; }
@@ -2542,6 +2625,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::plunge_strategy::meta_e
     .supertypes = meta_tables::plunge_strategy_supertypes,
     .subtypes = meta_tables::plunge_strategy_subtypes,
     .attributes = meta_tables::plunge_strategy_attributes,
+    .oneof = meta_tables::plunge_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::plunge_toolaxis::entity_info() const noexcept { return meta_entity; }
@@ -2602,6 +2686,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::air_strategy::meta_enti
     .supertypes = meta_tables::air_strategy_supertypes,
     .subtypes = meta_tables::air_strategy_subtypes,
     .attributes = meta_tables::air_strategy_attributes,
+    .oneof = meta_tables::air_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::ap_retract_angle::entity_info() const noexcept { return meta_entity; }
@@ -2661,6 +2746,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::freeform_strategy::meta
     .abstract = true,
     .subtypes = meta_tables::freeform_strategy_subtypes,
     .attributes = meta_tables::freeform_strategy_attributes,
+    .oneof = meta_tables::freeform_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::tolerances::entity_info() const noexcept { return meta_entity; }
@@ -2732,6 +2818,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::two5d_milling_operation
     .supertypes = meta_tables::two5d_milling_operation_supertypes,
     .subtypes = meta_tables::two5d_milling_operation_subtypes,
     .attributes = meta_tables::two5d_milling_operation_attributes,
+    .oneof = meta_tables::two5d_milling_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::two5d_milling_strategy::entity_info() const noexcept { return meta_entity; }
@@ -2743,6 +2830,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::two5d_milling_strategy:
     .abstract = true,
     .subtypes = meta_tables::two5d_milling_strategy_subtypes,
     .attributes = meta_tables::two5d_milling_strategy_attributes,
+    .oneof = meta_tables::two5d_milling_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::unidirectional_milling::entity_info() const noexcept { return meta_entity; }
@@ -2851,6 +2939,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::plane_milling::meta_ent
     .supertypes = meta_tables::plane_milling_supertypes,
     .subtypes = meta_tables::plane_milling_subtypes,
     .attributes = meta_tables::plane_milling_attributes,
+    .oneof = meta_tables::plane_milling_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::plane_rough_milling::entity_info() const noexcept { return meta_entity; }
@@ -2888,6 +2977,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::side_milling::meta_enti
     .supertypes = meta_tables::side_milling_supertypes,
     .subtypes = meta_tables::side_milling_subtypes,
     .attributes = meta_tables::side_milling_attributes,
+    .oneof = meta_tables::side_milling_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::side_rough_milling::entity_info() const noexcept { return meta_entity; }
@@ -2925,6 +3015,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::bottom_and_side_milling
     .supertypes = meta_tables::bottom_and_side_milling_supertypes,
     .subtypes = meta_tables::bottom_and_side_milling_subtypes,
     .attributes = meta_tables::bottom_and_side_milling_attributes,
+    .oneof = meta_tables::bottom_and_side_milling_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::bottom_and_side_rough_milling::entity_info() const noexcept { return meta_entity; }
@@ -2962,6 +3053,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::drilling_type_operation
     .supertypes = meta_tables::drilling_type_operation_supertypes,
     .subtypes = meta_tables::drilling_type_operation_subtypes,
     .attributes = meta_tables::drilling_type_operation_attributes,
+    .oneof = meta_tables::drilling_type_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::drilling_type_strategy::entity_info() const noexcept { return meta_entity; }
@@ -2986,6 +3078,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::drilling_operation::met
     .supertypes = meta_tables::drilling_operation_supertypes,
     .subtypes = meta_tables::drilling_operation_subtypes,
     .attributes = meta_tables::drilling_operation_attributes,
+    .oneof = meta_tables::drilling_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::drilling::entity_info() const noexcept { return meta_entity; }
@@ -3046,6 +3139,7 @@ constinit const stepnc::meta::EntityInfo milling_schema::boring_operation::meta_
     .supertypes = meta_tables::boring_operation_supertypes,
     .subtypes = meta_tables::boring_operation_subtypes,
     .attributes = meta_tables::boring_operation_attributes,
+    .oneof = meta_tables::boring_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& milling_schema::boring::entity_info() const noexcept { return meta_entity; }

@@ -23,6 +23,7 @@ namespace {
 using stepnc::meta::AttributeInfo;
 using stepnc::meta::AttributeKind;
 using stepnc::meta::EntityInfo;
+using stepnc::meta::OneOfMember;
 using stepnc::meta::TypeInfo;
 using stepnc::meta::TypeKind;
 using stepnc::meta::Upcast;
@@ -96,6 +97,13 @@ constexpr AttributeInfo turning_machine_tool_body_attributes[] = {
     {.name = "rotational_direction", .owner = &turning_machine_tool_schema::turning_machine_tool_body::meta_entity, .type = &machining_schema::type_info::rot_direction, .optional = true,
      .locate = &stepnc::meta::field<turning_machine_tool_schema::turning_machine_tool_body, &turning_machine_tool_schema::turning_machine_tool_body::rotational_direction>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::rot_direction>>},
+};
+constexpr OneOfMember turning_machine_tool_body_oneof[] = {
+    {&turning_machine_tool_schema::general_turning_tool::meta_entity, 0, 0},
+    {&turning_machine_tool_schema::knurling_tool::meta_entity, 0, 1},
+    {&turning_machine_tool_schema::turning_threading_tool::meta_entity, 0, 2},
+    {&turning_machine_tool_schema::grooving_tool::meta_entity, 0, 3},
+    {&turning_machine_tool_schema::user_defined_turning_tool::meta_entity, 0, 4},
 };
 
 // turning_tool_dimension
@@ -403,6 +411,7 @@ constinit const stepnc::meta::EntityInfo turning_machine_tool_schema::turning_ma
     .supertypes = meta_tables::turning_machine_tool_body_supertypes,
     .subtypes = meta_tables::turning_machine_tool_body_subtypes,
     .attributes = meta_tables::turning_machine_tool_body_attributes,
+    .oneof = meta_tables::turning_machine_tool_body_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_machine_tool_schema::turning_tool_dimension::entity_info() const noexcept { return meta_entity; }

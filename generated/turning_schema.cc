@@ -23,6 +23,7 @@ namespace {
 using stepnc::meta::AttributeInfo;
 using stepnc::meta::AttributeKind;
 using stepnc::meta::EntityInfo;
+using stepnc::meta::OneOfMember;
 using stepnc::meta::TypeInfo;
 using stepnc::meta::TypeKind;
 using stepnc::meta::Upcast;
@@ -141,6 +142,11 @@ constexpr AttributeInfo turning_feature_attributes[] = {
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<turning_schema::turning_feature, &machining_schema::two5d_manufacturing_feature::feature_placement>},
 };
+constexpr OneOfMember turning_feature_oneof[] = {
+    {&turning_schema::outer_round::meta_entity, 0, 0},
+    {&turning_schema::revolved_feature::meta_entity, 0, 1},
+    {&turning_schema::knurl::meta_entity, 0, 2},
+};
 
 // outer_round
 constexpr const EntityInfo* outer_round_supertypes[] = {
@@ -159,6 +165,10 @@ constexpr AttributeInfo outer_round_attributes[] = {
      .locate = &stepnc::meta::field<turning_schema::outer_round, &machining_schema::manufacturing_feature::its_operations>},
     {.name = "feature_placement", .owner = &machining_schema::two5d_manufacturing_feature::meta_entity, .type = &machining_schema::type_info::axis2_placement_3d,
      .locate = &stepnc::meta::field<turning_schema::outer_round, &machining_schema::two5d_manufacturing_feature::feature_placement>},
+};
+constexpr OneOfMember outer_round_oneof[] = {
+    {&turning_schema::outer_diameter::meta_entity, 0, 0},
+    {&turning_schema::outer_diameter_to_shoulder::meta_entity, 0, 1},
 };
 
 // outer_diameter
@@ -238,6 +248,12 @@ constexpr AttributeInfo revolved_feature_attributes[] = {
      .locate = &stepnc::meta::field<turning_schema::revolved_feature, &turning_schema::revolved_feature::material_side>},
     {.name = "radius", .owner = &turning_schema::revolved_feature::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure,
      .locate = &stepnc::meta::field<turning_schema::revolved_feature, &turning_schema::revolved_feature::radius>},
+};
+constexpr OneOfMember revolved_feature_oneof[] = {
+    {&turning_schema::revolved_round::meta_entity, 0, 0},
+    {&turning_schema::revolved_flat::meta_entity, 0, 1},
+    {&turning_schema::groove::meta_entity, 0, 2},
+    {&turning_schema::general_revolution::meta_entity, 0, 3},
 };
 
 // revolved_flat
@@ -388,6 +404,12 @@ constexpr AttributeInfo knurl_attributes[] = {
      .locate = &stepnc::meta::field<turning_schema::knurl, &turning_schema::knurl::major_diameter>},
     {.name = "nominal_diameter", .owner = &turning_schema::knurl::meta_entity, .type = &machining_schema::type_info::toleranced_length_measure, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::knurl, &turning_schema::knurl::nominal_diameter>},
+};
+constexpr OneOfMember knurl_oneof[] = {
+    {&turning_schema::straight_knurl::meta_entity, 0, 0},
+    {&turning_schema::diagonal_knurl::meta_entity, 0, 1},
+    {&turning_schema::diamond_knurl::meta_entity, 0, 2},
+    {&turning_schema::tool_knurl::meta_entity, 0, 3},
 };
 
 // straight_knurl
@@ -681,6 +703,14 @@ constexpr AttributeInfo turning_machining_strategy_attributes[] = {
      .locate = &stepnc::meta::field<turning_schema::turning_machining_strategy, &turning_schema::turning_machining_strategy::cutting_depth>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<std::vector<machining_schema::length_measure>>>},
 };
+constexpr OneOfMember turning_machining_strategy_oneof[] = {
+    {&turning_schema::unidirectional_turning::meta_entity, 0, 0},
+    {&turning_schema::bidirectional_turning::meta_entity, 0, 1},
+    {&turning_schema::thread_strategy::meta_entity, 0, 2},
+    {&turning_schema::contour_turning::meta_entity, 0, 3},
+    {&turning_schema::grooving_strategy::meta_entity, 0, 4},
+    {&turning_schema::explicit_turning_strategy::meta_entity, 0, 5},
+};
 
 // unidirectional_turning
 constexpr const EntityInfo* unidirectional_turning_supertypes[] = {
@@ -717,6 +747,10 @@ constexpr AttributeInfo unidirectional_turning_attributes[] = {
     {.name = "downward_feed", .owner = &turning_schema::unidirectional_turning::meta_entity, .type = &machining_schema::type_info::speed_measure, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::unidirectional_turning, &turning_schema::unidirectional_turning::downward_feed>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::speed_measure>>},
+};
+constexpr OneOfMember unidirectional_turning_oneof[] = {
+    {&turning_schema::unidirectional_perpendicular::meta_entity, 0, 0},
+    {&turning_schema::unidirectional_diagonal::meta_entity, 0, 1},
 };
 
 // unidirectional_perpendicular
@@ -988,6 +1022,14 @@ constexpr AttributeInfo turning_machining_operation_attributes[] = {
     {.name = "its_machining_strategy", .owner = &turning_schema::turning_machining_operation::meta_entity, .type = &turning_schema::type_info::turning_machining_strategy, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::turning_machining_operation, &turning_schema::turning_machining_operation::its_machining_strategy>},
 };
+constexpr OneOfMember turning_machining_operation_oneof[] = {
+    {&turning_schema::facing::meta_entity, 0, 0},
+    {&turning_schema::grooving::meta_entity, 0, 1},
+    {&turning_schema::cutting_in::meta_entity, 0, 2},
+    {&turning_schema::contouring::meta_entity, 0, 3},
+    {&turning_schema::threading::meta_entity, 0, 4},
+    {&turning_schema::knurling::meta_entity, 0, 5},
+};
 
 // facing
 constexpr const EntityInfo* facing_supertypes[] = {
@@ -1030,6 +1072,10 @@ constexpr AttributeInfo facing_attributes[] = {
     {.name = "allowance", .owner = &turning_schema::facing::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::facing, &turning_schema::facing::allowance>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember facing_oneof[] = {
+    {&turning_schema::facing_rough::meta_entity, 0, 0},
+    {&turning_schema::facing_finish::meta_entity, 0, 1},
 };
 
 // facing_rough
@@ -1164,6 +1210,10 @@ constexpr AttributeInfo grooving_attributes[] = {
     {.name = "allowance", .owner = &turning_schema::grooving::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::grooving, &turning_schema::grooving::allowance>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember grooving_oneof[] = {
+    {&turning_schema::grooving_rough::meta_entity, 0, 0},
+    {&turning_schema::grooving_finish::meta_entity, 0, 1},
 };
 
 // grooving_rough
@@ -1361,6 +1411,10 @@ constexpr AttributeInfo contouring_attributes[] = {
      .locate = &stepnc::meta::field<turning_schema::contouring, &turning_schema::contouring::allowance>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
 };
+constexpr OneOfMember contouring_oneof[] = {
+    {&turning_schema::contouring_rough::meta_entity, 0, 0},
+    {&turning_schema::contouring_finish::meta_entity, 0, 1},
+};
 
 // contouring_rough
 constexpr const EntityInfo* contouring_rough_supertypes[] = {
@@ -1498,6 +1552,10 @@ constexpr AttributeInfo threading_attributes[] = {
     {.name = "allowance", .owner = &turning_schema::threading::meta_entity, .type = &machining_schema::type_info::length_measure, .optional = true,
      .locate = &stepnc::meta::field<turning_schema::threading, &turning_schema::threading::allowance>,
      .optional_storage = &stepnc::meta::optional_ops<std::optional<machining_schema::length_measure>>},
+};
+constexpr OneOfMember threading_oneof[] = {
+    {&turning_schema::threading_rough::meta_entity, 0, 0},
+    {&turning_schema::threading_finish::meta_entity, 0, 1},
 };
 
 // threading_rough
@@ -1815,6 +1873,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::turning_feature::meta_e
     .supertypes = meta_tables::turning_feature_supertypes,
     .subtypes = meta_tables::turning_feature_subtypes,
     .attributes = meta_tables::turning_feature_attributes,
+    .oneof = meta_tables::turning_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::outer_round::entity_info() const noexcept { return meta_entity; }
@@ -1827,6 +1886,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::outer_round::meta_entit
     .supertypes = meta_tables::outer_round_supertypes,
     .subtypes = meta_tables::outer_round_subtypes,
     .attributes = meta_tables::outer_round_attributes,
+    .oneof = meta_tables::outer_round_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::outer_diameter::entity_info() const noexcept { return meta_entity; }
@@ -1863,6 +1923,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::revolved_feature::meta_
     .supertypes = meta_tables::revolved_feature_supertypes,
     .subtypes = meta_tables::revolved_feature_subtypes,
     .attributes = meta_tables::revolved_feature_attributes,
+    .oneof = meta_tables::revolved_feature_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::revolved_flat::entity_info() const noexcept { return meta_entity; }
@@ -1923,6 +1984,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::knurl::meta_entity{
     .supertypes = meta_tables::knurl_supertypes,
     .subtypes = meta_tables::knurl_subtypes,
     .attributes = meta_tables::knurl_attributes,
+    .oneof = meta_tables::knurl_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::straight_knurl::entity_info() const noexcept { return meta_entity; }
@@ -2040,6 +2102,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::turning_machining_strat
     .abstract = true,
     .subtypes = meta_tables::turning_machining_strategy_subtypes,
     .attributes = meta_tables::turning_machining_strategy_attributes,
+    .oneof = meta_tables::turning_machining_strategy_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::unidirectional_turning::entity_info() const noexcept { return meta_entity; }
@@ -2052,6 +2115,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::unidirectional_turning:
     .supertypes = meta_tables::unidirectional_turning_supertypes,
     .subtypes = meta_tables::unidirectional_turning_subtypes,
     .attributes = meta_tables::unidirectional_turning_attributes,
+    .oneof = meta_tables::unidirectional_turning_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::unidirectional_perpendicular::entity_info() const noexcept { return meta_entity; }
@@ -2161,6 +2225,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::turning_machining_opera
     .supertypes = meta_tables::turning_machining_operation_supertypes,
     .subtypes = meta_tables::turning_machining_operation_subtypes,
     .attributes = meta_tables::turning_machining_operation_attributes,
+    .oneof = meta_tables::turning_machining_operation_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::facing::entity_info() const noexcept { return meta_entity; }
@@ -2173,6 +2238,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::facing::meta_entity{
     .supertypes = meta_tables::facing_supertypes,
     .subtypes = meta_tables::facing_subtypes,
     .attributes = meta_tables::facing_attributes,
+    .oneof = meta_tables::facing_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::facing_rough::entity_info() const noexcept { return meta_entity; }
@@ -2210,6 +2276,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::grooving::meta_entity{
     .supertypes = meta_tables::grooving_supertypes,
     .subtypes = meta_tables::grooving_subtypes,
     .attributes = meta_tables::grooving_attributes,
+    .oneof = meta_tables::grooving_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::grooving_rough::entity_info() const noexcept { return meta_entity; }
@@ -2281,6 +2348,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::contouring::meta_entity
     .supertypes = meta_tables::contouring_supertypes,
     .subtypes = meta_tables::contouring_subtypes,
     .attributes = meta_tables::contouring_attributes,
+    .oneof = meta_tables::contouring_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::contouring_rough::entity_info() const noexcept { return meta_entity; }
@@ -2318,6 +2386,7 @@ constinit const stepnc::meta::EntityInfo turning_schema::threading::meta_entity{
     .supertypes = meta_tables::threading_supertypes,
     .subtypes = meta_tables::threading_subtypes,
     .attributes = meta_tables::threading_attributes,
+    .oneof = meta_tables::threading_oneof,
 };
 
 const stepnc::meta::EntityInfo& turning_schema::threading_rough::entity_info() const noexcept { return meta_entity; }

@@ -349,3 +349,31 @@ TEST_CASE("stepnc gcode: canonical, JSON and plot output; exit codes 1, 2, 3; no
   CHECK_THAT(bad_list.out, Catch::Contains("stepnc_cli_gcode_typo.csv:2:6: error: '12' is not a tip direction (0 to 9)"));
   CHECK(stepnc("gcode " + program.string() + " -c heidenhain").exit_code == 2);
 }
+
+// A complex record whose combination has no generated class (here a point
+// written in the external mapping, ISO 10303-21 12.2.5) reads typed: its
+// reference is followed, it is dumped and counted by its entity.
+TEST_CASE("stepnc reads a complex record without a generated class typed", "[cli]") {
+  const fs::path input = write_temp(
+      "stepnc-cli-complex.stp",
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('MACHINING_SCHEMA'));\nENDSEC;\nDATA;\n"
+      "#1=(CARTESIAN_POINT((0.,0.,5.))GEOMETRIC_REPRESENTATION_ITEM()POINT('origin')REPRESENTATION_ITEM());\n"
+      "#2=DIRECTION('z',(0.,0.,1.));\n#3=AXIS2_PLACEMENT_3D('frame',#1,#2,$);\nENDSEC;\nEND-ISO-10303-21;\n");
+  for (const char* mode : {"--lazy", "--eager"}) {
+    INFO(mode);
+    const Run location = stepnc("query " + input.string() + " /#3/location/coordinates " + mode);
+    CHECK(location.exit_code == 0);
+    CHECK(location.out == "(0.,0.,5.)\n");
+    const Run dump = stepnc("dump " + input.string() + " '#1' " + mode);
+    CHECK(dump.exit_code == 0);
+    CHECK(dump.out == "#1=cartesian_point (machining_schema)\n  name: 'origin'\n  coordinates: (0.,0.,5.)\n");
+  }
+  const Run valid = stepnc("validate --no-rules " + input.string());
+  CHECK(valid.exit_code == 0);
+  CHECK_THAT(valid.out, Catch::Contains("3 instances"));
+  const Run info = stepnc("info " + input.string());
+  CHECK(info.exit_code == 0);
+  CHECK_THAT(info.out, Catch::Contains("cartesian_point"));
+  fs::remove(input);
+}

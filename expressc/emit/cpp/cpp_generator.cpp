@@ -373,6 +373,7 @@ struct EntityTables {
   bool attributes = false;
   bool derived = false;
   bool inverses = false;
+  bool oneof = false;
   const Entity* entity = nullptr;  // null for a complex combination
 };
 
@@ -915,6 +916,45 @@ EntityTables SchemaEmitter::print_entity_tables(Printer& p, const Entity* entity
     }
   }
 
+  if (entity) {
+    // Every ONEOF of its supertype constraints, its operands' entities
+    // numbered, so the runtime can refuse a complex instance combining two
+    // operands (ISO 10303-11 9.2.5.2) that has no generated class.
+    std::vector<const model::SupertypeExpression*> constraints;
+    if (entity->supertype_constraint) constraints.push_back(entity->supertype_constraint.get());
+    for (const model::SubtypeConstraint* c : entity->subtype_constraints)
+      if (c->expression) constraints.push_back(c->expression.get());
+    std::string rows;
+    int group = 0;
+    const auto named = [](const model::SupertypeExpression& e, auto&& self, std::vector<const Entity*>& out) -> void {
+      if (e.kind == model::SupertypeExpression::Kind::Entity) {
+        if (e.entity && std::find(out.begin(), out.end(), e.entity) == out.end()) out.push_back(e.entity);
+        return;
+      }
+      for (const auto& operand : e.operands) self(*operand, self, out);
+    };
+    const auto walk = [&](const model::SupertypeExpression& e, auto&& self) -> void {
+      if (e.kind == model::SupertypeExpression::Kind::OneOf) {
+        for (std::size_t i = 0; i < e.operands.size(); ++i) {
+          std::vector<const Entity*> entities;
+          named(*e.operands[i], named, entities);
+          for (const Entity* member : entities)
+            rows += "    {&" + qualified(member) + "::meta_entity, " + std::to_string(group) + ", " +
+                    std::to_string(i) + "},\n";
+        }
+        ++group;
+      }
+      for (const auto& operand : e.operands) self(*operand, self);
+    };
+    for (const model::SupertypeExpression* c : constraints) walk(*c, walk);
+    tables.oneof = !rows.empty();
+    if (tables.oneof) {
+      p.print("constexpr OneOfMember $table$_oneof[] = {\n", {{"table", table_name}});
+      p.print(rows);
+      p.print("};\n");
+    }
+  }
+
   if (!tables.abstract) {
     p.print("constexpr Upcast $table$_upcasts[] = {\n", {{"table", table_name}});
     if (combination)
@@ -953,6 +993,7 @@ void SchemaEmitter::print_entity_info(Printer& p, const EntityTables& tables) {
     if (auto u = rules_.entity_unique.find(tables.entity); u != rules_.entity_unique.end())
       p.print(".unique = meta_tables::$unique$,\n", {{"unique", u->second}});
   }
+  if (tables.oneof) p.print(".oneof = meta_tables::$table$_oneof,\n", v);
   p.outdent();
   p.outdent();
   p.print("};\n");
@@ -1042,6 +1083,7 @@ std::string SchemaEmitter::source() {
       "using stepnc::meta::AttributeInfo;\n"
       "using stepnc::meta::AttributeKind;\n"
       "using stepnc::meta::EntityInfo;\n"
+      "using stepnc::meta::OneOfMember;\n"
       "using stepnc::meta::TypeInfo;\n"
       "using stepnc::meta::TypeKind;\n"
       "using stepnc::meta::Upcast;\n",

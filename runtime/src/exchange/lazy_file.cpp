@@ -431,7 +431,9 @@ struct LazyModelFile::State final : public meta::FillContext {
     return created;
   }
 
-  bool load(meta::Instance& target) {
+  bool load(meta::Instance& followed) {
+    // A reference to a complex instance holds one of its parts.
+    meta::Instance& target = *model.whole_of(&followed);
     const auto found = slots.find(target.id());
     if (found == slots.end() || found->second.instance != &target) return false;  // not of this file
     Slot& slot = found->second;
@@ -636,7 +638,8 @@ meta::Instance* LazyModelFile::follow(meta::Instance* target) {
 
 bool LazyModelFile::is_loaded(const meta::Instance& instance) const {
   const auto slot = state_->slots.find(instance.id());
-  return slot != state_->slots.end() && slot->second.instance == &instance && slot->second.loaded;
+  return slot != state_->slots.end() && slot->second.instance == state_->model.whole_of(&instance) &&
+         slot->second.loaded;
 }
 
 const p21::Diagnostics& LazyModelFile::diagnostics() const { return state_->diagnostics; }

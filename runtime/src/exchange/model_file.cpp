@@ -305,7 +305,13 @@ class ModelBuilder final : public meta::FillContext {
       }
       entity = entities_.complex(tree_, parts);
       if (entity == nullptr) {
-        keep_generic(index, entities_.no_class_for(parts, display_name()));
+        detail::EntityLookup::ComplexProblem problem = entities_.complex_problem(parts, display_name());
+        if (problem.unknown) {
+          keep_generic(index, std::move(problem.message));
+        } else {
+          report(p21::Severity::error, record.offset, record.id, std::move(problem.message));
+          skip(index);
+        }
         return;
       }
     } else {

@@ -3,6 +3,7 @@
 // (internal header): the typed entity of a record, the header's check.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <span>
 #include <string>
@@ -29,29 +30,47 @@ class EntityLookup {
   }
 
   // A complex record, by the parts of its parsed parameters (left in
-  // `parts`); null when no schema defines the combination.
-  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) const {
+  // `parts`): the generated class of the combination, else one built at
+  // run time (meta/complex.h); null when neither can be.
+  // The combinations met so far are kept by their names as written: a
+  // file repeats a few combinations many times.
+  const meta::EntityInfo* complex(const p21::ParamTree& tree, std::vector<std::string_view>& parts) {
     parts.clear();
     for (const p21::EntityPart& part : tree.parts()) parts.push_back(part.entity());
-    return registry_.find_complex(parts);
+    for (const auto& [names, entity] : complex_)
+      if (std::equal(names.begin(), names.end(), parts.begin(), parts.end())) return entity;
+    const meta::EntityInfo* entity = registry_.find_complex(parts);
+    if (entity == nullptr) entity = registry_.combine(parts).entity;
+    if (entity != nullptr && complex_.size() < 64) complex_.emplace_back(parts.begin(), parts.end(), entity);
+    return entity;
   }
 
-  // Why a complex record has no class: a part no schema defines, or (all
-  // parts known) a combination the bindings give no class (expressc
-  // makes one for a SUPERTYPE OF constraint's combinations of at most two
-  // entities, expressc/README.md "Complex instances").
-  std::string no_class_for(std::span<const std::string_view> parts, std::string_view display_name) const {
-    for (std::string_view part : parts)
-      if (registry_.find_entity(part) == nullptr)
-        return "no schema defines the combination " + std::string(display_name) + " (" + std::string(part) +
-               " is unknown); kept as a generic record";
-    return "the bindings have no class for the combination " + std::string(display_name) +
-           " (only for combinations of at most two entities of a SUPERTYPE OF constraint); kept as a generic record";
+  // Why a complex record has no typed instance: a part no schema defines
+  // (`unknown`: it is kept as a generic record, a warning), or a record
+  // that is not a valid instance of the schema (an error).
+  struct ComplexProblem {
+    bool unknown = false;
+    std::string message;
+  };
+  ComplexProblem complex_problem(std::span<const std::string_view> parts, std::string_view display_name) const {
+    const meta::Registry::Combined combined = registry_.combine(parts);
+    if (combined.unknown)
+      return {true, "no schema defines the combination " + std::string(display_name) + " (" + combined.problem +
+                        "); kept as a generic record"};
+    return {false, "the complex instance " + std::string(display_name) + " is not valid: " + combined.problem};
   }
 
  private:
   const meta::Registry& registry_;
   std::vector<const meta::EntityInfo*> entities_;  // by name number
+  struct Met {
+    Met(std::vector<std::string_view>::const_iterator first, std::vector<std::string_view>::const_iterator last,
+        const meta::EntityInfo* found)
+        : names(first, last), entity(found) {}
+    std::vector<std::string> names;
+    const meta::EntityInfo* entity;
+  };
+  std::vector<Met> complex_;  // combinations met, by their parts' names as written
 };
 
 // A problem of the header's FILE_SCHEMA against the registry, to report at

@@ -32,6 +32,16 @@ void* EntityInfo::upcast(Instance& instance, const EntityInfo& ancestor) const n
   return nullptr;
 }
 
+std::string EntityInfo::label() const {
+  if (!is_complex()) return std::string(name);
+  std::string joined;
+  for (const EntityInfo* part : parts) {
+    if (!joined.empty()) joined += '+';
+    joined += part->name;
+  }
+  return joined;
+}
+
 const AttributeInfo* EntityInfo::find_attribute(std::string_view attribute) const noexcept {
   for (std::span<const AttributeInfo> list : {attributes, derived, inverses})
     for (const AttributeInfo& a : list)

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "stepnc/meta/complex.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/meta/validate.h"
 
@@ -242,17 +243,6 @@ std::string_view describe(const TypeInfo& type) {
   return "a value";
 }
 
-std::string entity_name(const Instance& instance) {
-  const EntityInfo& e = instance.entity_info();
-  if (!e.is_complex()) return std::string(e.name);
-  std::string names;
-  for (const EntityInfo* p : e.parts) {
-    if (!names.empty()) names += '+';
-    names += p->name;
-  }
-  return names;
-}
-
 std::string attribute_problem(const AttributeInfo& attribute, std::string_view message) {
   return fmt::format("attribute '{}' of {}: {}", attribute.name, attribute.owner->name, message);
 }
@@ -269,10 +259,10 @@ std::optional<std::string> bind(const ValueRef& target, std::uint64_t id, Instan
         return std::nullopt;
       }
     }
-    return fmt::format("#{} is {}, which select {} does not allow", id, entity_name(*instance), type.name);
+    return fmt::format("#{} is {}, which select {} does not allow", id, instance->entity_info().label(), type.name);
   }
   if (target.set_instance(instance)) return std::nullopt;
-  return fmt::format("#{} is {}, not {}", id, entity_name(*instance), type.entity->name);
+  return fmt::format("#{} is {}, not {}", id, instance->entity_info().label(), type.entity->name);
 }
 
 // Reads parameter values into typed storage, reporting each problem with
@@ -443,10 +433,26 @@ class Filler {
   std::size_t problems_ = 0;
 };
 
+// Passes references on and drops problems: a value of a supertype shared
+// by several parts of a complex instance is read into each, and its
+// problems are reported once, for the first.
+class QuietContext final : public FillContext {
+ public:
+  explicit QuietContext(FillContext& context) : context_(context) {}
+  Instance* resolve(std::uint64_t id) override { return context_.resolve(id); }
+  bool defer(const PendingReference& reference) override { return context_.defer(reference); }
+  void error(std::uint64_t /*offset*/, std::string /*message*/) override {}
+  std::string describe_missing(std::uint64_t id) override { return context_.describe_missing(id); }
+
+ private:
+  FillContext& context_;
+};
+
 }  // namespace
 
 std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, FillContext& context) {
   const EntityInfo& entity = instance.entity_info();
+  const Combination* combination = entity.combination;
   std::size_t problems = 0;
   auto report = [&](std::uint64_t offset, std::string message) {
     ++problems;
@@ -454,7 +460,9 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
   };
 
   // Fills the attributes `owner` declares (all of them when null) from one
-  // part of the record, walking the table without allocating.
+  // part of the record, walking the table without allocating. A value goes
+  // into the instance, or for a complex instance without a generated class
+  // into each of its parts that has the attribute.
   auto fill_part = [&](const p21::EntityPart& part, const EntityInfo* owner) {
     const auto belongs = [&](const AttributeInfo& a) { return owner == nullptr || a.owner == owner; };
     const auto expected = static_cast<std::size_t>(
@@ -472,16 +480,29 @@ std::size_t fill_instance(Instance& instance, const p21::ParamTree& record, Fill
       Filler filler(context, a);
       if (!a.stored()) {
         if (!v.is(p21::ParamKind::derived)) filler.fail(v, "derived here; expected `*`");
-      } else if (v.is(p21::ParamKind::null)) {
-        if (a.optional) {
-          reset(instance, a);
-        } else {
-          filler.fail(v, "a required value is missing (`$`)");
-        }
       } else if (v.is(p21::ParamKind::derived)) {
         filler.fail(v, "`*` given for an explicit attribute");
+      } else if (v.is(p21::ParamKind::null) && !a.optional) {
+        filler.fail(v, "a required value is missing (`$`)");
+      } else if (combination == nullptr) {
+        if (v.is(p21::ParamKind::null)) {
+          reset(instance, a);
+        } else {
+          filler.read(emplace(instance, a), v);
+        }
       } else {
-        filler.read(emplace(instance, a), v);
+        const auto& copies = combination->copies[static_cast<std::size_t>(&a - entity.attributes.data())];
+        QuietContext quiet(context);
+        for (const Combination::Copy& copy : copies) {
+          Instance& target = *static_cast<ComplexInstance&>(instance).parts()[copy.part];
+          if (v.is(p21::ParamKind::null)) {
+            reset(target, *copy.attribute);
+          } else if (&copy == &copies.front()) {
+            filler.read(emplace(target, *copy.attribute), v);
+          } else {
+            Filler(quiet, a).read(emplace(target, *copy.attribute), v);
+          }
+        }
       }
       problems += filler.problems();
     }
@@ -540,7 +561,7 @@ std::vector<AttributeText> attribute_texts(const Instance& const_instance) {
     for (const AttributeInfo& d : u.entity->derived) {
       if (!d.derivable() || d.type->resolved().kind != TypeKind::Integer) continue;
       std::int64_t value = 0;
-      d.derive(instance, &value);
+      d.derive(part_as(instance, *u.entity), &value);
       texts.push_back({d.name, std::to_string(value), true});
     }
   }
@@ -549,14 +570,7 @@ std::vector<AttributeText> attribute_texts(const Instance& const_instance) {
 
 std::string dump(const Instance& instance) {
   const EntityInfo& entity = instance.entity_info();
-  std::string out = fmt::format("#{}=", instance.id());
-  if (entity.is_complex()) {
-    for (std::size_t i = 0; i < entity.parts.size(); ++i)
-      out += fmt::format("{}{}", i == 0 ? "" : "+", entity.parts[i]->name);
-  } else {
-    out += entity.name;
-  }
-  out += fmt::format(" ({})\n", entity.schema->name);
+  std::string out = fmt::format("#{}={} ({})\n", instance.id(), entity.label(), entity.schema->name);
   for (const AttributeText& a : attribute_texts(instance)) {
     out += fmt::format("  {}{}: {}\n", a.name, a.derived ? " (derived)" : "", a.value);
   }

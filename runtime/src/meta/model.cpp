@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "stepnc/meta/model.h"
 
+#include "stepnc/meta/complex.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <utility>
@@ -38,9 +40,13 @@ Model::Model(Model&& other) noexcept
       arena_bytes_(std::exchange(other.arena_bytes_, 0)),
       instances_(std::move(other.instances_)),
       last_id_(std::exchange(other.last_id_, 0)),
-      in_id_order_(std::exchange(other.in_id_order_, true)) {
+      in_id_order_(std::exchange(other.in_id_order_, true)),
+      wholes_(std::move(other.wholes_)),
+      combinations_(std::move(other.combinations_)) {
   other.blocks_.clear();
   other.instances_.clear();
+  other.wholes_.clear();
+  other.combinations_.clear();
 }
 
 Model& Model::operator=(Model&& other) noexcept {
@@ -53,8 +59,12 @@ Model& Model::operator=(Model&& other) noexcept {
     instances_ = std::move(other.instances_);
     last_id_ = std::exchange(other.last_id_, 0);
     in_id_order_ = std::exchange(other.in_id_order_, true);
+    wholes_ = std::move(other.wholes_);
+    combinations_ = std::move(other.combinations_);
     other.blocks_.clear();
     other.instances_.clear();
+    other.wholes_.clear();
+    other.combinations_.clear();
   }
   return *this;
 }
@@ -98,8 +108,45 @@ void Model::adopt(Instance& instance, std::optional<std::uint32_t> id) {
 }
 
 Instance* Model::create(const EntityInfo& entity, std::optional<std::uint32_t> id) {
+  if (entity.combination != nullptr) return create_complex(*entity.combination, id);
   if (entity.create == nullptr) return nullptr;
   return entity.create(*this, id);
+}
+
+Instance* Model::create_complex(const Combination& combination, std::optional<std::uint32_t> id) {
+  const std::uint32_t the_id = id ? *id : last_id_ + 1;
+  const std::size_t n = combination.leaves.size();
+  auto** parts = static_cast<Instance**>(allocate(n * sizeof(Instance*), alignof(Instance*)));
+  // Each part is created through its generated factory (which adopts it),
+  // then taken out of the instance list: only the whole is in the population.
+  const std::uint32_t last_id = last_id_;
+  const bool in_id_order = in_id_order_;
+  for (std::size_t i = 0; i < n; ++i) {
+    parts[i] = combination.leaves[i]->create(*this, the_id);
+    instances_.pop_back();
+  }
+  last_id_ = last_id;
+  in_id_order_ = in_id_order;
+  auto* whole = new (allocate(sizeof(ComplexInstance), alignof(ComplexInstance))) ComplexInstance(combination, parts);
+  adopt(*whole, the_id);
+  wholes_.push_back(whole);
+  for (std::size_t i = 0; i < n; ++i) parts[i]->whole_ = static_cast<std::uint32_t>(wholes_.size());
+  if (combinations_.empty() || combinations_.back().get() != &combination) {
+    if (std::none_of(combinations_.begin(), combinations_.end(),
+                     [&](const auto& kept) { return kept.get() == &combination; }))
+      combinations_.push_back(combination.shared_from_this());
+  }
+  return whole;
+}
+
+
+Instance* Model::whole_of_part(Instance* part) const noexcept {
+  // The number is checked against the whole's parts: a part of another
+  // model's complex instance is not one of this model's.
+  if (part->whole_ > wholes_.size()) return part;
+  auto* whole = static_cast<ComplexInstance*>(wholes_[part->whole_ - 1]);
+  const auto parts = whole->parts();
+  return std::find(parts.begin(), parts.end(), part) != parts.end() ? whole : part;
 }
 
 std::span<Instance* const> Model::in_id_order(std::vector<Instance*>& storage) const {

@@ -2,6 +2,11 @@
 #include "stepnc/meta/registry.h"
 
 #include <algorithm>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "stepnc/meta/complex.h"
 
 namespace stepnc::meta {
 
@@ -25,6 +30,12 @@ bool equal_names(std::string_view a, std::string_view b) noexcept {
   return a.size() == b.size() &&
          std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return lower(x) == lower(y); });
 }
+
+struct Registry::Combinations {
+  std::mutex mutex;
+  // By the leaves' addresses, sorted: a file has a handful of distinct ones.
+  std::vector<std::pair<std::vector<const EntityInfo*>, std::shared_ptr<Combination>>> built;
+};
 
 Registry::Registry(std::initializer_list<const SchemaInfo*> schemas) {
   for (const SchemaInfo* s : schemas) add(*s);
@@ -53,6 +64,7 @@ const void* Registry::lookup(const std::vector<Entry>& table, std::string_view n
 void Registry::add(const SchemaInfo& schema) {
   if (std::find(schemas_.begin(), schemas_.end(), &schema) != schemas_.end()) return;
   schemas_.push_back(&schema);
+  if (!combinations_) combinations_ = std::make_shared<Combinations>();
   for (const EntityInfo* e : schema.entities) {
     entities_.push_back(e);
     if (!e->is_complex()) {
@@ -102,6 +114,79 @@ const EntityInfo* Registry::find_complex(std::span<const std::string_view> part_
     if (same_set) return e;
   }
   return nullptr;
+}
+
+}  // namespace stepnc::meta
+
+namespace stepnc::meta {
+
+Registry::Combined Registry::combine(std::span<const std::string_view> part_names) const {
+  Combined result;
+  std::vector<const EntityInfo*> entities;
+  entities.reserve(part_names.size());
+  for (std::string_view name : part_names) {
+    const EntityInfo* entity = find_entity(name);
+    if (entity == nullptr) {
+      result.unknown = true;
+      result.problem = fmt::format("{} is unknown", name);
+      return result;
+    }
+    if (std::find(entities.begin(), entities.end(), entity) != entities.end()) {
+      result.problem = fmt::format("{} is given twice", name);
+      return result;
+    }
+    entities.push_back(entity);
+  }
+  // The leaves: entities of the record none of whose subtypes is in it.
+  std::vector<const EntityInfo*> leaves;
+  for (const EntityInfo* e : entities)
+    if (std::none_of(entities.begin(), entities.end(), [&](const EntityInfo* f) { return f != e && f->is_a(*e); }))
+      leaves.push_back(e);
+  for (const EntityInfo* leaf : leaves) {
+    // The external mapping lists every entity of the instance, supertypes
+    // included (ISO 10303-21 12.2.5.1).
+    for (const Upcast& u : leaf->upcasts) {
+      if (std::find(entities.begin(), entities.end(), u.entity) == entities.end()) {
+        result.problem = fmt::format("{} is a subtype of {}, which the record does not list", leaf->p21_name,
+                                     u.entity->p21_name);
+        return result;
+      }
+    }
+    if (leaf->abstract || leaf->create == nullptr) {
+      result.problem = fmt::format("{} is ABSTRACT and none of its subtypes is in the record", leaf->p21_name);
+      return result;
+    }
+  }
+  // Entities of two operands of one ONEOF never make one instance (ISO
+  // 10303-11 9.2.5.2); a supertype without a constraint allows any
+  // combination of its subtypes (ANDOR, 9.2.5.4).
+  const auto listed = [&](const EntityInfo* e) { return std::find(entities.begin(), entities.end(), e) != entities.end(); };
+  for (const EntityInfo* super : entities) {
+    for (const OneOfMember& a : super->oneof) {
+      if (!listed(a.entity)) continue;
+      for (const OneOfMember& b : super->oneof) {
+        if (b.group == a.group && b.operand != a.operand && listed(b.entity)) {
+          result.problem = fmt::format("{} and {} are alternatives of a ONEOF of {}", a.entity->p21_name,
+                                       b.entity->p21_name, super->p21_name);
+          return result;
+        }
+      }
+    }
+  }
+  std::sort(leaves.begin(), leaves.end());
+  if (!combinations_) return result;  // a default-constructed registry knows no entity
+  const std::lock_guard lock(combinations_->mutex);
+  for (const auto& [key, built] : combinations_->built) {
+    if (key == leaves) {
+      result.entity = &built->entity;
+      return result;
+    }
+  }
+  std::shared_ptr<Combination> made = Combination::make(leaves, result.problem);
+  if (!made) return result;
+  result.entity = &made->entity;
+  combinations_->built.emplace_back(std::move(leaves), std::move(made));
+  return result;
 }
 
 }  // namespace stepnc::meta

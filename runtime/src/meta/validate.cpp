@@ -20,7 +20,7 @@ namespace {
 
 class Validator {
  public:
-  Validator(const Model& model, std::size_t limit) : limit_(limit) {
+  Validator(const Model& model, std::size_t limit) : model_(model), limit_(limit) {
     members_.reserve(model.size());
     for (const Instance* instance : model.instances()) members_.insert(instance);
   }
@@ -71,7 +71,8 @@ class Validator {
   }
 
   void check_reference(const Instance& owner, std::string_view attribute, const Instance* target) {
-    if (target != nullptr && members_.count(target) == 0)
+    // A reference to a complex instance holds one of its parts.
+    if (target != nullptr && members_.count(model_.whole_of(target)) == 0)
       report(owner, attribute, fmt::format("refers to #{}, an instance of another model", target->id()));
   }
 
@@ -95,6 +96,7 @@ class Validator {
     }
   }
 
+  const Model& model_;
   std::size_t limit_;
   std::unordered_set<const Instance*> members_;
   std::vector<ValidationProblem> problems_;

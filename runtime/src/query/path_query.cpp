@@ -160,16 +160,18 @@ std::string_view kind_name(meta::TypeKind kind) {
 bool is_aggregate(const Node& node) { return node.value && node.value->resolved().is_aggregate(); }
 
 // A value as a node: references (plain or through a SELECT) become their
-// instance; unset references and empty selects become nothing.
-std::optional<Node> to_node(const meta::ValueRef& value) {
+// instance (the whole complex instance when they hold one of its parts);
+// unset references and empty selects become nothing.
+std::optional<Node> to_node(const meta::ValueRef& value, InstanceSource& source) {
   switch (value.kind()) {
     case meta::TypeKind::Entity:
-      if (meta::Instance* target = value.instance()) return Node{target, std::nullopt, std::nullopt};
+      if (meta::Instance* target = value.instance()) return Node{source.whole_of(target), std::nullopt, std::nullopt};
       return std::nullopt;
     case meta::TypeKind::Select: {
       const meta::Select& select = value.select();
       if (select.empty()) return std::nullopt;
-      if (meta::Instance* target = select.instance()) return Node{target, std::nullopt, std::nullopt};
+      if (meta::Instance* target = select.instance())
+        return Node{source.whole_of(target), std::nullopt, std::nullopt};
       return Node{nullptr, value, std::nullopt};
     }
     default:
@@ -177,19 +179,19 @@ std::optional<Node> to_node(const meta::ValueRef& value) {
   }
 }
 
-void append_elements(const Node& aggregate, std::vector<Node>& out) {
+void append_elements(const Node& aggregate, std::vector<Node>& out, InstanceSource& source) {
   const std::size_t size = aggregate.value->size();
   for (std::size_t i = 0; i < size; ++i) {
-    if (auto node = to_node(aggregate.value->element(i))) out.push_back(*node);
+    if (auto node = to_node(aggregate.value->element(i), source)) out.push_back(*node);
   }
 }
 
 // Aggregates replaced by their elements; other nodes kept.
-std::vector<Node> spread(const std::vector<Node>& nodes) {
+std::vector<Node> spread(const std::vector<Node>& nodes, InstanceSource& source) {
   std::vector<Node> out;
   for (const Node& node : nodes) {
     if (is_aggregate(node)) {
-      append_elements(node, out);
+      append_elements(node, out, source);
     } else {
       out.push_back(node);
     }
@@ -217,6 +219,7 @@ class ModelSource final : public InstanceSource {
     return nullptr;
   }
   bool load(meta::Instance& /*instance*/) override { return true; }
+  meta::Instance* whole_of(meta::Instance* instance) override { return model_.whole_of(instance); }
 
  private:
   const meta::Model& model_;
@@ -235,6 +238,7 @@ class LazySource final : public InstanceSource {
     return instance;
   }
   bool load(meta::Instance& instance) override { return file_.load(instance); }
+  meta::Instance* whole_of(meta::Instance* instance) override { return file_.model().whole_of(instance); }
   bool failed() const { return failed_; }
 
  private:
@@ -290,7 +294,7 @@ class Evaluator {
 
   std::optional<QueryError> attribute(const Step& step, std::vector<Node>& nodes) {
     std::vector<Node> result;
-    std::vector<std::string_view> lacking;  // entities without the attribute, for the message
+    std::vector<std::string> lacking;  // entities without the attribute, for the message
     bool found = false;
     // Aggregates apply the step to their elements; work through a queue.
     std::vector<Node> pending(nodes.rbegin(), nodes.rend());
@@ -299,7 +303,7 @@ class Evaluator {
       pending.pop_back();
       if (is_aggregate(node)) {
         std::vector<Node> elements;
-        append_elements(node, elements);
+        append_elements(node, elements, source_);
         pending.insert(pending.end(), elements.rbegin(), elements.rend());
         continue;
       }
@@ -310,7 +314,7 @@ class Evaluator {
       const meta::EntityInfo& entity = node.instance->entity_info();
       const meta::AttributeInfo* info = entity.find_attribute(step.name);
       if (info == nullptr) {
-        if (std::find(lacking.begin(), lacking.end(), entity.name) == lacking.end()) lacking.push_back(entity.name);
+        if (std::find(lacking.begin(), lacking.end(), entity.label()) == lacking.end()) lacking.push_back(entity.label());
         continue;
       }
       found = true;
@@ -322,7 +326,7 @@ class Evaluator {
                                       info->kind == meta::AttributeKind::Inverse ? "INVERSE" : "DERIVE")};
       }
       if (auto value = meta::get(*node.instance, *info)) {
-        if (auto next = to_node(*value)) result.push_back(*next);
+        if (auto next = to_node(*value, source_)) result.push_back(*next);
       }
     }
     if (!found && !lacking.empty()) {
@@ -354,7 +358,7 @@ class Evaluator {
           const std::size_t size = node.value->size();
           largest_size = std::max(largest_size, size);
           if (predicate.index < size) {
-            if (auto element = to_node(node.value->element(predicate.index))) result.push_back(*element);
+            if (auto element = to_node(node.value->element(predicate.index), source_)) result.push_back(*element);
           }
         }
         if (!nodes.empty() && predicate.index >= largest_size) {
@@ -364,14 +368,14 @@ class Evaluator {
         break;
       }
       case Predicate::Kind::All:
-        result = spread(nodes);
+        result = spread(nodes, source_);
         break;
       case Predicate::Kind::Entity: {
         const meta::EntityInfo* entity = registry_.find_entity(predicate.entity);
         if (entity == nullptr) {
           return QueryError{predicate.column, fmt::format("unknown entity '{}'", predicate.entity)};
         }
-        for (const Node& node : spread(nodes)) {
+        for (const Node& node : spread(nodes, source_)) {
           if (node.instance != nullptr && node.instance->entity_info().is_a(*entity)) result.push_back(node);
         }
         break;

@@ -36,7 +36,10 @@ ReferenceIndex::ReferenceIndex(const meta::Model& model) {
       if (!attribute.stored()) continue;
       if (auto value = meta::get(*user, attribute)) {
         meta::for_each_reference(*value,
-                                 [&](const meta::Instance* target) { uses_.push_back(Use{target, user, &attribute}); });
+                                 [&](const meta::Instance* target) {
+                                   // A reference to a complex instance holds one of its parts.
+                                   uses_.push_back(Use{model.whole_of(target), user, &attribute});
+                                 });
       }
     }
   }

@@ -121,6 +121,17 @@ Value from_select(const meta::Select& select) {
   return v;
 }
 
+// A typed reference to a complex instance without a generated class holds
+// one of its parts (meta/complex.h); rules see the whole instance (TYPEOF,
+// `:=:`, USEDIN), as ISO 10303-11 sees one instance.
+void to_wholes(Value& v, const meta::Model& model) {
+  if (v.kind == Value::Kind::Instance) {
+    v.instance = model.whole_of(v.instance);
+  } else if (v.kind == Value::Kind::Aggregate) {
+    for (Value& element : *v.elements()) to_wholes(element, model);
+  }
+}
+
 Value from_ref(const meta::ValueRef& ref) {
   Value v;
   const meta::TypeInfo& resolved = ref.resolved();
@@ -253,6 +264,8 @@ enum class Flow : std::uint8_t { Next, Return, Escape, Skip };
 class Indexes {
  public:
   explicit Indexes(const meta::Model& model) : model_(model) {}
+
+  const meta::Model& model() const { return model_; }
 
   const detail::References& references() {
     std::call_once(references_built_, [&] { references_ = std::make_unique<detail::References>(model_); });
@@ -586,7 +599,11 @@ class Interpreter {
     if (!a) return {};  // an attribute of another entity the instance is not
     switch (a->kind) {
       case meta::AttributeKind::Explicit:
-        if (auto ref = meta::get(instance, *a)) return a->bounds.empty() ? from_ref(*ref) : bounded(instance, *a, from_ref(*ref));
+        if (auto ref = meta::get(instance, *a)) {
+          Value v = from_ref(*ref);
+          if (indexes_.model().has_complex_instances()) to_wholes(v, indexes_.model());
+          return a->bounds.empty() ? v : bounded(instance, *a, std::move(v));
+        }
         return {};
       case meta::AttributeKind::Derived: {
         if (!a->derivation) throw Unevaluable(fmt::format("derived attribute '{}' has no derivation", a->name));

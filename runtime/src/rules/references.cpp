@@ -68,7 +68,8 @@ References::References(const meta::Model& model) {
       for (const meta::AttributeInfo* attribute : *attributes)
         if (auto value = meta::get(*user, *attribute)) {
           auto found = [&](meta::Instance* target) {
-            const std::size_t r = row_in(*target, rows);
+            // A reference to a complex instance holds one of its parts.
+            const std::size_t r = row_in(*model.whole_of(target), rows);
             if (r < rows) use(r, Use{user, attribute});  // else not of the model
           };
           meta::for_each_reference(*value, found);

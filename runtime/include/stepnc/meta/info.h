@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -54,6 +55,7 @@ struct EntityInfo;
 struct TypeInfo;
 struct AttributeInfo;
 class Model;
+struct Combination;
 
 /// The root of every generated entity class. An instance knows its Part 21
 /// id and, through its class, its EntityInfo; nothing else is stored.
@@ -80,6 +82,10 @@ class Instance {
  private:
   friend class Model;
   std::uint32_t id_ = 0;
+  /// For a part of a ComplexInstance (complex.h): 1 + its index among the
+  /// model's complex instances (Model::whole_of); 0 otherwise. It fills
+  /// what would be padding: no instance grows.
+  std::uint32_t whole_ = 0;
 };
 
 // ---------------------------------------------------------------- types
@@ -232,6 +238,16 @@ struct Upcast {
   void* (*cast)(void* object) = nullptr;  ///< complete object to a pointer to the ancestor's class
 };
 
+/// An entity named in a ONEOF of a supertype constraint (ISO 10303-11
+/// 9.2.5.2): `entity` lies in operand `operand` of ONEOF number `group` of
+/// the supertype's constraints. One instance combines entities of one
+/// operand of each ONEOF at most.
+struct OneOfMember {
+  const EntityInfo* entity = nullptr;  ///< an entity the operand names (at any depth)
+  std::uint16_t group = 0;    ///< which ONEOF of the supertype's constraints
+  std::uint16_t operand = 0;  ///< which operand of that ONEOF
+};
+
 /// The metaclass of an entity: its names, place in the hierarchy, attributes and factory.
 struct EntityInfo {
   std::string_view name{};  ///< empty for a complex (ANDOR) combination
@@ -251,6 +267,12 @@ struct EntityInfo {
   std::span<const Upcast> upcasts{};  ///< every ancestor and itself
   std::span<const DomainRuleInfo> where{};   ///< WHERE rules declared here
   std::span<const UniqueRuleInfo> unique{};  ///< UNIQUE clauses declared here
+  /// The ONEOFs of its SUPERTYPE OF and SUBTYPE_CONSTRAINTs, for complex
+  /// instances made at run time (Registry::combine).
+  std::span<const OneOfMember> oneof{};
+  /// A combination built at run time (complex.h), whose instances are
+  /// ComplexInstance objects; null for every generated table.
+  const Combination* combination = nullptr;
 
   bool is_complex() const noexcept { return !parts.empty(); }  ///< true for a complex (ANDOR) combination of entities
   /// True when this entity is `other` or one of its subtypes (EXPRESS `IN TYPEOF`).
@@ -261,6 +283,9 @@ struct EntityInfo {
   /// The attribute with this name (case-insensitive) in Part 21 order, then
   /// among derived and inverse ones, or null.
   const AttributeInfo* find_attribute(std::string_view attribute) const noexcept;
+  /// The name for messages: `name`, or for a combination its parts joined
+  /// by `+` (`si_unit+length_unit`).
+  std::string label() const;
 };
 
 /// The metaclass of a schema: its entities and named types.

@@ -47,8 +47,23 @@ class Model {
   }
 
   /// Creates an instance of the entity by its table (the reader's path);
-  /// null when the entity is abstract.
+  /// null when the entity is abstract. A combination built at run time
+  /// (EntityInfo::combination) makes a ComplexInstance and its parts
+  /// (complex.h), the parts outside the instance list.
   Instance* create(const EntityInfo& entity, std::optional<std::uint32_t> id = std::nullopt);
+
+  /// The instance `instance` belongs to: the ComplexInstance when it is
+  /// one of its parts (a typed reference to a complex instance holds a
+  /// part), else itself. A part keeps its whole's number
+  /// (Instance::whole_): a test and an index, no look-up.
+  Instance* whole_of(Instance* instance) const noexcept {
+    if (wholes_.empty() || instance == nullptr || instance->whole_ == 0) return instance;
+    return whole_of_part(instance);
+  }
+  /// The same, for a const instance.
+  const Instance* whole_of(const Instance* instance) const noexcept { return whole_of(const_cast<Instance*>(instance)); }
+  /// Whether any instance is a ComplexInstance (made from a run-time combination).
+  bool has_complex_instances() const noexcept { return !wholes_.empty(); }
 
   /// Makes room for `count` instances in all (a reader knows how many it
   /// will create), so the instance list is allocated once, at its size.
@@ -70,6 +85,9 @@ class Model {
   void adopt(Instance& instance, std::optional<std::uint32_t> id);  ///< registers a new instance under `id` (empty: the next free one)
 
  private:
+  Instance* create_complex(const Combination& combination, std::optional<std::uint32_t> id);
+  Instance* whole_of_part(Instance* part) const noexcept;
+
   struct FreeBytes {
     void operator()(std::byte* bytes) const noexcept;
   };
@@ -84,6 +102,8 @@ class Model {
   std::vector<Instance*> instances_;
   std::uint32_t last_id_ = 0;
   bool in_id_order_ = true;  ///< every instance so far was created with a larger id than the ones before
+  std::vector<Instance*> wholes_;  ///< the ComplexInstances, numbered by their parts' Instance::whole_
+  std::vector<std::shared_ptr<const Combination>> combinations_;  ///< the tables its complex instances use
 };
 
 template <class Object>

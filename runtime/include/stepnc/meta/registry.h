@@ -10,7 +10,9 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -43,6 +45,23 @@ class Registry {
   /// 21 complex record, every supertype included. Null when none matches.
   const EntityInfo* find_complex(std::span<const std::string_view> part_names) const;
 
+  /// What combine() gives: the combination, or why there is none.
+  struct Combined {
+    const EntityInfo* entity = nullptr;  ///< null when the record cannot be typed
+    /// A part no schema defines: the record stays a generic record (a
+    /// warning); otherwise the record is invalid (an error).
+    bool unknown = false;
+    std::string problem;  ///< why `entity` is null
+  };
+  /// The combination of a complex record's parts (every entity of the
+  /// instance, supertypes included, ISO 10303-21 12.2.5) when
+  /// find_complex() has no generated class for it: built at run time from
+  /// the leaves' tables (stepnc/meta/complex.h), once per distinct set of
+  /// leaves, and shared by copies of this registry. Thread-safe. Refused:
+  /// an unknown part, a part given twice, a supertype of a part missing, a
+  /// leaf (no subtype of it in the record) that is ABSTRACT.
+  Combined combine(std::span<const std::string_view> part_names) const;
+
   /// Every entity of every schema, in registration then source order.
   std::span<const EntityInfo* const> entities() const noexcept { return entities_; }
 
@@ -61,6 +80,8 @@ class Registry {
   /// Complex combinations by an order-free hash of their entities' names,
   /// in registration order among equal hashes: long forms have thousands.
   std::vector<std::pair<std::uint64_t, const EntityInfo*>> complex_index_;
+  struct Combinations;  // combine()'s cache, behind a mutex
+  std::shared_ptr<Combinations> combinations_;
 };
 
 /// Case-insensitive ASCII comparison, as EXPRESS and Part 21 compare names.

@@ -82,6 +82,9 @@ class InstanceSource {
   /// Makes the attributes of `instance` readable; false when it cannot be
   /// read, which ends the query (the source knows why).
   virtual bool load(meta::Instance& instance) = 0;
+  /// The instance a followed reference leads to: for a part of a complex
+  /// instance without a generated class, the whole (meta::Model::whole_of).
+  virtual meta::Instance* whole_of(meta::Instance* instance) { return instance; }
 };
 
 /// Evaluates `path` over `source`; `registry` knows the schemas' entity
