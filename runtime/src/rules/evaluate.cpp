@@ -439,6 +439,9 @@ class Interpreter {
   std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
   // Per entity, the named types whose domain holds its instances (types_holding).
   std::unordered_map<const meta::EntityInfo*, std::vector<const meta::TypeInfo*>> types_holding_;
+  // The last entry asked for: rules test one instance's TYPEOF many times in a row.
+  const meta::EntityInfo* last_holding_entity_ = nullptr;
+  const std::vector<const meta::TypeInfo*>* last_holding_ = nullptr;
   int depth_ = 0;  // nested calls and derivations
 
   // One more level of nesting for the scope, at most max_depth; undone when
@@ -1234,7 +1237,10 @@ class Interpreter {
   // which rules such as Part 41's product_definition_shape.wr1 rely on:
   // 'CHARACTERIZED_PRODUCT_DEFINITION' IN TYPEOF(a product_definition).
   const std::vector<const meta::TypeInfo*>& types_holding(const meta::EntityInfo& entity) {
+    if (&entity == last_holding_entity_) return *last_holding_;
     auto [it, inserted] = types_holding_.try_emplace(&entity);
+    last_holding_entity_ = &entity;
+    last_holding_ = &it->second;  // map nodes stay put
     if (!inserted) return it->second;
     const meta::SchemaInfo* schema = nullptr;
     for (const meta::Upcast& up : entity.upcasts)
