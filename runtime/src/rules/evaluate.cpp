@@ -437,6 +437,11 @@ class Interpreter {
   SlotPool pool_;
   // The extents this interpreter has read, from indexes_ (no lock for the next read).
   std::unordered_map<const meta::EntityInfo*, std::shared_ptr<Elements>> populations_;
+  // Per entity, the named types whose domain holds its instances (types_holding).
+  std::unordered_map<const meta::EntityInfo*, std::vector<const meta::TypeInfo*>> types_holding_;
+  // The last entry asked for: rules test one instance's TYPEOF many times in a row.
+  const meta::EntityInfo* last_holding_entity_ = nullptr;
+  const std::vector<const meta::TypeInfo*>* last_holding_ = nullptr;
   int depth_ = 0;  // nested calls and derivations
 
   // One more level of nesting for the scope, at most max_depth; undone when
@@ -1225,15 +1230,50 @@ class Interpreter {
     return false;
   }
 
-  // Is `name` ('SCHEMA.ENTITY', any case) one of TYPEOF's names for an instance of `entity`?
-  static bool has_type_name(const meta::EntityInfo& entity, std::string_view name) {
+  // The named types an instance of `entity` is a member of besides its
+  // entities: every SELECT whose domain holds it (nested selects too) and
+  // every defined type naming one of its entities. TYPEOF names "all the
+  // data types of which the parameter is a member" (ISO 10303-11 15.25),
+  // which rules such as Part 41's product_definition_shape.wr1 rely on:
+  // 'CHARACTERIZED_PRODUCT_DEFINITION' IN TYPEOF(a product_definition).
+  const std::vector<const meta::TypeInfo*>& types_holding(const meta::EntityInfo& entity) {
+    if (&entity == last_holding_entity_) return *last_holding_;
+    auto [it, inserted] = types_holding_.try_emplace(&entity);
+    last_holding_entity_ = &entity;
+    last_holding_ = &it->second;  // map nodes stay put
+    if (!inserted) return it->second;
+    const meta::SchemaInfo* schema = nullptr;
+    for (const meta::Upcast& up : entity.upcasts)
+      if (!schema && up.entity->schema) schema = up.entity->schema;
+    if (!schema) return it->second;
+    const std::span<const meta::SchemaInfo* const> set =
+        schema->schema_set.empty() ? std::span<const meta::SchemaInfo* const>(&schema, 1) : schema->schema_set;
+    const auto holds = [&](const meta::TypeInfo& type) {
+      const meta::TypeInfo& resolved = type.resolved();
+      return resolved.kind == meta::TypeKind::Entity && resolved.entity && entity.is_a(*resolved.entity);
+    };
+    for (const meta::SchemaInfo* s : set)
+      for (const meta::TypeInfo* type : s->types) {
+        bool member = type->kind == meta::TypeKind::Select
+                          ? std::any_of(type->members.begin(), type->members.end(),
+                                        [&](const meta::TypeInfo* m) { return holds(*m); })
+                          : type->kind == meta::TypeKind::Alias && holds(*type);
+        if (member) it->second.push_back(type);
+      }
+    return it->second;
+  }
+
+  // Is `name` ('SCHEMA.TYPE', any case) one of TYPEOF's names for an instance of `entity`?
+  bool has_type_name(const meta::EntityInfo& entity, std::string_view name) {
     const auto dot = name.find('.');
     if (dot == std::string_view::npos) return false;
-    const std::string_view schema = name.substr(0, dot), entity_name = name.substr(dot + 1);
+    const std::string_view schema = name.substr(0, dot), type_name = name.substr(dot + 1);
     for (const meta::Upcast& up : entity.upcasts)
-      if (!up.entity->name.empty() && meta::equal_names(up.entity->name, entity_name) &&
+      if (!up.entity->name.empty() && meta::equal_names(up.entity->name, type_name) &&
           meta::equal_names(up.entity->schema->name, schema))
         return true;
+    for (const meta::TypeInfo* type : types_holding(entity))
+      if (meta::equal_names(type->name, type_name) && meta::equal_names(type->schema->name, schema)) return true;
     return false;
   }
 
@@ -1242,6 +1282,8 @@ class Interpreter {
       if (up.entity->name.empty()) continue;  // the complex combination itself
       out.push_back(Value::of_string(upper(up.entity->schema->name) + "." + upper(up.entity->name)));
     }
+    for (const meta::TypeInfo* type : types_holding(entity))
+      out.push_back(Value::of_string(upper(type->schema->name) + "." + upper(type->name)));
   }
 
   Value type_of(const Value& v) {
