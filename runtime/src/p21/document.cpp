@@ -11,9 +11,7 @@
 #include <cstring>
 #include <random>
 
-#include <fcntl.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "lexical.h"
@@ -22,6 +20,7 @@
 #include "scanner.h"
 #include "stepnc/io/input.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/mapped_file.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
@@ -359,7 +358,6 @@ class DocumentBuilder final : public RecordHandler {
   detail::TextBytes take_text() { return std::move(doc_.bytes_); }
 
   static detail::TextBytes copy_text(std::string_view text);
-  static detail::TextBytes map_file(int descriptor, std::size_t size);
 
   bool on_header(const Header& header, StreamContext&) override {
     if (layout_ != nullptr) layout_->header(header);
@@ -502,41 +500,13 @@ detail::TextBytes DocumentBuilder::copy_text(std::string_view text) {
   return bytes;
 }
 
-// A read-only mapping of the whole of a regular file, or null (then the
-// caller reads it). Mapping a large file saves copying it and lets
-// release_text_before() drop what a pass has read. The usual caveat of
-// mappings applies: a file truncated by another process while it is
-// read faults (SIGBUS); files are not expected to change under a reader.
-detail::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
-  void* mapping = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, descriptor, 0);
-  if (mapping == MAP_FAILED) return {};
-  return detail::TextBytes(static_cast<char*>(mapping), detail::TextDeleter{size});
-}
-
 namespace {
 
-// A mapping of `path` when it is a regular file of at least `smallest`
-// bytes (below that the caller reads it); `opened` is false when it
-// cannot be opened at all.
-struct MappedFile {
-  detail::TextBytes bytes;
-  std::size_t size = 0;
-  bool opened = false;
-};
-
-MappedFile map_regular_file(const std::filesystem::path& path, std::size_t smallest) {
-  MappedFile mapped;
-  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (descriptor < 0) return mapped;
-  mapped.opened = true;
-  struct stat status {};
-  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
-      static_cast<std::size_t>(status.st_size) >= smallest) {
-    mapped.size = static_cast<std::size_t>(status.st_size);
-    mapped.bytes = DocumentBuilder::map_file(descriptor, mapped.size);
-  }
-  ::close(descriptor);
-  return mapped;
+// A mapping of `mapped` as the Document's buffer: mapping a large file
+// saves copying it and lets release_text_before() drop what a pass has read.
+detail::TextBytes mapped_text(MappedFile& mapped) {
+  const std::size_t size = mapped.text().size();
+  return detail::TextBytes(mapped.release(), detail::TextDeleter{size});
 }
 
 // Reads a document from its text, again on one thread when a parallel read
@@ -575,9 +545,13 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
     return read_document(DocumentBuilder::copy_text(text), size, io::standard_input_name, options, layout, streamed);
   }
   MappedFile mapped = map_regular_file(path, kMapThreshold);
-  if (!mapped.opened) return io_error("cannot open file");
-  if (mapped.bytes) return read_document(std::move(mapped.bytes), mapped.size, path.string(), options, layout, streamed);
-
+  if (mapped.failed_at(MapStep::open)) return io_error("cannot open file");
+  if (mapped) {
+    const std::size_t size = mapped.text().size();
+    return read_document(mapped_text(mapped), size, path.string(), options, layout, streamed);
+  }
+  // Not a regular file (a pipe), too small to be worth mapping, or the
+  // mapping failed: read it.
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return io_error("cannot open file");
   long size = -1;
@@ -686,12 +660,12 @@ void locate_records(const std::filesystem::path& path, std::span<const std::uint
     std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
   }
   // The text: a mapping of a regular file (no copy), else a copy.
-  const MappedFile mapped = map_regular_file(path, 1);
-  if (!mapped.opened) return;
+  const MappedFile mapped = map_regular_file(path);
+  if (mapped.failed_at(MapStep::open)) return;
   std::string copy;
   std::string_view text;
-  if (mapped.bytes) {
-    text = std::string_view(mapped.bytes.get(), mapped.size);
+  if (mapped) {
+    text = mapped.text();
   } else {
     if (io::read_text(path, copy)) return;
     text = copy;
