@@ -390,7 +390,8 @@ TEST_CASE("lazy read: a file that cannot be opened or mapped is an error value",
     REQUIRE(diagnostics.items().size() == 1);
     return diagnostics.items()[0].to_string();
   };
-  CHECK(open_error(dir / "missing.stp") == (dir / "missing.stp").string() + ": error: cannot open file: No such file or directory");
+  CHECK(open_error(dir / "missing.stp") ==
+        (dir / "missing.stp").string() + ": error: cannot open file: No such file or directory");
   CHECK(open_error(dir) == dir.string() + ": error: a lazy read needs a regular file");
 
   // A file the address space has no room for (1 GiB, sparse).

@@ -324,8 +324,8 @@ constexpr std::size_t kLargestBatch = std::size_t{512} << 10;
 
 }  // namespace
 
-std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const p21::MappedFile* mapping, std::string file_name,
-                                                 const meta::Registry& registry, unsigned jobs) {
+std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const p21::MappedFile* mapping,
+                                                 std::string file_name, const meta::Registry& registry, unsigned jobs) {
   auto file = std::make_unique<ModelFile>();
   file->model.reserve(text.size() / 48);  // typical records are 40-80 bytes
   SharedIdTable ids;

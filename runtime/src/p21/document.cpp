@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "lexical.h"
+#include "pages.h"
 #include "parallel_records.h"
 #include "round_trip.h"
 #include "scanner.h"
@@ -246,24 +247,6 @@ void Document::release_text_before(std::uint64_t offset) const {
   released_before_ = end;
 }
 
-namespace {
-// Maps in the pages of [begin, begin + kReleaseStep) of a mapped text at
-// once, ahead of a reader going through it in order: one system call per
-// step instead of a page fault every few pages (MADV_POPULATE_READ, Linux
-// 5.14; where it is missing or refused the pages fault in as they are read).
-void populate_ahead(const char* text, std::size_t size, std::uint64_t begin) {
-#if defined(MADV_POPULATE_READ)
-  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-  begin = begin / page * page;
-  const std::uint64_t end = std::min<std::uint64_t>(begin + kReleaseStep, size);
-  if (begin < end) ::madvise(const_cast<char*>(text) + begin, end - begin, MADV_POPULATE_READ);
-#else
-  (void)text, (void)size, (void)begin;
-#endif
-}
-
-}  // namespace
-
 const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
 
 std::string_view Document::entity_name(const RecordEntry& r) const {
@@ -377,7 +360,7 @@ class DocumentBuilder final : public RecordHandler {
   bool on_record(const RecordView& record, StreamContext&) override {
     if (doc_.is_mapped() && record.offset + record.text.size() + kReleaseStep > populated_to_) {
       // A step ahead of the scanner stays mapped in.
-      populate_ahead(doc_.bytes_.get(), doc_.size_, populated_to_);
+      detail::populate_pages(doc_.bytes_.get(), doc_.size_, populated_to_, populated_to_ + kReleaseStep);
       populated_to_ += kReleaseStep;
     }
     if (!parallel_) {
@@ -489,7 +472,7 @@ class DocumentBuilder final : public RecordHandler {
   std::string line_;  // a record's round-trip text (with layout_)
   std::unique_ptr<detail::ParallelRecords> parallel_;  // jobs > 1
   std::uint64_t next_release_ = 0;  // parallel: when to give text back next
-  std::uint64_t populated_to_ = 0;  // mapped text: mapped in ahead up to here (see populate_ahead)
+  std::uint64_t populated_to_ = 0;  // mapped text: mapped in ahead up to here (see on_record)
   bool abandoned_ = false;
 };
 

@@ -11,6 +11,8 @@
 #include <system_error>
 #include <utility>
 
+#include "pages.h"
+
 namespace stepnc::p21 {
 
 namespace {
@@ -68,14 +70,18 @@ void MappedFile::release_pages(std::size_t from, std::size_t to) const {
   if (data_ != nullptr && to > from) ::madvise(data_ + from, to - from, MADV_DONTNEED);
 }
 
-void MappedFile::populate_pages(std::size_t from, std::size_t to) const {
+void detail::populate_pages(const char* data, std::size_t size, std::size_t from, std::size_t to) {
 #if defined(MADV_POPULATE_READ)
   from = round_down(from);
-  to = std::min(to, size_);
-  if (data_ != nullptr && to > from) ::madvise(data_ + from, to - from, MADV_POPULATE_READ);
+  to = std::min(to, size);
+  if (data != nullptr && to > from) ::madvise(const_cast<char*>(data) + from, to - from, MADV_POPULATE_READ);
 #else
-  (void)from, (void)to;
+  (void)data, (void)size, (void)from, (void)to;
 #endif
+}
+
+void MappedFile::populate_pages(std::size_t from, std::size_t to) const {
+  detail::populate_pages(data_, size_, from, to);
 }
 
 void MappedFile::advise(int advice) const {
