@@ -196,7 +196,8 @@ std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::files
   std::memcpy(&head, bytes.data(), sizeof head);
   if (std::memcmp(head.magic, kCacheMagic, sizeof kCacheMagic) != 0 || head.version != kCacheVersion ||
       head.byte_order != kByteOrderProbe || head.file_size != stamp.size ||
-      head.mtime_seconds != stamp.modified_seconds || head.mtime_nanoseconds != stamp.modified_nanoseconds || head.payload_size != bytes.size() - sizeof(CacheHead))
+      head.mtime_seconds != stamp.modified_seconds || head.mtime_nanoseconds != stamp.modified_nanoseconds ||
+      head.payload_size != bytes.size() - sizeof(CacheHead))
     return std::nullopt;
   const std::span<const std::byte> payload = bytes.subspan(sizeof(CacheHead));
   Checksum checksum;
