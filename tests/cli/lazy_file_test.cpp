@@ -5,7 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -376,4 +378,41 @@ TEST_CASE("lazy read: instance #0 is found by id and through references", "[exch
     CHECK(all.nodes.front().instance->id() == 0);  // id order
     CHECK(file->diagnostics().items().empty());
   }
+}
+
+// The lazy open maps its file with p21::map_regular_file; its messages name
+// the step that failed, with errno's text.
+TEST_CASE("lazy read: a file that cannot be opened or mapped is an error value", "[exchange][lazy]") {
+  const fs::path dir = stepnc_test::scratch_directory("lazy-open");
+  const auto open_error = [](const fs::path& path) {
+    p21::Diagnostics diagnostics;
+    CHECK(open_lazily(path, diagnostics) == nullptr);
+    REQUIRE(diagnostics.items().size() == 1);
+    return diagnostics.items()[0].to_string();
+  };
+  CHECK(open_error(dir / "missing.stp") ==
+        (dir / "missing.stp").string() + ": error: cannot open file: No such file or directory");
+  CHECK(open_error(dir) == dir.string() + ": error: a lazy read needs a regular file");
+
+  // A file the address space has no room for (1 GiB, sparse).
+  const fs::path large = dir / "large.stp";
+  {
+    const int descriptor = ::open(large.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    REQUIRE(descriptor >= 0);
+    REQUIRE(::ftruncate(descriptor, off_t{1} << 30) == 0);
+    ::close(descriptor);
+  }
+  std::uint64_t pages = 0;
+  std::ifstream("/proc/self/statm") >> pages;
+  struct rlimit limit {};
+  REQUIRE(::getrlimit(RLIMIT_AS, &limit) == 0);
+  struct rlimit lowered = limit;
+  lowered.rlim_cur = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE)) + (std::uint64_t{64} << 20);
+  REQUIRE(::setrlimit(RLIMIT_AS, &lowered) == 0);
+  p21::Diagnostics diagnostics;
+  const bool opened = open_lazily(large, diagnostics) != nullptr;
+  ::setrlimit(RLIMIT_AS, &limit);
+  CHECK_FALSE(opened);
+  REQUIRE(diagnostics.items().size() == 1);
+  CHECK(diagnostics.items()[0].to_string() == large.string() + ": error: cannot map file: Cannot allocate memory");
 }

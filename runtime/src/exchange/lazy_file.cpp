@@ -4,11 +4,9 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstring>
 #include <limits>
 #include <system_error>
@@ -32,8 +30,16 @@ namespace {
 
 using detail::IndexedRecord;
 using detail::InstanceIndex;
-using detail::Descriptor;
-using detail::Mapping;
+using p21::FileStamp;
+using p21::MappedFile;
+
+// Closes a descriptor when it goes out of scope.
+struct Descriptor {
+  int fd = -1;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
 
 // --------------------------------------------------------------- the cache
 //
@@ -146,17 +152,6 @@ class CacheWriter final : public detail::BlobWriter {
   std::optional<std::string> error_;
 };
 
-struct FileStamp {
-  std::uint64_t size = 0;
-  std::int64_t seconds = 0;
-  std::int64_t nanoseconds = 0;
-};
-
-FileStamp stamp_of(const struct stat& status) {
-  return {static_cast<std::uint64_t>(status.st_size), static_cast<std::int64_t>(status.st_mtim.tv_sec),
-          static_cast<std::int64_t>(status.st_mtim.tv_nsec)};
-}
-
 // The payload: the header entities, then the index.
 void write_payload(const p21::Header& header, const InstanceIndex& index, detail::BlobWriter& out) {
   out.u64(header.entities.size());
@@ -178,8 +173,8 @@ std::optional<std::string> write_cache(const std::filesystem::path& path, const 
   head.version = kCacheVersion;
   head.byte_order = kByteOrderProbe;
   head.file_size = stamp.size;
-  head.mtime_seconds = stamp.seconds;
-  head.mtime_nanoseconds = stamp.nanoseconds;
+  head.mtime_seconds = stamp.modified_seconds;
+  head.mtime_nanoseconds = stamp.modified_nanoseconds;
   head.checksum = checksum.sum();
   head.payload_size = checksum.size();
   io::OutputFile out;
@@ -193,14 +188,16 @@ std::optional<std::string> write_cache(const std::filesystem::path& path, const 
 
 // The header and index of a usable cache, which stays mapped in `mapping`.
 std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::filesystem::path& path,
-                                                                const FileStamp& stamp, Mapping& mapping) {
-  if (!detail::map_regular_file(path, mapping) || mapping.text().size() < sizeof(CacheHead)) return std::nullopt;
+                                                                const FileStamp& stamp, MappedFile& mapping) {
+  mapping = p21::map_regular_file(path);
+  if (!mapping || mapping.text().size() < sizeof(CacheHead)) return std::nullopt;
   const std::span<const std::byte> bytes = std::as_bytes(std::span(mapping.text()));
   CacheHead head{};
   std::memcpy(&head, bytes.data(), sizeof head);
   if (std::memcmp(head.magic, kCacheMagic, sizeof kCacheMagic) != 0 || head.version != kCacheVersion ||
-      head.byte_order != kByteOrderProbe || head.file_size != stamp.size || head.mtime_seconds != stamp.seconds ||
-      head.mtime_nanoseconds != stamp.nanoseconds || head.payload_size != bytes.size() - sizeof(CacheHead))
+      head.byte_order != kByteOrderProbe || head.file_size != stamp.size ||
+      head.mtime_seconds != stamp.modified_seconds || head.mtime_nanoseconds != stamp.modified_nanoseconds ||
+      head.payload_size != bytes.size() - sizeof(CacheHead))
     return std::nullopt;
   const std::span<const std::byte> payload = bytes.subspan(sizeof(CacheHead));
   Checksum checksum;
@@ -228,7 +225,7 @@ std::optional<std::pair<p21::Header, InstanceIndex>> read_cache(const std::files
 class IndexBuilder final : public p21::RecordHandler {
  public:
   // Record offsets of the scanned stream plus `shift` are file offsets.
-  IndexBuilder(InstanceIndex& index, p21::Header* header, const Mapping* mapping, std::int64_t shift = 0,
+  IndexBuilder(InstanceIndex& index, p21::Header* header, const MappedFile* mapping, std::int64_t shift = 0,
                std::uint64_t until = std::numeric_limits<std::uint64_t>::max())
       : index_(index), header_(header), mapping_(mapping), shift_(shift), until_(until) {}
 
@@ -253,7 +250,7 @@ class IndexBuilder final : public p21::RecordHandler {
     index_.append({record.id, offset, static_cast<std::uint32_t>(record.text.size()), record.entity});
     constexpr std::uint64_t kReleaseStep = std::uint64_t{16} << 20;
     if (mapping_ != nullptr && offset >= released_ + kReleaseStep) {
-      mapping_->release(static_cast<std::size_t>(released_), static_cast<std::size_t>(offset));
+      mapping_->release_pages(static_cast<std::size_t>(released_), static_cast<std::size_t>(offset));
       released_ = offset;
     }
     return true;
@@ -266,7 +263,7 @@ class IndexBuilder final : public p21::RecordHandler {
  private:
   InstanceIndex& index_;
   p21::Header* header_;
-  const Mapping* mapping_;
+  const MappedFile* mapping_;
   std::int64_t shift_;
   std::uint64_t until_;
   std::vector<std::string> names_;
@@ -317,7 +314,7 @@ std::size_t record_start_after(std::string_view text, std::size_t from) {
 // the split does not hold or any part has a problem: the caller then scans
 // the whole file once, which also gives every diagnostic its true place.
 std::optional<std::pair<p21::Header, InstanceIndex>> scan_in_parts(const std::filesystem::path& path,
-                                                                   const Mapping& mapping, unsigned jobs) {
+                                                                   const MappedFile& mapping, unsigned jobs) {
   const std::string_view text = mapping.text();
   std::vector<std::uint64_t> starts = {0};
   for (unsigned part = 1; part < jobs; ++part) {
@@ -377,8 +374,8 @@ struct LazyModelFile::State final : public meta::FillContext {
   detail::EntityLookup entities;
   std::string file_name;
   std::string owned_text;  // standard input
-  Mapping file_mapping;
-  Mapping cache_mapping;  // the cached index's arrays live here
+  MappedFile file_mapping;
+  MappedFile cache_mapping;  // the cached index's arrays live here
   std::string_view text;
   p21::Header header;
   InstanceIndex index;
@@ -520,14 +517,10 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     if (auto error = io::read_standard_input(state->owned_text)) return fail(*error);
     state->text = state->owned_text;
   } else {
-    Descriptor input{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-    struct stat status{};
-    if (input.fd < 0 || ::fstat(input.fd, &status) != 0)
-      return fail("cannot open file: " + std::error_code(errno, std::generic_category()).message());
-    if (!S_ISREG(status.st_mode)) return fail("a lazy read needs a regular file");
-    stamp = stamp_of(status);
-    if (auto error = state->file_mapping.map(input.fd, static_cast<std::size_t>(status.st_size)))
-      return fail("cannot map file: " + *error);
+    state->file_mapping = p21::map_regular_file(path);
+    if (state->file_mapping.failed_at(p21::MapStep::not_regular)) return fail("a lazy read needs a regular file");
+    if (const auto& failure = state->file_mapping.failure()) return fail(failure->message());
+    stamp = state->file_mapping.stamp();
     state->text = state->file_mapping.text();
   }
 
@@ -541,7 +534,7 @@ std::unique_ptr<LazyModelFile> LazyModelFile::open(const std::filesystem::path& 
     }
   }
   if (!indexed) {
-    state->cache_mapping.reset();
+    state->cache_mapping = MappedFile();
     p21::ReadOptions strict;  // the scan stops at the first structural error
     strict.error_limit = 1;
     p21::Diagnostics scanned;

@@ -126,7 +126,7 @@ class InstanceTable {
 class StreamingBuilder final : public p21::RecordHandler, public meta::FillContext {
  public:
   StreamingBuilder(ModelFile& file, const meta::Registry& registry, std::size_t expected_records,
-                   const detail::Mapping* mapping)
+                   const p21::MappedFile* mapping)
       : file_(file), registry_(registry), entities_(registry), instances_(expected_records), window_(mapping) {
     file_.model.reserve(expected_records);
   }
@@ -195,7 +195,7 @@ class StreamingBuilder final : public p21::RecordHandler, public meta::FillConte
 // Streams `text` into a new ModelFile on one thread; null when the file
 // has a problem and needs the indexed read. `mapping`: as for
 // stream_model_parallel.
-std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Mapping* mapping, std::string file_name,
+std::unique_ptr<ModelFile> stream_model(std::string_view text, const p21::MappedFile* mapping, std::string file_name,
                                         const meta::Registry& registry) {
   // Typical records are 40-80 bytes; reserving from the size keeps the
   // tables from regrowing (untouched capacity costs no memory).
@@ -215,7 +215,7 @@ unsigned read_jobs(const ModelReadOptions& options, std::size_t size) {
 
 // Streams `text` into a new ModelFile on the threads `options` ask for;
 // null when it has a problem and needs the indexed read.
-std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Mapping* mapping, std::string file_name,
+std::unique_ptr<ModelFile> stream_model(std::string_view text, const p21::MappedFile* mapping, std::string file_name,
                                         const meta::Registry& registry, const ModelReadOptions& options) {
   if (const unsigned jobs = read_jobs(options, text.size()); jobs > 1)
     return detail::stream_model_parallel(text, mapping, std::move(file_name), registry, jobs);
@@ -226,8 +226,8 @@ std::unique_ptr<ModelFile> stream_model(std::string_view text, const detail::Map
 // threads share it); null when it has a problem or cannot be mapped.
 std::unique_ptr<ModelFile> stream_model_file(const std::filesystem::path& path, const meta::Registry& registry,
                                              const ModelReadOptions& options) {
-  detail::Mapping mapping;
-  if (!detail::map_regular_file(path, mapping)) return nullptr;
+  const p21::MappedFile mapping = p21::map_regular_file(path);
+  if (!mapping) return nullptr;
   return stream_model(mapping.text(), &mapping, path.string(), registry, options);
 }
 

@@ -207,7 +207,7 @@ class alignas(kCacheLine) BatchQueue {
 // pages of records every thread is done with.
 class alignas(kCacheLine) Producer final : public p21::RecordHandler {
  public:
-  Producer(ModelFile& file, const meta::Registry& registry, const Mapping* mapping, SharedIdTable& ids,
+  Producer(ModelFile& file, const meta::Registry& registry, const p21::MappedFile* mapping, SharedIdTable& ids,
            BatchQueue& queue, Filler& own, std::atomic<bool>& failed, std::size_t batch_bytes,
            std::size_t max_in_flight)
       : file_(file), registry_(registry), entities_(registry), window_(mapping), ids_(ids), queue_(queue),
@@ -324,8 +324,8 @@ constexpr std::size_t kLargestBatch = std::size_t{512} << 10;
 
 }  // namespace
 
-std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const Mapping* mapping, std::string file_name,
-                                                 const meta::Registry& registry, unsigned jobs) {
+std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const p21::MappedFile* mapping,
+                                                 std::string file_name, const meta::Registry& registry, unsigned jobs) {
   auto file = std::make_unique<ModelFile>();
   file->model.reserve(text.size() / 48);  // typical records are 40-80 bytes
   SharedIdTable ids;

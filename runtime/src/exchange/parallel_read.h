@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "mapping.h"
+#include "stepnc/p21/mapped_file.h"
 #include "stepnc/exchange/model_file.h"
 
 namespace stepnc::exchange::detail {
@@ -19,7 +19,7 @@ namespace stepnc::exchange::detail {
 // the sequential streaming read gives up: the caller then reads it again
 // through the indexed read, which reports every problem. A file read
 // without a problem gives the same model as the sequential read.
-std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const Mapping* mapping, std::string file_name,
-                                                 const meta::Registry& registry, unsigned jobs);
+std::unique_ptr<ModelFile> stream_model_parallel(std::string_view text, const p21::MappedFile* mapping,
+                                                 std::string file_name, const meta::Registry& registry, unsigned jobs);
 
 }  // namespace stepnc::exchange::detail

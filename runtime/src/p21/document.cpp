@@ -11,17 +11,17 @@
 #include <cstring>
 #include <random>
 
-#include <fcntl.h>
 #include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "lexical.h"
+#include "pages.h"
 #include "parallel_records.h"
 #include "round_trip.h"
 #include "scanner.h"
 #include "stepnc/io/input.h"
 #include "stepnc/p21/huge_pages.h"
+#include "stepnc/p21/mapped_file.h"
 #include "stepnc/p21/stream.h"
 #include "stepnc/p21/threads.h"
 #include "stepnc/p21/writer.h"
@@ -247,24 +247,6 @@ void Document::release_text_before(std::uint64_t offset) const {
   released_before_ = end;
 }
 
-namespace {
-// Maps in the pages of [begin, begin + kReleaseStep) of a mapped text at
-// once, ahead of a reader going through it in order: one system call per
-// step instead of a page fault every few pages (MADV_POPULATE_READ, Linux
-// 5.14; where it is missing or refused the pages fault in as they are read).
-void populate_ahead(const char* text, std::size_t size, std::uint64_t begin) {
-#if defined(MADV_POPULATE_READ)
-  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-  begin = begin / page * page;
-  const std::uint64_t end = std::min<std::uint64_t>(begin + kReleaseStep, size);
-  if (begin < end) ::madvise(const_cast<char*>(text) + begin, end - begin, MADV_POPULATE_READ);
-#else
-  (void)text, (void)size, (void)begin;
-#endif
-}
-
-}  // namespace
-
 const RecordEntry* Document::find(std::uint64_t id) const { return ids_ ? ids_->find(id, records_) : nullptr; }
 
 std::string_view Document::entity_name(const RecordEntry& r) const {
@@ -359,7 +341,6 @@ class DocumentBuilder final : public RecordHandler {
   detail::TextBytes take_text() { return std::move(doc_.bytes_); }
 
   static detail::TextBytes copy_text(std::string_view text);
-  static detail::TextBytes map_file(int descriptor, std::size_t size);
 
   bool on_header(const Header& header, StreamContext&) override {
     if (layout_ != nullptr) layout_->header(header);
@@ -379,7 +360,7 @@ class DocumentBuilder final : public RecordHandler {
   bool on_record(const RecordView& record, StreamContext&) override {
     if (doc_.is_mapped() && record.offset + record.text.size() + kReleaseStep > populated_to_) {
       // A step ahead of the scanner stays mapped in.
-      populate_ahead(doc_.bytes_.get(), doc_.size_, populated_to_);
+      detail::populate_pages(doc_.bytes_.get(), doc_.size_, populated_to_, populated_to_ + kReleaseStep);
       populated_to_ += kReleaseStep;
     }
     if (!parallel_) {
@@ -491,7 +472,7 @@ class DocumentBuilder final : public RecordHandler {
   std::string line_;  // a record's round-trip text (with layout_)
   std::unique_ptr<detail::ParallelRecords> parallel_;  // jobs > 1
   std::uint64_t next_release_ = 0;  // parallel: when to give text back next
-  std::uint64_t populated_to_ = 0;  // mapped text: mapped in ahead up to here (see populate_ahead)
+  std::uint64_t populated_to_ = 0;  // mapped text: mapped in ahead up to here (see on_record)
   bool abandoned_ = false;
 };
 
@@ -502,41 +483,13 @@ detail::TextBytes DocumentBuilder::copy_text(std::string_view text) {
   return bytes;
 }
 
-// A read-only mapping of the whole of a regular file, or null (then the
-// caller reads it). Mapping a large file saves copying it and lets
-// release_text_before() drop what a pass has read. The usual caveat of
-// mappings applies: a file truncated by another process while it is
-// read faults (SIGBUS); files are not expected to change under a reader.
-detail::TextBytes DocumentBuilder::map_file(int descriptor, std::size_t size) {
-  void* mapping = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, descriptor, 0);
-  if (mapping == MAP_FAILED) return {};
-  return detail::TextBytes(static_cast<char*>(mapping), detail::TextDeleter{size});
-}
-
 namespace {
 
-// A mapping of `path` when it is a regular file of at least `smallest`
-// bytes (below that the caller reads it); `opened` is false when it
-// cannot be opened at all.
-struct MappedFile {
-  detail::TextBytes bytes;
-  std::size_t size = 0;
-  bool opened = false;
-};
-
-MappedFile map_regular_file(const std::filesystem::path& path, std::size_t smallest) {
-  MappedFile mapped;
-  const int descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (descriptor < 0) return mapped;
-  mapped.opened = true;
-  struct stat status {};
-  if (::fstat(descriptor, &status) == 0 && S_ISREG(status.st_mode) &&
-      static_cast<std::size_t>(status.st_size) >= smallest) {
-    mapped.size = static_cast<std::size_t>(status.st_size);
-    mapped.bytes = DocumentBuilder::map_file(descriptor, mapped.size);
-  }
-  ::close(descriptor);
-  return mapped;
+// A mapping of `mapped` as the Document's buffer: mapping a large file
+// saves copying it and lets release_text_before() drop what a pass has read.
+detail::TextBytes mapped_text(MappedFile& mapped) {
+  const std::size_t size = mapped.text().size();
+  return detail::TextBytes(mapped.release(), detail::TextDeleter{size});
 }
 
 // Reads a document from its text, again on one thread when a parallel read
@@ -575,9 +528,13 @@ ReadResult read_path(const std::filesystem::path& path, const ReadOptions& optio
     return read_document(DocumentBuilder::copy_text(text), size, io::standard_input_name, options, layout, streamed);
   }
   MappedFile mapped = map_regular_file(path, kMapThreshold);
-  if (!mapped.opened) return io_error("cannot open file");
-  if (mapped.bytes) return read_document(std::move(mapped.bytes), mapped.size, path.string(), options, layout, streamed);
-
+  if (mapped.failed_at(MapStep::open)) return io_error("cannot open file");
+  if (mapped) {
+    const std::size_t size = mapped.text().size();
+    return read_document(mapped_text(mapped), size, path.string(), options, layout, streamed);
+  }
+  // Not a regular file (a pipe), too small to be worth mapping, or the
+  // mapping failed: read it.
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) return io_error("cannot open file");
   long size = -1;
@@ -686,12 +643,12 @@ void locate_records(const std::filesystem::path& path, std::span<const std::uint
     std::stable_sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return ids[a] < ids[b]; });
   }
   // The text: a mapping of a regular file (no copy), else a copy.
-  const MappedFile mapped = map_regular_file(path, 1);
-  if (!mapped.opened) return;
+  const MappedFile mapped = map_regular_file(path);
+  if (mapped.failed_at(MapStep::open)) return;
   std::string copy;
   std::string_view text;
-  if (mapped.bytes) {
-    text = std::string_view(mapped.bytes.get(), mapped.size);
+  if (mapped) {
+    text = mapped.text();
   } else {
     if (io::read_text(path, copy)) return;
     text = copy;
