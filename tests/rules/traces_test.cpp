@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "machining_schema.h"
+#include "read_test_data.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/rules/evaluate.h"
@@ -38,14 +39,7 @@ std::vector<std::string> checked(const stepnc::meta::Model& model) {
 
 std::unique_ptr<stepnc::exchange::ModelFile> read(const std::string& data) {
   static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(traces_schema::meta_schema);
-  auto result = stepnc::exchange::read_model_text(
-      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-      "FILE_SCHEMA(('TRACES_SCHEMA'));\nENDSEC;\nDATA;\n" +
-          data + "ENDSEC;\nEND-ISO-10303-21;\n",
-      "traces.stp", registry);
-  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
-  REQUIRE(result.ok());
-  return std::move(result.file);
+  return stepnc::test::read_data_section(registry, "TRACES_SCHEMA", data, "traces.stp");
 }
 
 }  // namespace

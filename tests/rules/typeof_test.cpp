@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "read_test_data.h"
 #include "stepnc/exchange/model_file.h"
 #include "stepnc/meta/registry.h"
 #include "stepnc/rules/evaluate.h"
@@ -17,14 +18,7 @@ namespace {
 
 std::unique_ptr<stepnc::exchange::ModelFile> read(const std::string& data) {
   static const stepnc::meta::Registry registry = stepnc::meta::Registry::of_set(typeof_schema::meta_schema);
-  auto result = stepnc::exchange::read_model_text(
-      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
-      "FILE_SCHEMA(('TYPEOF_SCHEMA'));\nENDSEC;\nDATA;\n" +
-          data + "ENDSEC;\nEND-ISO-10303-21;\n",
-      "typeof.stp", registry);
-  for (const auto& d : result.diagnostics.items()) UNSCOPED_INFO(d.to_string());
-  REQUIRE(result.ok());
-  return std::move(result.file);
+  return stepnc::test::read_data_section(registry, "TYPEOF_SCHEMA", data, "typeof.stp");
 }
 
 // "#id owner.label" of every violation, in check() order.
