@@ -139,7 +139,6 @@ Instance* Model::create_complex(const Combination& combination, std::optional<st
   return whole;
 }
 
-
 Instance* Model::whole_of_part(Instance* part) const noexcept {
   // The number is checked against the whole's parts: a part of another
   // model's complex instance is not one of this model's.

@@ -116,10 +116,6 @@ const EntityInfo* Registry::find_complex(std::span<const std::string_view> part_
   return nullptr;
 }
 
-}  // namespace stepnc::meta
-
-namespace stepnc::meta {
-
 Registry::Combined Registry::combine(std::span<const std::string_view> part_names) const {
   Combined result;
   std::vector<const EntityInfo*> entities;
